@@ -1,0 +1,103 @@
+"""``rvsim params``, ``rvsim profile`` and ``rvsim sensitivity``."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..analytical import sensitivity_table
+from ..geometry.export import export_profile
+from ..parameters import parameter_table
+from ._common import EXAMPLES, add_reducer_options, print_json, reducer_from_args
+
+__all__ = ["register"]
+
+
+def _params(args: argparse.Namespace) -> int:
+    reducer = reducer_from_args(args)
+    rows = parameter_table(reducer)
+    if args.json:
+        print_json({"name": reducer.name, "citation": reducer.citation, "parameters": rows})
+        return 0
+    if args.toml:
+        section = None
+        print(f'base = "RV-40E"\nname = "{reducer.name}"')
+        for row in rows:
+            head, _, leaf = row["name"].rpartition(".")
+            if head != section:
+                print(f"\n[{head}]")
+                section = head
+            value = row["value"]
+            text = ("true" if value else "false") if isinstance(value, bool) else f"{value:.12g}"
+            print(f"{leaf} = {text}  # [{row['unit']}] {row['description']}")
+        return 0
+    print(f"{reducer.name}: {reducer.citation}")
+    width = max(len(r["name"]) for r in rows)
+    for row in rows:
+        value = row["value"]
+        text = ("yes" if value else "no") if isinstance(value, bool) else f"{value:.6g}"
+        print(f"{row['name']:<{width}}  {text:>12}  {row['unit']:<7} {row['description']}")
+    return 0
+
+
+def _profile(args: argparse.Namespace) -> int:
+    reducer = reducer_from_args(args)
+    summary = export_profile(reducer, args.out, points=args.points)
+    if args.json:
+        print_json(summary)
+    else:
+        print(f"wrote {summary['file']}: {summary['teeth']}-tooth profile, {summary['points']} "
+              f"points, max chordal deviation {summary['chordal_deviation_mm'] * 1e3:.3f} um")
+    return 0
+
+
+def _sensitivity(args: argparse.Namespace) -> int:
+    table = sensitivity_table(reducer_from_args(args))
+    if args.json:
+        print_json(table.to_dict())
+        return 0
+    print(f"K1 = {table.curtate_ratio:.4f}")
+    print(f"{'symbol':<14}{'error [mm]':>11}{'coefficient':>13}{'sensitivity':>13}"
+          f"{'TE [arcmin]':>13}  error")
+    for t in table.terms:
+        print(f"{t.symbol:<14}{t.error * 1e3:>11.4f}{t.coefficient:>13.5g}"
+              f"{t.sensitivity_index:>13.5g}{t.te_arcmin:>13.4f}  {t.name}")
+    print(f"mean TE, Eq. (11): {table.mean_te_arcmin:.4f} arcmin")
+    return 0
+
+
+def register(sub) -> None:
+    p = sub.add_parser("params", help="list every parameter with its unit and value",
+                       description="List every reducer parameter: dotted name, value, unit.",
+                       epilog=EXAMPLES + "rvsim params\n  rvsim params --toml > my_reducer.toml"
+                       "\n  rvsim params --set cycloid.eccentricity=1.4 --json",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_reducer_options(p)
+    fmt = p.add_mutually_exclusive_group()
+    fmt.add_argument("--json", action="store_true", help="print one JSON object")
+    fmt.add_argument("--toml", action="store_true",
+                     help="print a complete TOML file to edit and pass to --params")
+    p.set_defaults(func=_params)
+
+    p = sub.add_parser("profile", help="export the cycloid disc profile (CSV or DXF)",
+                       description="Write the (modified) cycloid disc profile in millimetres. "
+                       "The format follows the extension: .csv (x_mm,y_mm) or .dxf (closed "
+                       "polyline).",
+                       epilog=EXAMPLES + "rvsim profile --out disc.dxf\n  rvsim profile --set "
+                       "I=0.016 --set J=0.026 --out disc.csv --points 7200",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_reducer_options(p)
+    p.add_argument("--out", required=True, metavar="FILE", help="output file (.csv or .dxf)")
+    p.add_argument("--points", type=int, default=36000, help="points on the profile "
+                   "(default 36000: chordal deviation about 0.13 um for the RV-40E)")
+    p.add_argument("--json", action="store_true", help="print a JSON summary")
+    p.set_defaults(func=_profile)
+
+    p = sub.add_parser("sensitivity", help="the paper's analytical error model (Table 1)",
+                       description="Error terms of Eqs. (2)-(10), their sensitivity indices "
+                       "(Eq. 15) and the mean transmission error of Eq. (11), with the error "
+                       "values of the paper's Table 1.",
+                       epilog=EXAMPLES + "rvsim sensitivity\n  rvsim sensitivity --json",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_reducer_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=_sensitivity)

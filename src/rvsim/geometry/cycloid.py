@@ -1,0 +1,172 @@
+"""Cycloid disc profile, pin positions and tooth gaps, derived from the generating geometry.
+
+Conventions (docs/model.md, "Cycloid stage geometry"):
+
+* Fixed pin housing; pin j sits at angle gamma_j = 2 pi j / zp on radius r_p + H.
+* ``crank_angle`` beta is the absolute angle of disc 1's eccentric; disc k's eccentric is at
+  beta + k*pi.  In the nominal (kinematic) pose the disc centre is a*(cos, sin)(beta + k pi) and
+  the disc turns by -beta/zc, i.e. with the carrier.
+* Disc k's teeth are cut with phase -k*pi/zc so that both identical discs mesh (zc odd: a disc
+  turned half a revolution is half a pitch out).
+* Every error and modification opens clearance (paper Sec. 3.2): pin radius r_rp - F,
+  eccentricity a - G (crank only), pin circle r_p + H, profile offset r_rp + I, generating
+  circle r_p - J.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..parameters import Reducer
+from ._curve import curvature, signed_distances
+
+__all__ = [
+    "CycloidProfile", "profile_of", "pin_centres", "nominal_disc_pose", "pin_gaps",
+    "geometric_backlash", "undercut_ratio", "NEWTON_ITERATIONS",
+]
+
+#: Newton iterations for a cold-started foot point (converges to machine precision in 3-5)
+NEWTON_ITERATIONS = 30
+
+
+@dataclasses.dataclass(frozen=True)
+class CycloidProfile:
+    """The tooth profile of a cycloid disc, in disc axes, SI units."""
+
+    generating_radius: float
+    """radius of the generating pin circle r_p - J [m]"""
+    eccentricity: float
+    """design eccentricity used to cut the disc [m]"""
+    pin_count: int
+    """number of pins zp (disc has zp - 1 teeth)"""
+    offset: float
+    """equidistant offset r_rp + I from the pin-centre curve to the profile [m]"""
+    rotation: float = 0.0
+    """rotation modification [rad]"""
+
+    @property
+    def teeth(self) -> int:
+        return self.pin_count - 1
+
+    def points(self, n: int = 3600, phase: float = 0.0) -> np.ndarray:
+        """``n`` points of the closed profile (first point not repeated), shape (n, 2) [m]."""
+        u = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
+        rg, a, zp = self.generating_radius, self.eccentricity, self.pin_count
+        x = rg * np.cos(u) - a * np.cos(zp * u)
+        y = rg * np.sin(u) - a * np.sin(zp * u)
+        dx = -rg * np.sin(u) + a * zp * np.sin(zp * u)
+        dy = rg * np.cos(u) - a * zp * np.cos(zp * u)
+        norm = np.hypot(dx, dy)
+        px = x - self.offset * dy / norm
+        py = y + self.offset * dx / norm
+        c, s = math.cos(self.rotation + phase), math.sin(self.rotation + phase)
+        return np.column_stack([c * px - s * py, s * px + c * py])
+
+
+def profile_of(reducer: Reducer) -> CycloidProfile:
+    """The (possibly modified) profile the reducer's discs are cut to."""
+    c, e = reducer.cycloid, reducer.errors
+    return CycloidProfile(
+        generating_radius=c.pin_circle_radius - e.radial_modification,
+        eccentricity=c.eccentricity,
+        pin_count=c.pin_count,
+        offset=c.pin_radius + e.equidistant_modification,
+        rotation=e.rotation_modification,
+    )
+
+
+def pin_centres(reducer: Reducer) -> np.ndarray:
+    """Actual pin centres in housing axes, shape (zp, 2) [m]."""
+    c = reducer.cycloid
+    gamma = 2.0 * np.pi * np.arange(c.pin_count) / c.pin_count
+    radius = c.pin_circle_radius + reducer.errors.pin_circle_radius
+    return radius * np.column_stack([np.cos(gamma), np.sin(gamma)])
+
+
+def nominal_disc_pose(reducer: Reducer, crank_angle: float, disc: int = 0):
+    """Kinematic pose (x, y, rotation) of disc ``disc`` at eccentric angle ``crank_angle``."""
+    a = reducer.cycloid.eccentricity - reducer.errors.eccentricity
+    beta = crank_angle + disc * math.pi
+    return a * math.cos(beta), a * math.sin(beta), -crank_angle / reducer.cycloid.disc_teeth
+
+
+def _disc_axes(points: np.ndarray, x: float, y: float, angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    dx = points[:, 0] - x
+    dy = points[:, 1] - y
+    return np.column_stack([c * dx + s * dy, -s * dx + c * dy])
+
+
+def pin_gaps(reducer: Reducer, crank_angle: float, *, disc: int = 0,
+             extra_rotation: float = 0.0, offset: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
+    """Normal clearance between each pin and the disc profile, shape (zp,) [m].
+
+    The disc is placed in its nominal pose for ``crank_angle`` (eccentricity error included),
+    then turned by ``extra_rotation`` and shifted by ``offset``.  Negative values are overlap.
+    """
+    prof = profile_of(reducer)
+    zc = reducer.cycloid.disc_teeth
+    x, y, rot = nominal_disc_pose(reducer, crank_angle, disc)
+    angle = rot + extra_rotation - disc * math.pi / zc + prof.rotation
+    q = _disc_axes(pin_centres(reducer), x + offset[0], y + offset[1], angle)
+    gamma = 2.0 * np.pi * np.arange(reducer.cycloid.pin_count) / reducer.cycloid.pin_count
+    u0 = gamma - angle  # exact foot parameter of the nominal pose
+    s, _ = signed_distances(q[:, 0].copy(), q[:, 1].copy(), u0, prof.generating_radius,
+                            prof.eccentricity, float(prof.pin_count), NEWTON_ITERATIONS)
+    pin_radius = reducer.cycloid.pin_radius - reducer.errors.pin_radius
+    return s + prof.offset - pin_radius
+
+
+def geometric_backlash(reducer: Reducer, crank_angle: float = 0.0, disc: int = 0):
+    """Disc rotation to first pin contact with the crank held, both ways: (forward, backward).
+
+    Both are positive angles [rad]; their sum is the angular backlash of the cycloid stage.
+    Raises :class:`ValueError` when the disc already overlaps a pin.
+    """
+    from scipy.optimize import brentq
+
+    def min_gap(phi: float) -> float:
+        return float(np.min(pin_gaps(reducer, crank_angle, disc=disc, extra_rotation=phi)))
+
+    if min_gap(0.0) < -1e-12:
+        raise ValueError("the disc overlaps a pin in its nominal pose")
+    limit = 0.05
+    result = []
+    for sign in (1.0, -1.0):
+        if min_gap(0.0) <= 1e-12:
+            result.append(0.0)
+            continue
+        root = brentq(lambda p: min_gap(sign * p), 0.0, limit, xtol=1e-13, rtol=1e-12)
+        result.append(root)
+    return result[0], result[1]
+
+
+def undercut_ratio(reducer: Reducer, samples: int = 2000) -> float:
+    """max over the profile of offset * curvature of the pin-centre curve.
+
+    The profile is free of undercut (no cusp, no self-intersection) while this is below 1.
+    """
+    prof = profile_of(reducer)
+    u = np.linspace(0.0, 2.0 * np.pi / prof.teeth, samples)
+    kappa = np.array([curvature(ui, prof.generating_radius, prof.eccentricity,
+                                float(prof.pin_count)) for ui in u])
+    return float(np.max(kappa) * prof.offset)
+
+
+def check_profile(reducer: Reducer) -> None:
+    """Raise :class:`ParameterError` if the profile loops or undercuts."""
+    k1 = reducer.curtate_ratio
+    if k1 >= 1.0:
+        raise ParameterError("cycloid.eccentricity",
+                             f"curtate ratio K1 = a*zp/r_p = {k1:.4f} must be below 1 "
+                             "(the profile would loop)")
+    ratio = undercut_ratio(reducer)
+    if ratio >= 1.0:
+        raise ParameterError("cycloid.pin_radius",
+                             f"teeth undercut: pin radius + equidistant modification exceeds "
+                             f"the smallest radius of curvature of the pin-centre curve by a "
+                             f"factor {ratio:.3f}")

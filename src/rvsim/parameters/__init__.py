@@ -1,0 +1,14 @@
+"""Reducer parameter sets: dataclasses (SI inside), the paper's RV-40E, TOML and overrides."""
+
+from ._types import (Clearances, ContactModel, Crankshaft, CycloidStage, Errors, Flexibility,
+                     GearStage, Material, Materials, Operating, Reducer)
+from .rv40e import CITATION, RV40E, TABLE2_FACTORS, FactorSpec
+from ._io import (BUILT_IN_SETS, SPECS, get_value, load_toml, parameter_table, parse_assignment,
+                  resolve_name, validate, with_values)
+
+__all__ = [
+    "Reducer", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances", "Flexibility",
+    "Operating", "ContactModel", "Material", "Materials", "RV40E", "CITATION", "TABLE2_FACTORS",
+    "FactorSpec", "BUILT_IN_SETS", "SPECS", "get_value", "load_toml", "parameter_table",
+    "parse_assignment", "resolve_name", "validate", "with_values",
+]

@@ -1,0 +1,219 @@
+"""Reading, overriding, validating and listing reducer parameters (user units at this edge).
+
+* ``rvsim params`` lists every dotted name with its unit (:func:`parameter_table`).
+* A TOML file mirrors the dataclass tree (``[cycloid] eccentricity = 1.5``), values in the
+  listed user units; fields it omits keep the values of the base set (``base = "RV-40E"``).
+* ``--set name=value`` overrides one value; Table 2 factor letters (``H=0.02``) are accepted as
+  aliases of the parameters they set.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+from pathlib import Path
+from typing import Any
+
+from ..errors import InputFileError, ParameterError
+from ..units import TO_SI
+from ._schema import FieldSpec, field_specs
+from ._types import Reducer
+from .rv40e import RV40E, TABLE2_FACTORS
+
+__all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assignment",
+           "load_toml", "validate", "resolve_name", "BUILT_IN_SETS"]
+
+#: every leaf parameter of :class:`Reducer`, by dotted name
+SPECS: dict[str, FieldSpec] = {s.name: s for s in field_specs(Reducer)}
+
+#: named parameter sets shipped with rvsim
+BUILT_IN_SETS: dict[str, Reducer] = {"RV-40E": RV40E}
+
+_TRUE = {"true", "yes", "y", "1", "on"}
+_FALSE = {"false", "no", "n", "0", "off"}
+
+
+def resolve_name(name: str) -> str:
+    """Dotted parameter name for ``name`` (a dotted name or a Table 2 factor letter)."""
+    name = name.strip()
+    if name in SPECS:
+        return name
+    if name.upper() in TABLE2_FACTORS and len(name) == 1:
+        return TABLE2_FACTORS[name.upper()].parameter
+    raise ParameterError(name, "unknown parameter (run 'rvsim params' for the list)")
+
+
+def get_value(reducer: Reducer, name: str, *, user_units: bool = True) -> Any:
+    """Value of parameter ``name``, in its user unit unless ``user_units`` is False."""
+    name = resolve_name(name)
+    obj: Any = reducer
+    for part in name.split("."):
+        obj = getattr(obj, part)
+    spec = SPECS[name]
+    if spec.kind == "float" and user_units:
+        return obj / TO_SI[spec.unit]
+    return obj
+
+
+def _coerce(spec: FieldSpec, raw: Any) -> Any:
+    """Turn a user-supplied value (str, number, bool) into the field's SI value."""
+    if spec.kind == "bool":
+        if isinstance(raw, bool):
+            return raw
+        text = str(raw).strip().lower()
+        if text in _TRUE:
+            return True
+        if text in _FALSE:
+            return False
+        raise ParameterError(spec.name, f"'{raw}' is not a yes/no value (use true or false)")
+    if isinstance(raw, bool):
+        raise ParameterError(spec.name, f"'{raw}' is not a number")
+    try:
+        value = float(raw)
+    except (TypeError, ValueError):
+        raise ParameterError(spec.name, f"'{raw}' is not a number") from None
+    if not math.isfinite(value):
+        raise ParameterError(spec.name, f"'{raw}' is not a finite number")
+    if spec.kind == "int":
+        if value != int(value):
+            raise ParameterError(spec.name, f"'{raw}' is not a whole number")
+        return int(value)
+    return value * TO_SI[spec.unit]
+
+
+def _replace_path(obj: Any, parts: list[str], value: Any) -> Any:
+    if len(parts) == 1:
+        return dataclasses.replace(obj, **{parts[0]: value})
+    child = getattr(obj, parts[0])
+    return dataclasses.replace(obj, **{parts[0]: _replace_path(child, parts[1:], value)})
+
+
+def with_values(reducer: Reducer, values: dict[str, Any], *, check: bool = True) -> Reducer:
+    """A copy of ``reducer`` with parameters set from user-unit ``values``, validated."""
+    for raw_name, raw in values.items():
+        name = resolve_name(raw_name)
+        reducer = _replace_path(reducer, name.split("."), _coerce(SPECS[name], raw))
+    if check:
+        validate(reducer)
+    return reducer
+
+
+def parse_assignment(text: str) -> tuple[str, str]:
+    """Split ``name=value`` as given to ``--set``."""
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip():
+        raise ParameterError(text, "expected name=value")
+    if not value.strip():
+        raise ParameterError(name.strip(), "no value after '='")
+    return resolve_name(name), value.strip()
+
+
+def _flatten(table: dict, prefix: str = "") -> dict[str, Any]:
+    flat: dict[str, Any] = {}
+    for key, value in table.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            flat.update(_flatten(value, name + "."))
+        else:
+            flat[name] = value
+    return flat
+
+
+def load_toml(path: str | Path, base: Reducer | None = None) -> Reducer:
+    """Read a reducer from a TOML file in user units (see module docstring)."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputFileError(f"{path}: file not found") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputFileError(f"{path}: cannot read ({exc})") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InputFileError(f"{path}: not valid TOML ({exc})") from None
+    base_name = data.pop("base", None)
+    if base is None:
+        base_name = base_name or "RV-40E"
+        if base_name not in BUILT_IN_SETS:
+            raise ParameterError("base", f"unknown parameter set '{base_name}' "
+                                 f"(built in: {', '.join(BUILT_IN_SETS)})")
+        base = BUILT_IN_SETS[base_name]
+    name = data.pop("name", None)
+    if name is not None:
+        base = dataclasses.replace(base, name=str(name))
+    values = _flatten(data)
+    for key in values:
+        if key not in SPECS:
+            raise ParameterError(key, f"unknown parameter in {path.name} "
+                                 "(run 'rvsim params' for the list)")
+    return with_values(base, values)
+
+
+def validate(reducer: Reducer) -> Reducer:
+    """Check ranges and the physical consistency of ``reducer``; return it unchanged.
+
+    Raises :class:`ParameterError` naming the first offending field.
+    """
+    for spec in SPECS.values():
+        value = get_value(reducer, spec.name, user_units=False)
+        if spec.kind == "bool":
+            continue
+        if not math.isfinite(value):
+            raise ParameterError(spec.name, "must be a finite number")
+        unit = TO_SI[spec.unit]
+        if spec.minimum is not None:
+            if spec.positive and value <= spec.minimum:
+                raise ParameterError(spec.name, f"must be greater than {spec.minimum / unit:g} "
+                                     f"{spec.unit} (got {value / unit:g})")
+            if not spec.positive and value < spec.minimum:
+                raise ParameterError(spec.name, f"must not be negative (got {value / unit:g})"
+                                     if spec.minimum == 0 else
+                                     f"must be at least {spec.minimum / unit:g} (got "
+                                     f"{value / unit:g})")
+        if spec.maximum is not None and value > spec.maximum:
+            raise ParameterError(spec.name, f"must not exceed {spec.maximum / unit:g} "
+                                 f"{spec.unit} (got {value / unit:g})")
+    _check_consistency(reducer)
+    return reducer
+
+
+def _check_consistency(r: Reducer) -> None:
+    c, e, k, op = r.cycloid, r.errors, r.crank, r.operating
+    if c.pin_count != c.disc_teeth + 1:
+        raise ParameterError("cycloid.pin_count", f"must equal disc_teeth + 1 = "
+                             f"{c.disc_teeth + 1} for a cycloid drive (got {c.pin_count})")
+    if r.gears.planet_count != 2:
+        raise ParameterError("gears.planet_count", "the dynamic model has exactly 2 crankshafts")
+    if e.eccentricity >= c.eccentricity:
+        raise ParameterError("errors.eccentricity", "must be smaller than the eccentricity")
+    if e.pin_radius >= c.pin_radius:
+        raise ParameterError("errors.pin_radius", "must be smaller than the pin radius")
+    if not k.lower_support_z < k.disc1_z < k.disc2_z < k.upper_support_z:
+        raise ParameterError("crank.disc1_z", "axial stations must satisfy lower_support_z < "
+                             "disc1_z < disc2_z < upper_support_z")
+    if op.load_ramp_end <= op.load_start:
+        raise ParameterError("operating.load_ramp_end", "must be later than load_start")
+    if op.steady_start >= op.duration:
+        raise ParameterError("operating.steady_start", "must be earlier than duration")
+    from ..geometry.cycloid import check_profile
+    from ..geometry.involute import check_gear_stage
+
+    check_profile(r)
+    check_gear_stage(r)
+    hole = k.eccentric_radius + k.arm_bushing_thickness
+    root = c.pin_circle_radius - c.pin_radius - c.eccentricity
+    from ..geometry.involute import gear_geometry
+
+    crank_circle = gear_geometry(r).centre_distance
+    if crank_circle + hole + c.eccentricity >= root:
+        raise ParameterError("crank.eccentric_radius", "the crank holes cut through the disc's "
+                             "tooth root (crank circle + hole radius >= root radius)")
+
+
+def parameter_table(reducer: Reducer) -> list[dict[str, Any]]:
+    """Rows (name, value, unit, description) for every parameter, values in user units."""
+    rows = []
+    for spec in SPECS.values():
+        value = get_value(reducer, spec.name)
+        rows.append({"name": spec.name, "value": value, "unit": spec.unit, "description": spec.doc})
+    return rows

@@ -1,0 +1,225 @@
+"""Frozen dataclasses describing an RV reducer, in SI units.
+
+Tooth counts fix array shapes; errors, clearances, loads and switches are inputs that a design of
+experiments sweeps.  Change a value with :func:`dataclasses.replace` or
+:func:`rvsim.parameters.with_values`.  Each field's docstring-like metadata gives the unit users
+see (``rvsim params`` lists them all).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ._schema import count, flag, quantity
+
+__all__ = [
+    "Material", "Materials", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances",
+    "Flexibility", "Operating", "ContactModel", "Reducer",
+]
+
+_MM = 1e-3
+_DEG = math.pi / 180.0
+
+
+def _material(name: str, e_gpa: float, density: float, poisson: float):
+    return dataclasses.field(default_factory=lambda: Material(name, e_gpa * 1e9, density, poisson))
+
+
+@dataclasses.dataclass(frozen=True)
+class Material:
+    """An isotropic linear-elastic material."""
+
+    name: str = "steel"
+    elastic_modulus: float = quantity(2.07e11, "GPa", "Young's modulus", positive=True)
+    density: float = quantity(7850.0, "kg/m^3", "mass density", positive=True)
+    poisson_ratio: float = quantity(0.3, "-", "Poisson's ratio", maximum=0.5)
+
+
+@dataclasses.dataclass(frozen=True)
+class Materials:
+    """Materials of the parts (paper Table 5)."""
+
+    input_shaft: Material = _material("15CrMo", 212.0, 7880.0, 0.284)
+    planet_gear: Material = _material("38CrMoAl", 211.0, 7850.0, 0.277)
+    carrier: Material = _material("ZG65Mn", 198.0, 7850.0, 0.230)
+    cycloid_disc: Material = _material("20CrMnMo", 207.0, 7870.0, 0.254)
+    crankshaft: Material = _material("20CrMnMo", 207.0, 7870.0, 0.254)
+    pin_housing: Material = _material("GCr15", 219.0, 7830.0, 0.300)
+    pin: Material = _material("QT500-7", 168.0, 7250.0, 0.240)
+    flange: Material = _material("ZG65Mn", 198.0, 7850.0, 0.230)
+    bushing: Material = _material("GCr15", 219.0, 7830.0, 0.300)
+
+
+@dataclasses.dataclass(frozen=True)
+class GearStage:
+    """First (involute sun-planet) stage (paper Table 4, stage I)."""
+
+    module: float = quantity(1.25 * _MM, "mm", "normal module", positive=True)
+    sun_teeth: int = count(18, "sun gear teeth z1", minimum=6)
+    planet_teeth: int = count(54, "planet gear teeth z2 (one planet per crankshaft)", minimum=6)
+    planet_count: int = count(2, "planet gears = crankshafts (fixed at 2 in the dynamic model)",
+                              minimum=2)
+    face_width: float = quantity(7.0 * _MM, "mm", "tooth width", positive=True)
+    pressure_angle: float = quantity(20.0 * _DEG, "deg", "standard pressure angle", positive=True,
+                                     maximum=35.0 * _DEG)
+    sun_profile_shift: float = quantity(0.469, "-", "sun profile shift coefficient x1",
+                                        minimum=-1.0, maximum=1.5)
+    planet_profile_shift: float = quantity(-0.505, "-", "planet profile shift coefficient x2",
+                                           minimum=-1.0, maximum=1.5)
+    backlash: float = quantity(0.0, "mm", "normal backlash of each sun-planet mesh "
+                               "(paper's ADAMS gear pair: none)")
+
+
+@dataclasses.dataclass(frozen=True)
+class CycloidStage:
+    """Second (cycloid-pin) stage (paper Table 4, stage II) and its assumed part sizes."""
+
+    eccentricity: float = quantity(1.5 * _MM, "mm", "crank eccentricity a", positive=True)
+    disc_teeth: int = count(39, "cycloid disc teeth zc", minimum=3)
+    pin_count: int = count(40, "pins zp (must be zc + 1)", minimum=4)
+    disc_width: float = quantity(15.0 * _MM, "mm", "cycloid disc width (contact length)",
+                                 positive=True)
+    pin_length: float = quantity(32.0 * _MM, "mm", "pin length", positive=True)
+    pin_radius: float = quantity(3.0 * _MM, "mm", "pin radius r_rp", positive=True)
+    pin_circle_radius: float = quantity(82.0 * _MM, "mm", "pin centre circle radius r_p",
+                                        positive=True)
+    disc_bore_radius: float = quantity(20.0 * _MM, "mm",
+                                       "central bore of the disc (assumed, docs/model.md)",
+                                       positive=True)
+    pillar_hole_count: int = count(2, "carrier pillar holes through the disc (assumed)",
+                                   minimum=0)
+    pillar_hole_radius: float = quantity(11.0 * _MM, "mm", "pillar hole radius (assumed)")
+    carrier_radius: float = quantity(80.0 * _MM, "mm",
+                                     "outer radius of carrier + flange (assumed)", positive=True)
+    carrier_thickness: float = quantity(30.0 * _MM, "mm",
+                                        "axial thickness of carrier + flange (assumed)",
+                                        positive=True)
+
+
+@dataclasses.dataclass(frozen=True)
+class Crankshaft:
+    """Crankshaft, its bushings and their axial stations (assumed; docs/model.md).
+
+    Axial positions ``z`` are measured from the lower (flange-side) support.
+    """
+
+    eccentric_radius: float = quantity(12.5 * _MM, "mm",
+                                       "eccentric journal radius (inside the arm bushing)",
+                                       positive=True)
+    journal_radius: float = quantity(10.0 * _MM, "mm",
+                                     "support journal radius (inside the support bushing)",
+                                     positive=True)
+    arm_bushing_thickness: float = quantity(3.0 * _MM, "mm", "arm bushing ring wall",
+                                            positive=True)
+    support_bushing_thickness: float = quantity(4.0 * _MM, "mm", "support bushing ring wall",
+                                                positive=True)
+    support_bushing_width: float = quantity(10.0 * _MM, "mm", "support bushing length",
+                                            positive=True)
+    lower_support_z: float = quantity(0.0, "mm", "axial station of the lower (flange) support",
+                                      minimum=None)
+    disc1_z: float = quantity(13.0 * _MM, "mm", "axial station of disc 1", minimum=None)
+    disc2_z: float = quantity(29.0 * _MM, "mm", "axial station of disc 2", minimum=None)
+    upper_support_z: float = quantity(42.0 * _MM, "mm",
+                                      "axial station of the upper (carrier) support",
+                                      minimum=None)
+    gear_z: float = quantity(52.0 * _MM, "mm", "axial station of the planet gear", minimum=None)
+
+
+@dataclasses.dataclass(frozen=True)
+class Errors:
+    """Manufacturing errors and profile modifications (paper Table 2 F-J), all opening clearance.
+
+    Magnitudes are given; the direction is the one that opens clearance (paper Sec. 3.2).
+    """
+
+    pin_radius: float = quantity(0.0, "mm", "F: pin radius made smaller by this")
+    eccentricity: float = quantity(0.0, "mm", "G: crank eccentricity made smaller by this")
+    pin_circle_radius: float = quantity(0.0, "mm", "H: pin centre circle radius made larger")
+    equidistant_modification: float = quantity(0.0, "mm",
+                                               "I: cycloid equidistant modification "
+                                               "(profile offset by r_rp + this)")
+    radial_modification: float = quantity(0.0, "mm",
+                                          "J: cycloid radial-moving modification "
+                                          "(generating circle r_p - this)")
+    rotation_modification: float = quantity(0.0, "arcmin",
+                                            "cycloid rotation modification (profile turned, "
+                                            "beyond the paper)", minimum=None)
+
+
+@dataclasses.dataclass(frozen=True)
+class Clearances:
+    """Radial clearances of the bushings that replace the bearings (paper Table 2 K-O)."""
+
+    crank_arm_bushing: float = quantity(0.0, "mm", "K: crankshaft eccentric to arm bushing")
+    support_flange: float = quantity(0.0, "mm", "L: lower support bushing to flange")
+    disc_arm_bushing: float = quantity(0.0, "mm", "M: cycloid crank hole to arm bushing")
+    support_carrier: float = quantity(0.0, "mm", "N: upper support bushing to carrier")
+    crank_support_bushing: float = quantity(0.0, "mm", "O: crankshaft to support bushings")
+
+
+@dataclasses.dataclass(frozen=True)
+class Flexibility:
+    """Which parts add their own elastic compliance (paper Table 2 A-C)."""
+
+    cycloid_disc: bool = flag(False, "A: cycloid disc flexible")
+    pin: bool = flag(False, "B: pins flexible")
+    arm_bushing: bool = flag(False, "C: arm bushing flexible")
+
+
+@dataclasses.dataclass(frozen=True)
+class Operating:
+    """Input motion (Eq. 19), output load (Eqs. 20/21) and simulated time (Sec. 3.3)."""
+
+    input_speed: float = quantity(7000.0 * _DEG, "deg/s", "steady input speed", positive=True)
+    speed_ramp_time: float = quantity(1.0, "s", "input speed STEP ramp 0 -> steady",
+                                      positive=True)
+    load_torque: float = quantity(300.0, "N*m", "E: output load torque X")
+    load_start: float = quantity(1.0, "s", "load STEP starts")
+    load_ramp_end: float = quantity(1.5, "s", "load STEP ends", positive=True)
+    load_fluctuation: bool = flag(False, "D: add fluctuation amplitude * sin(2 pi f t)")
+    fluctuation_amplitude: float = quantity(41.2, "N*m", "fluctuation amplitude")
+    fluctuation_frequency: float = quantity(20.0, "Hz", "fluctuation frequency")
+    duration: float = quantity(4.0, "s", "simulated time", positive=True)
+    steady_start: float = quantity(1.5, "s", "start of the steady window for TE metrics")
+
+
+@dataclasses.dataclass(frozen=True)
+class ContactModel:
+    """Contact law settings shared by all contacts (docs/model.md gives the sources)."""
+
+    damping_ratio: float = quantity(0.05, "-", "viscous damping of each contact as a fraction "
+                                    "of critical at its current stiffness", maximum=2.0)
+    friction_coefficient: float = quantity(0.0, "-", "Coulomb friction at pin contacts "
+                                           "(paper: none)", maximum=1.0)
+    friction_velocity: float = quantity(1e-3, "mm/s", "sliding speed at which the "
+                                        "regularised friction is fully developed", positive=True)
+
+
+@dataclasses.dataclass(frozen=True)
+class Reducer:
+    """A complete RV reducer: geometry, materials, errors and operating point."""
+
+    name: str = "RV-40E"
+    citation: str = ""
+    gears: GearStage = dataclasses.field(default_factory=GearStage)
+    cycloid: CycloidStage = dataclasses.field(default_factory=CycloidStage)
+    crank: Crankshaft = dataclasses.field(default_factory=Crankshaft)
+    materials: Materials = dataclasses.field(default_factory=Materials)
+    errors: Errors = dataclasses.field(default_factory=Errors)
+    clearances: Clearances = dataclasses.field(default_factory=Clearances)
+    flexibility: Flexibility = dataclasses.field(default_factory=Flexibility)
+    operating: Operating = dataclasses.field(default_factory=Operating)
+    contact: ContactModel = dataclasses.field(default_factory=ContactModel)
+
+    @property
+    def ratio(self) -> float:
+        """Ideal speed ratio i = 1 + (z2/z1) * zp (fixed housing, carrier output)."""
+        g = self.gears
+        return 1.0 + g.planet_teeth / g.sun_teeth * self.cycloid.pin_count
+
+    @property
+    def curtate_ratio(self) -> float:
+        """K1 = a * zp / r_p of the design profile."""
+        c = self.cycloid
+        return c.eccentricity * c.pin_count / c.pin_circle_radius

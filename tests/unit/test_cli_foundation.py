@@ -1,0 +1,72 @@
+"""CLI of the foundation: help, version, params, profile, sensitivity and their error paths."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+import rvsim
+
+
+def test_help_and_version(cli):
+    res = cli("--help")
+    assert res.code == 0 and "params" in res.out and "examples" in res.out
+    res = cli("--version")
+    assert res.code == 0 and rvsim.__version__ in res.out
+    for command in ("params", "profile", "sensitivity"):
+        res = cli(command, "--help")
+        assert res.code == 0 and "examples" in res.out
+
+
+def test_params_json(cli):
+    res = cli("params", "--json")
+    data = json.loads(res.out)
+    names = {p["name"]: p for p in data["parameters"]}
+    assert names["cycloid.eccentricity"]["unit"] == "mm"
+    assert names["cycloid.eccentricity"]["value"] == pytest.approx(1.5)
+
+
+def test_sensitivity_json_shape(cli):
+    data = json.loads(cli("sensitivity", "--json").out)
+    assert set(data) >= {"K1", "terms"}
+    assert len(data["terms"]) == 9
+    for term in data["terms"]:
+        assert {"symbol", "coefficient", "sensitivity_index", "te_arcmin"} <= set(term)
+
+
+@pytest.mark.parametrize("args, words", [
+    (("params", "--set", "bogus=1"), "unknown parameter"),
+    (("params", "--set", "cycloid.eccentricity=abc"), "not a number"),
+    (("params", "--set", "cycloid.pin_radius=-1"), "greater than 0"),
+    (("params", "--set", "cycloid.pin_count=41"), "disc_teeth + 1"),
+    (("params", "--set", "cycloid.eccentricity=2.2"), "K1"),
+    (("params", "--set", "cycloid.pin_radius=8"), "undercut"),
+    (("params", "--set", "novalue"), "expected name=value"),
+    (("params", "--params", "/nonexistent/r.toml"), "not found"),
+    (("profile", "--out", "x.txt"), "unsupported profile format"),
+    (("profile",), "--out"),
+    (("profile", "--out", "/nonexistent/dir/p.dxf"), "does not exist"),
+    (("sensitivity", "--set", "G=9"), "errors.eccentricity"),
+    (("frobnicate",), "invalid choice"),
+])
+def test_error_paths_one_line_exit_2(cli, args, words):
+    res = cli(*args)
+    assert res.code == 2
+    assert words in res.err
+    assert res.err.count("\n") == 1 and "Traceback" not in res.err
+
+
+def test_console_script_error_has_no_traceback(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "rvsim.cli", "params", "--set",
+                           "cycloid.pin_count=41"], capture_output=True, text=True)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith("rvsim: error: parameter 'cycloid.pin_count'")
+    assert "Traceback" not in proc.stderr
+
+
+def test_failed_profile_export_leaves_no_file(tmp_path, cli):
+    out = tmp_path / "p.dxf"
+    res = cli("profile", "--out", str(out), "--points", "10")
+    assert res.code == 2 and not out.exists()
+    assert list(tmp_path.iterdir()) == []
