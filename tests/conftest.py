@@ -21,8 +21,18 @@ def rv40e():
 
 
 def reference_table(name: str) -> pd.DataFrame:
-    """A table of shared/reference (copied to tests/reference/data; see its README)."""
-    return pd.read_csv(REFERENCE / name, comment="#")
+    """A table of shared/reference (copied to tests/reference/data; see its README).
+
+    The last column may hold unquoted commas (free-text notes), so each line is split at most
+    header-width - 1 times.
+    """
+    lines = [ln.rstrip("\n") for ln in (REFERENCE / name).read_text().splitlines()
+             if ln.strip() and not ln.startswith("#")]
+    header = lines[0].split(",")
+    rows = [ln.split(",", len(header) - 1) for ln in lines[1:]]
+    frame = pd.DataFrame(rows, columns=header)
+    return frame.apply(lambda col: pd.to_numeric(col, errors="ignore")
+                       if col.name != "note" else col)
 
 
 class CliResult:

@@ -1,0 +1,6 @@
+"""The dynamic virtual prototype: contact dynamics of the whole RV reducer."""
+
+from .result import Result, te_metrics
+from .simulate import DEFAULT_SAMPLE_RATE, DEFAULT_TIME_STEP, simulate
+
+__all__ = ["simulate", "Result", "te_metrics", "DEFAULT_TIME_STEP", "DEFAULT_SAMPLE_RATE"]

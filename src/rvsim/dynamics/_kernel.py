@@ -1,0 +1,460 @@
+"""Compiled time integration of the RV reducer (numba; arrays and scalars only, no raises).
+
+One driver, :func:`integrate`, advances the 17 generalised coordinates with the semi-implicit
+(symplectic) Euler scheme at a fixed step and returns a status code.  The force elements are
+small functions; docs/model.md maps every symbol to its equation and source.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ..geometry._curve import curve_point, foot_point
+from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
+                      CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
+                      CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
+                      CONTACT_RATIO, CRANK0, CRANK_STRIDE, DISC0, DISC_STRIDE, DT, E_DISSIPATED,
+                      E_INPUT, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
+                      FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
+                      LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
+                      MINV_UU, MU, N_DOF, PEN_LIMIT, PIN_C, PIN_CB, PIN_RADIUS, PROFILE_OFFSET,
+                      PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, SIN_AW, STATUS_NONFINITE, STATUS_OK,
+                      STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CB, SUP_CLEAR_L, SUP_CLEAR_U,
+                      V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA, ZP)
+
+EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
+_INV_EXPONENT = 1.0 / EXPONENT
+MAX_SKIP = 64          # longest skip of an open pin contact [steps]
+
+
+@numba.njit(cache=True)
+def step_function(t, t0, t1):
+    """ADAMS STEP from 0 to 1 between t0 and t1 (cubic), and its integral from t0."""
+    if t <= t0:
+        return 0.0, 0.0
+    if t >= t1:
+        return 1.0, 0.5 * (t1 - t0) + (t - t1)
+    d = (t - t0) / (t1 - t0)
+    return d * d * (3.0 - 2.0 * d), (t1 - t0) * (d ** 3 - 0.5 * d ** 4)
+
+
+@numba.njit(cache=True)
+def input_motion(P, t):
+    """Input angle and speed of Eq. (19): speed = STEP(t, 0, 0, T, omega)."""
+    s, integral = step_function(t, 0.0, P[RAMP_TIME])
+    return P[INPUT_SPEED] * integral, P[INPUT_SPEED] * s
+
+
+@numba.njit(cache=True)
+def load_torque(P, t):
+    """Output load of Eqs. (20)/(21)."""
+    s, _ = step_function(t, P[LOAD_T0], P[LOAD_T1])
+    return P[LOAD] * s + P[FLUCT_AMP] * math.sin(2.0 * math.pi * P[FLUCT_FREQ] * t)
+
+
+@numba.njit(cache=True)
+def spring_force(delta, c, cb):
+    """Force of a Palmgren contact in series with a linear compliance, for approach ``delta``.
+
+    delta = c * F**0.9 + cb * F.  Returns (F, tangent stiffness dF/ddelta, stored energy).
+    """
+    f = (delta / c) ** _INV_EXPONENT
+    if cb > 0.0:
+        f = min(f, delta / cb)
+        for _ in range(8):  # Newton on a concave increasing function; converges from below
+            g = c * f ** EXPONENT + cb * f - delta
+            dg = EXPONENT * c * f ** (EXPONENT - 1.0) + cb
+            f -= g / dg
+            if f <= 0.0:
+                f = 1e-30
+    fe = f ** EXPONENT
+    stiffness = 1.0 / (EXPONENT * c * fe / f + cb)
+    energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
+    return f, stiffness, energy
+
+
+@numba.njit(cache=True)
+def contact(delta, rate, c, cb, zeta, mass):
+    """Normal force of a compliant contact with damping that vanishes at first touch.
+
+    Damping is 2 zeta sqrt(k m) at the current tangent stiffness k (zero at delta = 0); the total
+    force never pulls.  Returns (force, stored energy, dissipated power).
+    """
+    f, k, energy = spring_force(delta, c, cb)
+    fn = f + 2.0 * zeta * math.sqrt(k * mass) * rate
+    if fn < 0.0:
+        fn = 0.0
+    return fn, energy, (fn - f) * rate
+
+
+@numba.njit(cache=True)
+def crank_point(q, v, j, wl, wu):
+    """Position and velocity of crank j's axis at the axial station with weights (wl, wu)."""
+    b = CRANK0 + CRANK_STRIDE * j
+    return (wl * q[b] + wu * q[b + 2], wl * q[b + 1] + wu * q[b + 3],
+            wl * v[b] + wu * v[b + 2], wl * v[b + 1] + wu * v[b + 3])
+
+
+@numba.njit(cache=True)
+def add_crank_force(Q, j, wl, wu, fx, fy):
+    b = CRANK0 + CRANK_STRIDE * j
+    Q[b] += wl * fx
+    Q[b + 1] += wl * fy
+    Q[b + 2] += wu * fx
+    Q[b + 3] += wu * fy
+
+
+@numba.njit(cache=True)
+def gear_mesh(P, q, v, Q, j, crank_angle, phase, theta_in, omega_in):
+    """Sun-planet mesh j: returns (force, input torque, energy, dissipated power, stiffness)."""
+    px, py, pvx, pvy = crank_point(q, v, j, P[W_G_L], P[W_G_U])
+    r2 = px * px + py * py
+    r = math.sqrt(r2)
+    # angle of the line of centres, kept continuous: carrier angle + assembly angle + deviation
+    ca = q[CARRIER] + crank_angle
+    cs, sn = math.cos(ca), math.sin(ca)
+    beta = ca + math.atan2(-sn * px + cs * py, cs * px + sn * py)
+    dbeta_x, dbeta_y = -py / r2, px / r2
+    dr_x, dr_y = px / r, py / r
+    rb1, rb2 = P[RB1], P[RB2]
+    b = CRANK0 + CRANK_STRIDE * j
+    rot = rb1 * (theta_in - beta) + rb2 * (q[b + 4] - beta) + (rb1 + rb2) * crank_angle
+    radial = (r - P[CENTRE_DIST]) * P[SIN_AW]
+    beta_rate = dbeta_x * pvx + dbeta_y * pvy
+    rot_rate = rb1 * (omega_in - beta_rate) + rb2 * (v[b + 4] - beta_rate)
+    radial_rate = (dr_x * pvx + dr_y * pvy) * P[SIN_AW]
+    # number of tooth pairs in contact from the roll position (rectangular-wave stiffness)
+    roll = (rb1 * (theta_in - beta)) / P[BASE_PITCH] + phase
+    frac = roll - math.floor(roll)
+    k = P[K_MESH] * (2.0 if frac < P[CONTACT_RATIO] - 1.0 else 1.0)
+    half = 0.5 * P[BACKLASH]
+    force = 0.0
+    sign = 0.0
+    delta = 0.0
+    rate = 0.0
+    if rot - radial - half > 0.0:
+        sign, delta, rate = 1.0, rot - radial - half, rot_rate - radial_rate
+    elif -rot - radial - half > 0.0:
+        sign, delta, rate = -1.0, -rot - radial - half, -rot_rate - radial_rate
+    energy = 0.0
+    power = 0.0
+    if sign != 0.0:
+        c = 2.0 * P[ZETA] * math.sqrt(k * P[MESH_MASS])
+        force = k * delta + c * rate
+        if force < 0.0:
+            force = 0.0
+        energy = 0.5 * k * delta * delta
+        power = (force - k * delta) * rate
+        # generalised forces: Q = -F d(delta)/dq
+        gx = sign * (-(rb1 + rb2) * dbeta_x) - P[SIN_AW] * dr_x
+        gy = sign * (-(rb1 + rb2) * dbeta_y) - P[SIN_AW] * dr_y
+        add_crank_force(Q, j, P[W_G_L], P[W_G_U], -force * gx, -force * gy)
+        Q[b + 4] -= force * sign * rb2
+    return force, force * sign * rb1, energy, power, k, delta
+
+
+@numba.njit(cache=True)
+def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces):
+    """All pin contacts of disc k: returns (energy, dissipated power, max penetration).
+
+    ``u[k, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
+    gamma_i - theta (exact in the kinematic pose).  Near contact the offset is below ~0.01 rad;
+    an offset beyond 0.05 rad (a pin far from contact, near the medial axis of a concave
+    stretch of the curve, where the foot point is not unique) is reset and re-solved.
+
+    A pin whose gap cannot close before step ``next_eval[k, i]`` is not evaluated: the gap is
+    a 1-Lipschitz function of the pin centre in disc axes, whose speed is at most
+    |dO/dt| + |dtheta/dt| * (pin circle + a), so a gap g stays open for g / (2 v dt) steps
+    (factor 2 for speed changes within at most 64 steps).
+    """
+    d = DISC0 + DISC_STRIDE * k
+    ox, oy, th = q[d], q[d + 1], q[d + 2]
+    vx, vy, w = v[d], v[d + 1], v[d + 2]
+    zp = P[ZP]
+    angle = th - k * math.pi / P[ZC] + P[PROFILE_ROT]
+    c, s = math.cos(angle), math.sin(angle)
+    # housing velocity seen from the disc centre, in disc axes (rotation part added per pin)
+    lvx, lvy = c * vx + s * vy, -s * vx + c * vy
+    rg, a = P[RG], P[A_GEN]
+    offset = P[PROFILE_OFFSET] - P[PIN_RADIUS]
+    speed_bound = 2.0 * (math.sqrt(vx * vx + vy * vy) + abs(w) * (P[RG] + 2.0 * a + 1e-3)) \
+        * P[DT] + 1e-15
+    energy = 0.0
+    power = 0.0
+    worst = 0.0
+    n = pins.shape[0]
+    for i in range(n):
+        if step < next_eval[k, i]:
+            forces[k, i] = 0.0
+            continue
+        dx = pins[i, 0] - ox
+        dy = pins[i, 1] - oy
+        qx = c * dx + s * dy
+        qy = -s * dx + c * dy
+        nominal = pin_angle[i] - angle
+        offset_u = u[k, i]
+        if step == 0 or abs(offset_u) > 0.05:
+            offset_u = foot_point(qx, qy, nominal, rg, a, zp, 40) - nominal
+        ui = nominal + offset_u
+        x, y, tx, ty, ddx, ddy = curve_point(ui, rg, a, zp)
+        # one guarded Newton step from the warm start, then a second-order Taylor update
+        rx, ry = qx - x, qy - y
+        speed2 = tx * tx + ty * ty
+        h = speed2 - (rx * ddx + ry * ddy)
+        if h < 0.25 * speed2:
+            h = speed2
+        du = (rx * tx + ry * ty) / h
+        limit = 0.25 / zp
+        if du > limit:
+            du = limit
+        elif du < -limit:
+            du = -limit
+        x += du * (tx + 0.5 * du * ddx)
+        y += du * (ty + 0.5 * du * ddy)
+        tx += du * ddx
+        ty += du * ddy
+        u[k, i] = offset_u + du
+        norm = math.sqrt(tx * tx + ty * ty)
+        nx, ny = ty / norm, -tx / norm
+        gap = (qx - x) * nx + (qy - y) * ny + offset
+        if gap >= 0.0:
+            forces[k, i] = 0.0
+            skip = int(gap / speed_bound)
+            next_eval[k, i] = step + (skip if skip < MAX_SKIP else MAX_SKIP)
+            continue
+        next_eval[k, i] = step + 1
+        delta = -gap
+        if delta > worst:
+            worst = delta
+        lever = nx * qy - ny * qx                    # d(gap)/d(theta)
+        gap_rate = -(nx * lvx + ny * lvy) + w * lever
+        fn, e, pw = contact(delta, -gap_rate, P[PIN_C], P[PIN_CB], P[ZETA], P[M_DISC])
+        forces[k, i] = fn
+        energy += e
+        power += pw
+        # generalised forces Q = F d(gap)/dq on the disc
+        fx = -fn * (c * nx - s * ny)
+        fy = -fn * (s * nx + c * ny)
+        torque = fn * lever
+        if P[MU] > 0.0:
+            # contact point on the disc (disc axes, from its centre) and sliding speed there
+            cx = qx - (P[PIN_RADIUS] - gap) * nx
+            cy = qy - (P[PIN_RADIUS] - gap) * ny
+            tix, tiy = -ny, nx
+            slide = (lvx - w * cy) * tix + (lvy + w * cx) * tiy
+            ft = -P[MU] * fn * math.tanh(slide / P[V_FRIC])
+            fx += ft * (c * tix - s * tiy)
+            fy += ft * (s * tix + c * tiy)
+            torque += ft * (cx * tiy - cy * tix)
+            power -= ft * slide
+        Q[d] += fx
+        Q[d + 1] += fy
+        Q[d + 2] += torque
+    return energy, power, worst
+
+
+@numba.njit(cache=True)
+def arm_bushing(P, q, v, Q, j, k, hole_x, hole_y, wl, wu):
+    """Crank j eccentric in disc k's hole through the arm bushing (clearance K + M)."""
+    ax, ay, avx, avy = crank_point(q, v, j, wl, wu)
+    b = CRANK0 + CRANK_STRIDE * j
+    phi = q[b + 4] + k * math.pi
+    e = P[ECC]
+    ex = ax + e * math.cos(phi)
+    ey = ay + e * math.sin(phi)
+    evx = avx - e * math.sin(phi) * v[b + 4]
+    evy = avy + e * math.cos(phi) * v[b + 4]
+    d = DISC0 + DISC_STRIDE * k
+    c, s = math.cos(q[d + 2]), math.sin(q[d + 2])
+    hx = q[d] + c * hole_x - s * hole_y
+    hy = q[d + 1] + s * hole_x + c * hole_y
+    hvx = v[d] - v[d + 2] * (hy - q[d + 1])
+    hvy = v[d + 1] + v[d + 2] * (hx - q[d])
+    rx, ry = ex - hx, ey - hy
+    dist = math.sqrt(rx * rx + ry * ry)
+    delta = dist - P[ARM_CLEAR]
+    if delta <= 0.0 or dist < 1e-15:
+        return 0.0, 0.0, 0.0
+    nx, ny = rx / dist, ry / dist
+    rate = nx * (evx - hvx) + ny * (evy - hvy)
+    fn, energy, power = contact(delta, rate, P[ARM_C], P[ARM_CB], P[ZETA], P[M_NODE])
+    fx, fy = -fn * nx, -fn * ny                      # on the crank
+    add_crank_force(Q, j, wl, wu, fx, fy)
+    Q[b + 4] += fx * (-e * math.sin(phi)) + fy * (e * math.cos(phi))
+    Q[d] -= fx
+    Q[d + 1] -= fy
+    Q[d + 2] -= -fx * (hy - q[d + 1]) + fy * (hx - q[d])
+    return fn, energy, power
+
+
+@numba.njit(cache=True)
+def support_bushing(P, q, v, Q, j, upper, crank_angle):
+    """Crank j's lower or upper support node in its carrier / flange bore."""
+    b = CRANK0 + CRANK_STRIDE * j + (2 if upper else 0)
+    ca = q[CARRIER] + crank_angle
+    bx = P[CENTRE_DIST] * math.cos(ca)
+    by = P[CENTRE_DIST] * math.sin(ca)
+    rx, ry = q[b] - bx, q[b + 1] - by
+    dist = math.sqrt(rx * rx + ry * ry)
+    clearance = P[SUP_CLEAR_U] if upper else P[SUP_CLEAR_L]
+    delta = dist - clearance
+    if delta <= 0.0 or dist < 1e-15:
+        return 0.0, 0.0, 0.0
+    nx, ny = rx / dist, ry / dist
+    wc = v[CARRIER]
+    rate = nx * (v[b] + wc * by) + ny * (v[b + 1] - wc * bx)
+    fn, energy, power = contact(delta, rate, P[SUP_C], P[SUP_CB], P[ZETA], P[M_NODE])
+    Q[b] -= fn * nx
+    Q[b + 1] -= fn * ny
+    Q[CARRIER] += fn * (-nx * by + ny * bx)
+    return fn, energy, power
+
+
+@numba.njit(cache=True)
+def kinetic_energy(P, v):
+    e = 0.5 * P[J_CARRIER] * v[CARRIER] ** 2
+    for j in range(2):
+        b = CRANK0 + CRANK_STRIDE * j
+        # node mass matrix is the inverse of [[LL, LU], [LU, UU]]
+        det = P[MINV_LL] * P[MINV_UU] - P[MINV_LU] ** 2
+        mll, mlu, muu = P[MINV_UU] / det, -P[MINV_LU] / det, P[MINV_LL] / det
+        for axis in range(2):
+            vl, vu = v[b + axis], v[b + 2 + axis]
+            e += 0.5 * (mll * vl * vl + 2.0 * mlu * vl * vu + muu * vu * vu)
+        e += 0.5 * P[J_CRANK] * v[b + 4] ** 2
+    for k in range(2):
+        d = DISC0 + DISC_STRIDE * k
+        e += 0.5 * P[M_DISC] * (v[d] ** 2 + v[d + 1] ** 2) + 0.5 * P[J_DISC] * v[d + 2] ** 2
+    return e
+
+
+@numba.njit(cache=True)
+def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
+           pin_force, Q, channel, mesh_state):
+    """Generalised forces Q at time t; fills the force channels and ``mesh_state`` (stiffness,
+    deflection of each mesh). Returns (potential energy, dissipated power, input torque,
+    load torque, max pin penetration)."""
+    for i in range(N_DOF):
+        Q[i] = 0.0
+    theta_in, omega_in = input_motion(P, t)
+    energy = 0.0
+    power = 0.0
+    torque_in = 0.0
+    for j in range(2):
+        f, tq, e, pw, kk, dl = gear_mesh(P, q, v, Q, j, crank_angles[j], mesh_phase[j],
+                                         theta_in, omega_in)
+        channel[CH_MESH_F0 + j] = f
+        mesh_state[j, 0] = kk
+        mesh_state[j, 1] = dl
+        torque_in += tq
+        energy += e
+        power += pw
+    worst = 0.0
+    for k in range(2):
+        e, pw, pen = pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, pin_force)
+        energy += e
+        power += pw
+        if pen > worst:
+            worst = pen
+    for j in range(2):
+        for k in range(2):
+            wl = P[W_D1_L] if k == 0 else P[W_D2_L]
+            wu = P[W_D1_U] if k == 0 else P[W_D2_U]
+            f, e, pw = arm_bushing(P, q, v, Q, j, k, holes[j, 0], holes[j, 1], wl, wu)
+            channel[CH_ARM_F00 + 2 * j + k] = f
+            energy += e
+            power += pw
+        for upper in range(2):
+            f, e, pw = support_bushing(P, q, v, Q, j, upper == 1, crank_angles[j])
+            channel[CH_SUP_FL0 + 2 * j + upper] = f
+            energy += e
+            power += pw
+    torque_load = load_torque(P, t)
+    Q[CARRIER] -= torque_load
+    return energy, power, torque_in, torque_load, worst
+
+
+@numba.njit(cache=True)
+def integrate(P, q, v, n_steps, sample_every, pins, holes, crank_angles, mesh_phase,
+              channels, pin_forces, energy):
+    """Advance ``n_steps`` of size P[DT] from t = 0; returns (status, steps done).
+
+    Samples every ``sample_every`` steps into ``channels`` (rows) and ``pin_forces``
+    (rows x 2 discs x zp pins).  ``energy`` accumulates the steady-window balance.
+    """
+    dt = P[DT]
+    n_pins = pins.shape[0]
+    u = np.zeros((2, n_pins))
+    pin_angle = np.empty(n_pins)
+    for i in range(n_pins):
+        pin_angle[i] = 2.0 * math.pi * i / n_pins
+    pin_force = np.zeros((2, n_pins))
+    next_eval = np.zeros((2, n_pins), dtype=np.int64)
+    Q = np.zeros(N_DOF)
+    channel = np.zeros(channels.shape[1])
+    row = 0
+    in_window = False
+    mesh_state = np.zeros((2, 2))
+    previous_k = np.zeros(2)
+    for step in range(n_steps + 1):
+        t = step * dt
+        for j in range(2):
+            previous_k[j] = mesh_state[j, 0]
+        pot, diss, t_in, t_load, pen = forces(P, q, v, t, pins, pin_angle, holes, crank_angles,
+                                              mesh_phase, u, next_eval, step, pin_force, Q,
+                                              channel, mesh_state)
+        if in_window:
+            # work done on the meshes by the stiffness change between steps (parametric)
+            for j in range(2):
+                energy[E_PARAMETRIC] += 0.5 * (mesh_state[j, 0] - previous_k[j]) \
+                    * mesh_state[j, 1] ** 2
+        if not (math.isfinite(pot) and math.isfinite(q[CARRIER]) and math.isfinite(v[CARRIER])):
+            return STATUS_NONFINITE, step
+        if pen > P[PEN_LIMIT]:
+            return STATUS_PENETRATION, step
+        theta_in, omega_in = input_motion(P, t)
+        if step % sample_every == 0 and row < channels.shape[0]:
+            channel[CH_TIME] = t
+            channel[CH_THETA_IN] = theta_in
+            channel[CH_OMEGA_IN] = omega_in
+            channel[CH_THETA_OUT] = q[CARRIER]
+            channel[CH_OMEGA_OUT] = v[CARRIER]
+            channel[CH_TORQUE_IN] = t_in
+            channel[CH_TORQUE_LOAD] = t_load
+            channels[row, :] = channel
+            pin_forces[row, :, :] = pin_force
+            row += 1
+        if step == n_steps:
+            if in_window:
+                energy[E_KIN1] = kinetic_energy(P, v)
+                energy[E_POT1] = pot
+            break
+        if not in_window and t >= P[STEADY_START]:
+            in_window = True
+            energy[E_KIN0] = kinetic_energy(P, v)
+            energy[E_POT0] = pot
+        if in_window:
+            # power flows over this step, velocities taken at the start of the step
+            energy[E_INPUT] += t_in * omega_in * dt
+            energy[E_OUTPUT] += t_load * v[CARRIER] * dt
+            energy[E_DISSIPATED] += diss * dt
+        # semi-implicit Euler: velocities first, then positions with the new velocities
+        v[CARRIER] += dt * Q[CARRIER] / P[J_CARRIER]
+        for j in range(2):
+            b = CRANK0 + CRANK_STRIDE * j
+            for axis in range(2):
+                fl, fu = Q[b + axis], Q[b + 2 + axis]
+                v[b + axis] += dt * (P[MINV_LL] * fl + P[MINV_LU] * fu)
+                v[b + 2 + axis] += dt * (P[MINV_LU] * fl + P[MINV_UU] * fu)
+            v[b + 4] += dt * Q[b + 4] / P[J_CRANK]
+        for k in range(2):
+            d = DISC0 + DISC_STRIDE * k
+            v[d] += dt * Q[d] / P[M_DISC]
+            v[d + 1] += dt * Q[d + 1] / P[M_DISC]
+            v[d + 2] += dt * Q[d + 2] / P[J_DISC]
+        for i in range(N_DOF):
+            q[i] += dt * v[i]
+    return STATUS_OK, n_steps

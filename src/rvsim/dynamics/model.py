@@ -1,0 +1,212 @@
+"""Assemble the kernel's constant vector and arrays from a :class:`~rvsim.parameters.Reducer`.
+
+Mass properties come from simple solids of the part sizes and Table 5 densities; compliances
+from :mod:`rvsim.dynamics.compliance`.  Every assumption is listed in docs/model.md.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..geometry.involute import gear_geometry
+from ..parameters import Reducer
+from . import _layout as L
+from .compliance import (RATED_TORQUE_RV40E, palmgren_coefficient, pin_compliance,
+                         ring_compliance, tooth_compliance)
+
+__all__ = ["KernelModel", "build_model", "MassProperties", "mass_properties"]
+
+
+@dataclasses.dataclass(frozen=True)
+class MassProperties:
+    """Masses [kg] and inertias [kg m^2] of the moving parts."""
+
+    disc_mass: float
+    disc_inertia: float
+    crank_mass: float
+    crank_inertia: float
+    crank_node_mass: np.ndarray  # 2x2 mass matrix of the (lower, upper) support nodes
+    carrier_inertia: float
+
+
+def _cylinder(radius: float, length: float, density: float) -> float:
+    return math.pi * radius ** 2 * length * density
+
+
+def mass_properties(r: Reducer) -> MassProperties:
+    """Mass properties from the part sizes (simple solids; docs/model.md)."""
+    c, k, g = r.cycloid, r.crank, r.gears
+    gear = gear_geometry(r)
+    rho_disc = r.materials.cycloid_disc.density
+    outer = c.pin_circle_radius - c.pin_radius
+    hole = k.eccentric_radius + k.arm_bushing_thickness
+    m_full = _cylinder(outer, c.disc_width, rho_disc)
+    m_bore = _cylinder(c.disc_bore_radius, c.disc_width, rho_disc)
+    m_hole = _cylinder(hole, c.disc_width, rho_disc)
+    m_pillar = _cylinder(c.pillar_hole_radius, c.disc_width, rho_disc)
+    n_holes = g.planet_count
+    disc_mass = m_full - m_bore - n_holes * m_hole - c.pillar_hole_count * m_pillar
+    a_w = gear.centre_distance
+    disc_inertia = (0.5 * m_full * outer ** 2 - 0.5 * m_bore * c.disc_bore_radius ** 2
+                    - n_holes * m_hole * (0.5 * hole ** 2 + a_w ** 2)
+                    - c.pillar_hole_count * m_pillar * (0.5 * c.pillar_hole_radius ** 2
+                                                        + a_w ** 2))
+
+    rho_crank = r.materials.crankshaft.density
+    span = k.upper_support_z - k.lower_support_z
+    weights = lambda z: np.array([(k.upper_support_z - z) / span,  # noqa: E731
+                                  (z - k.lower_support_z) / span])
+    nodes = np.zeros((2, 2))
+    # shaft: journal radius from the lower bushing's outer face to the gear, in 40 slices
+    z0 = k.lower_support_z - 0.5 * k.support_bushing_width
+    z1 = k.gear_z
+    slices = np.linspace(z0, z1, 41)
+    shaft_mass = 0.0
+    for za, zb in zip(slices[:-1], slices[1:]):
+        m = _cylinder(k.journal_radius, zb - za, rho_crank)
+        w = weights(0.5 * (za + zb))
+        nodes += m * np.outer(w, w)
+        shaft_mass += m
+    crank_inertia = 0.5 * shaft_mass * k.journal_radius ** 2
+    crank_mass = shaft_mass
+    tilt = np.array([[1.0, -1.0], [-1.0, 1.0]]) / span ** 2
+    # eccentrics (the part beyond the journal), at the disc stations
+    for z in (k.disc1_z, k.disc2_z):
+        m = _cylinder(k.eccentric_radius, c.disc_width, rho_crank) - _cylinder(
+            k.journal_radius, c.disc_width, rho_crank)
+        w = weights(z)
+        nodes += m * np.outer(w, w)
+        nodes += m * (3.0 * k.eccentric_radius ** 2 + c.disc_width ** 2) / 12.0 * tilt
+        crank_inertia += m * (0.5 * k.eccentric_radius ** 2 + c.eccentricity ** 2)
+        crank_mass += m
+    # planet gear: annulus from the journal to the pitch radius
+    rho_gear = r.materials.planet_gear.density
+    r_out = 0.5 * g.module * g.planet_teeth
+    m_gear = _cylinder(r_out, g.face_width, rho_gear) - _cylinder(k.journal_radius,
+                                                                  g.face_width, rho_gear)
+    w = weights(k.gear_z)
+    nodes += m_gear * np.outer(w, w)
+    nodes += m_gear * (3.0 * (r_out ** 2 + k.journal_radius ** 2) + g.face_width ** 2) / 12.0 \
+        * tilt
+    crank_inertia += 0.5 * m_gear * (r_out ** 2 + k.journal_radius ** 2)
+    crank_mass += m_gear
+
+    m_carrier = _cylinder(c.carrier_radius, c.carrier_thickness, r.materials.carrier.density)
+    carrier_inertia = 0.5 * m_carrier * c.carrier_radius ** 2
+    return MassProperties(disc_mass, disc_inertia, crank_mass, crank_inertia, nodes,
+                          carrier_inertia)
+
+
+@dataclasses.dataclass(frozen=True)
+class KernelModel:
+    """Everything the compiled kernel needs, as arrays."""
+
+    P: np.ndarray
+    pins: np.ndarray
+    holes: np.ndarray
+    crank_angles: np.ndarray
+    mesh_phase: np.ndarray
+    q0: np.ndarray
+    masses: MassProperties
+
+
+def _station_weights(r: Reducer, z: float) -> tuple[float, float]:
+    k = r.crank
+    span = k.upper_support_z - k.lower_support_z
+    return (k.upper_support_z - z) / span, (z - k.lower_support_z) / span
+
+
+def build_model(r: Reducer, time_step: float) -> KernelModel:
+    """Constant vector, pin and hole positions and the initial (assembled) state."""
+    c, k, e, cl, m = r.cycloid, r.crank, r.errors, r.clearances, r.materials
+    gear = gear_geometry(r)
+    masses = mass_properties(r)
+    P = np.zeros(L.N_PARAMS)
+    P[L.DT] = time_step
+    P[L.RATIO] = r.ratio
+    op = r.operating
+    P[L.INPUT_SPEED] = op.input_speed
+    P[L.RAMP_TIME] = op.speed_ramp_time
+    P[L.LOAD] = op.load_torque
+    P[L.LOAD_T0] = op.load_start
+    P[L.LOAD_T1] = op.load_ramp_end
+    P[L.FLUCT_AMP] = op.fluctuation_amplitude if op.load_fluctuation else 0.0
+    P[L.FLUCT_FREQ] = op.fluctuation_frequency
+    P[L.STEADY_START] = op.steady_start
+
+    P[L.RB1] = gear.sun_base_radius
+    P[L.RB2] = gear.planet_base_radius
+    P[L.CENTRE_DIST] = gear.centre_distance
+    P[L.SIN_AW] = math.sin(gear.operating_pressure_angle)
+    P[L.BACKLASH] = r.gears.backlash
+    P[L.BASE_PITCH] = gear.base_pitch
+    P[L.CONTACT_RATIO] = gear.contact_ratio
+    P[L.K_MESH] = gear.single_pair_stiffness
+    P[L.MESH_MASS] = masses.crank_inertia / gear.planet_base_radius ** 2
+
+    P[L.RG] = c.pin_circle_radius - e.radial_modification
+    P[L.A_GEN] = c.eccentricity
+    P[L.ZP] = c.pin_count
+    P[L.ZC] = c.disc_teeth
+    P[L.PROFILE_OFFSET] = c.pin_radius + e.equidistant_modification
+    P[L.PIN_RADIUS] = c.pin_radius - e.pin_radius
+    P[L.ECC] = c.eccentricity - e.eccentricity
+    P[L.PROFILE_ROT] = e.rotation_modification
+
+    P[L.PIN_C] = palmgren_coefficient(c.disc_width, m.cycloid_disc, m.pin)
+    pin_load = RATED_TORQUE_RV40E / (2.0 * c.eccentricity * c.disc_teeth)
+    root_radius = c.pin_circle_radius - c.pin_radius - c.eccentricity
+    body = 0.0
+    if r.flexibility.cycloid_disc:
+        body += tooth_compliance(2.0 * c.eccentricity, 2.0 * math.pi * root_radius / c.disc_teeth,
+                                 c.disc_width, m.cycloid_disc)
+    if r.flexibility.pin:
+        body += pin_compliance(c.pin_radius, c.disc_width, pin_load, m.pin)
+    P[L.PIN_CB] = body
+    P[L.ARM_C] = (palmgren_coefficient(c.disc_width, m.crankshaft, m.bushing)
+                  + palmgren_coefficient(c.disc_width, m.bushing, m.cycloid_disc))
+    P[L.ARM_CB] = (ring_compliance(k.arm_bushing_thickness,
+                                   k.eccentric_radius + 0.5 * k.arm_bushing_thickness,
+                                   c.disc_width, m.bushing)
+                   if r.flexibility.arm_bushing else 0.0)
+    P[L.ARM_CLEAR] = cl.crank_arm_bushing + cl.disc_arm_bushing
+    P[L.SUP_C] = (palmgren_coefficient(k.support_bushing_width, m.crankshaft, m.bushing)
+                  + palmgren_coefficient(k.support_bushing_width, m.bushing, m.carrier))
+    P[L.SUP_CB] = 0.0
+    P[L.SUP_CLEAR_L] = cl.crank_support_bushing + cl.support_flange
+    P[L.SUP_CLEAR_U] = cl.crank_support_bushing + cl.support_carrier
+    P[L.ZETA] = r.contact.damping_ratio
+    P[L.MU] = r.contact.friction_coefficient
+    P[L.V_FRIC] = r.contact.friction_velocity
+
+    P[L.J_CARRIER] = masses.carrier_inertia
+    P[L.M_DISC] = masses.disc_mass
+    P[L.J_DISC] = masses.disc_inertia
+    P[L.J_CRANK] = masses.crank_inertia
+    inv = np.linalg.inv(masses.crank_node_mass)
+    P[L.MINV_LL], P[L.MINV_LU], P[L.MINV_UU] = inv[0, 0], inv[0, 1], inv[1, 1]
+    P[L.M_NODE] = 0.5 * (masses.crank_node_mass[0, 0] + masses.crank_node_mass[1, 1])
+    P[L.W_D1_L], P[L.W_D1_U] = _station_weights(r, k.disc1_z)
+    P[L.W_D2_L], P[L.W_D2_U] = _station_weights(r, k.disc2_z)
+    P[L.W_G_L], P[L.W_G_U] = _station_weights(r, k.gear_z)
+    P[L.PEN_LIMIT] = 0.2e-3
+
+    gamma = 2.0 * np.pi * np.arange(c.pin_count) / c.pin_count
+    radius = c.pin_circle_radius + e.pin_circle_radius
+    pins = radius * np.column_stack([np.cos(gamma), np.sin(gamma)])
+    crank_angles = np.array([0.0, math.pi])
+    holes = gear.centre_distance * np.column_stack([np.cos(crank_angles),
+                                                    np.sin(crank_angles)])
+    mesh_phase = (r.gears.sun_teeth * crank_angles / (2.0 * math.pi)) % 1.0
+    q0 = np.zeros(L.N_DOF)
+    for j in range(2):
+        b = L.CRANK0 + L.CRANK_STRIDE * j
+        q0[b:b + 4] = [holes[j, 0], holes[j, 1], holes[j, 0], holes[j, 1]]
+    for kd in range(2):
+        d = L.DISC0 + L.DISC_STRIDE * kd
+        q0[d] = P[L.ECC] * math.cos(kd * math.pi)
+        q0[d + 1] = P[L.ECC] * math.sin(kd * math.pi)
+    return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses)

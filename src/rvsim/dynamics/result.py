@@ -1,0 +1,135 @@
+"""Result of one dynamic simulation: time histories, metrics, energy balance, saving."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputFileError
+from ..units import ARCMIN
+from . import _layout as L
+
+__all__ = ["Result", "te_metrics"]
+
+
+def te_metrics(time: np.ndarray, te: np.ndarray, omega_in: np.ndarray, omega_out: np.ndarray,
+               steady_start: float) -> dict[str, float]:
+    """Summary metrics over the steady window t >= steady_start (TE in arcmin)."""
+    window = time >= steady_start - 1e-12
+    if not window.any():
+        nan = float("nan")
+        return dict.fromkeys(("te_mean_arcmin", "te_pp_arcmin", "te_rms_arcmin", "te_std_arcmin",
+                              "te_max_arcmin", "speed_ratio"), nan)
+    te_w = te[window] / ARCMIN
+    return {
+        "te_mean_arcmin": float(np.mean(te_w)),
+        "te_pp_arcmin": float(np.ptp(te_w)),
+        "te_rms_arcmin": float(np.sqrt(np.mean(te_w ** 2))),
+        "te_std_arcmin": float(np.std(te_w)),
+        "te_max_arcmin": float(np.max(te_w)),
+        "speed_ratio": float(np.mean(omega_in[window]) / np.mean(omega_out[window])),
+    }
+
+
+@dataclasses.dataclass
+class Result:
+    """Histories (SI) sampled at ``time`` and the summary of one run.
+
+    ``te`` is theta_in / i - theta_out (Eq. 22) [rad]; metrics are in arcmin.
+    """
+
+    time: np.ndarray
+    channels: np.ndarray
+    pin_forces: np.ndarray
+    """contact force of each pin on each disc [N], shape (samples, 2, zp)"""
+    ratio: float
+    steady_start: float
+    status: str
+    steps: int
+    wall_s: float
+    energy: dict[str, float]
+    reducer_name: str = "RV-40E"
+
+    def channel(self, name: str) -> np.ndarray:
+        return self.channels[:, L.CHANNEL_NAMES.index(name)]
+
+    @property
+    def theta_in(self) -> np.ndarray:
+        return self.channel("theta_in")
+
+    @property
+    def theta_out(self) -> np.ndarray:
+        return self.channel("theta_out")
+
+    @property
+    def omega_in(self) -> np.ndarray:
+        return self.channel("omega_in")
+
+    @property
+    def omega_out(self) -> np.ndarray:
+        return self.channel("omega_out")
+
+    @property
+    def te(self) -> np.ndarray:
+        return self.theta_in / self.ratio - self.theta_out
+
+    @property
+    def mesh_forces(self) -> np.ndarray:
+        return self.channels[:, L.CH_MESH_F0:L.CH_MESH_F0 + 2]
+
+    @property
+    def arm_bushing_forces(self) -> np.ndarray:
+        """shape (samples, crank, disc) [N]"""
+        return self.channels[:, L.CH_ARM_F00:L.CH_ARM_F00 + 4].reshape(-1, 2, 2)
+
+    @property
+    def support_forces(self) -> np.ndarray:
+        """shape (samples, crank, (lower, upper)) [N]"""
+        return self.channels[:, L.CH_SUP_FL0:L.CH_SUP_FL0 + 4].reshape(-1, 2, 2)
+
+    @property
+    def metrics(self) -> dict[str, float]:
+        m = te_metrics(self.time, self.te, self.omega_in, self.omega_out, self.steady_start)
+        window = self.time >= self.steady_start - 1e-12
+        m["energy_residual"] = self.energy.get("relative_residual", float("nan"))
+        m["max_pin_force_n"] = float(self.pin_forces[window].max()) if window.any() else 0.0
+        return m
+
+    def summary(self) -> dict:
+        """The JSON object ``rvsim simulate --json`` prints."""
+        return {**self.metrics, "sim_time_s": float(self.time[-1]) if len(self.time) else 0.0,
+                "steps": self.steps, "wall_s": self.wall_s, "status": self.status,
+                "reducer": self.reducer_name}
+
+    def to_frame(self):
+        """Time histories as a pandas DataFrame (SI units, TE also in arcmin)."""
+        import pandas as pd
+
+        data = {name: self.channels[:, i] for i, name in enumerate(L.CHANNEL_NAMES)}
+        data["te_rad"] = self.te
+        data["te_arcmin"] = self.te / ARCMIN
+        return pd.DataFrame(data)
+
+    def save(self, path: str | Path) -> Path:
+        """Write histories and summary to a NumPy ``.npz`` file (atomically)."""
+        path = Path(path)
+        if path.suffix != ".npz":
+            raise InputFileError(f"{path}: histories are saved as .npz (numpy.load reads them)")
+        if not path.parent.exists():
+            raise InputFileError(f"{path}: folder {path.parent} does not exist")
+        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npz")
+        os.close(fd)
+        try:
+            arrays = {name: self.channels[:, i] for i, name in enumerate(L.CHANNEL_NAMES)}
+            np.savez_compressed(tmp, **arrays, te_rad=self.te, pin_forces=self.pin_forces,
+                                summary=json.dumps(self.summary()))
+            os.replace(tmp, path)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+        return path
