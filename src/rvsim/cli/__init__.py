@@ -10,7 +10,7 @@ import sys
 
 from .. import __version__
 from ..errors import RvsimError
-from . import _geometry
+from . import _geometry, _simulate
 from ._common import EXAMPLES, Parser
 
 __all__ = ["main", "build_parser"]
@@ -20,11 +20,12 @@ def build_parser() -> argparse.ArgumentParser:
     parser = Parser(prog="rvsim", description="Transmission error of RV reducers: geometry, "
                     "analytical error model, contact dynamics and designs of experiments.",
                     epilog=EXAMPLES + "rvsim params\n  rvsim sensitivity --json\n  "
-                    "rvsim profile --out disc.dxf",
+                    "rvsim profile --out disc.dxf\n  rvsim simulate --paper-run 2 --json",
                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"rvsim {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     _geometry.register(sub)
+    _simulate.register(sub)
     return parser
 
 

@@ -166,15 +166,20 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     if r.flexibility.pin:
         body += pin_compliance(c.pin_radius, c.disc_width, pin_load, m.pin)
     P[L.PIN_CB] = body
-    P[L.ARM_C] = (palmgren_coefficient(c.disc_width, m.crankshaft, m.bushing)
-                  + palmgren_coefficient(c.disc_width, m.bushing, m.cycloid_disc))
+    # stiffness x s at a given approach means compliance coefficient x s**-0.9
+    bushing_scale = r.contact.bushing_stiffness_factor ** -0.9
+    P[L.ARM_C] = bushing_scale * (palmgren_coefficient(c.disc_width, m.crankshaft, m.bushing)
+                                  + palmgren_coefficient(c.disc_width, m.bushing,
+                                                         m.cycloid_disc))
     P[L.ARM_CB] = (ring_compliance(k.arm_bushing_thickness,
                                    k.eccentric_radius + 0.5 * k.arm_bushing_thickness,
                                    c.disc_width, m.bushing)
                    if r.flexibility.arm_bushing else 0.0)
     P[L.ARM_CLEAR] = cl.crank_arm_bushing + cl.disc_arm_bushing
-    P[L.SUP_C] = (palmgren_coefficient(k.support_bushing_width, m.crankshaft, m.bushing)
-                  + palmgren_coefficient(k.support_bushing_width, m.bushing, m.carrier))
+    P[L.SUP_C] = bushing_scale * (palmgren_coefficient(k.support_bushing_width, m.crankshaft,
+                                                       m.bushing)
+                                  + palmgren_coefficient(k.support_bushing_width, m.bushing,
+                                                         m.carrier))
     P[L.SUP_CB] = 0.0
     P[L.SUP_CLEAR_L] = cl.crank_support_bushing + cl.support_flange
     P[L.SUP_CLEAR_U] = cl.crank_support_bushing + cl.support_carrier

@@ -26,7 +26,7 @@ from ._curve import curvature, signed_distances
 
 __all__ = [
     "CycloidProfile", "profile_of", "pin_centres", "nominal_disc_pose", "pin_gaps",
-    "geometric_backlash", "undercut_ratio", "NEWTON_ITERATIONS",
+    "geometric_backlash", "undercut_ratio", "pin_contact_geometry", "NEWTON_ITERATIONS",
 ]
 
 #: Newton iterations for a cold-started foot point (converges to machine precision in 3-5)
@@ -170,3 +170,30 @@ def check_profile(reducer: Reducer) -> None:
                              f"teeth undercut: pin radius + equidistant modification exceeds "
                              f"the smallest radius of curvature of the pin-centre curve by a "
                              f"factor {ratio:.3f}")
+
+
+def pin_contact_geometry(reducer: Reducer, crank_angle: float, *, disc: int = 0):
+    """Lever arm and contact normal of every pin in the nominal pose.
+
+    Returns (lever [m], normal) with shapes (zp,) and (zp, 2).  ``lever`` is d(gap)/d(disc
+    rotation): the pins with positive lever carry the output torque (forward drive); its
+    largest value is a * zc.  ``normal`` is the unit outward normal of the disc profile in
+    housing axes; a pin pushes the disc along -normal.
+    """
+    prof = profile_of(reducer)
+    zc = reducer.cycloid.disc_teeth
+    x, y, rot = nominal_disc_pose(reducer, crank_angle, disc)
+    angle = rot - disc * math.pi / zc + prof.rotation
+    q = _disc_axes(pin_centres(reducer), x, y, angle)
+    gamma = 2.0 * np.pi * np.arange(reducer.cycloid.pin_count) / reducer.cycloid.pin_count
+    _, u = signed_distances(q[:, 0].copy(), q[:, 1].copy(), gamma - angle,
+                            prof.generating_radius, prof.eccentricity, float(prof.pin_count),
+                            NEWTON_ITERATIONS)
+    zp = prof.pin_count
+    tx = -prof.generating_radius * np.sin(u) + prof.eccentricity * zp * np.sin(zp * u)
+    ty = prof.generating_radius * np.cos(u) - prof.eccentricity * zp * np.cos(zp * u)
+    norm = np.hypot(tx, ty)
+    nx, ny = ty / norm, -tx / norm
+    c, s = math.cos(angle), math.sin(angle)
+    normal = np.column_stack([c * nx - s * ny, s * nx + c * ny])
+    return nx * q[:, 1] - ny * q[:, 0], normal

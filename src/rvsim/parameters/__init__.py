@@ -2,13 +2,14 @@
 
 from ._types import (Clearances, ContactModel, Crankshaft, CycloidStage, Errors, Flexibility,
                      GearStage, Material, Materials, Operating, Reducer)
-from .rv40e import CITATION, RV40E, TABLE2_FACTORS, FactorSpec
+from .rv40e import (CITATION, RV40E, TABLE2_FACTORS, FactorSpec, paper_l36_scheme,
+                    paper_run_values)
 from ._io import (BUILT_IN_SETS, SPECS, get_value, load_toml, parameter_table, parse_assignment,
                   resolve_name, validate, with_values)
 
 __all__ = [
     "Reducer", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances", "Flexibility",
     "Operating", "ContactModel", "Material", "Materials", "RV40E", "CITATION", "TABLE2_FACTORS",
-    "FactorSpec", "BUILT_IN_SETS", "SPECS", "get_value", "load_toml", "parameter_table",
+    "FactorSpec", "paper_l36_scheme", "paper_run_values", "BUILT_IN_SETS", "SPECS", "get_value", "load_toml", "parameter_table",
     "parse_assignment", "resolve_name", "validate", "with_values",
 ]

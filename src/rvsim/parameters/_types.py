@@ -192,6 +192,9 @@ class ContactModel:
                                     "of critical at its current stiffness", maximum=2.0)
     friction_coefficient: float = quantity(0.0, "-", "Coulomb friction at pin contacts "
                                            "(paper: none)", maximum=1.0)
+    bushing_stiffness_factor: float = quantity(1.0, "-", "multiplies the stiffness of every "
+                                               "bushing contact (1: Palmgren law; large: rigid "
+                                               "bearings)", positive=True)
     friction_velocity: float = quantity(1e-3, "mm/s", "sliding speed at which the "
                                         "regularised friction is fully developed", positive=True)
 

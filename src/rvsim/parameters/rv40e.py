@@ -61,3 +61,29 @@ TABLE2_FACTORS: dict[str, FactorSpec] = {f.letter: f for f in (
 )}
 
 assert math.isclose(RV40E.ratio, 121.0)
+
+
+def paper_l36_scheme():
+    """The paper's L36 scheme (Table 3, repaired rows; levels index Table 2) with its TE.
+
+    Returns a pandas DataFrame with columns run, A..O (level numbers), te_arcmin, note.
+    """
+    from importlib.resources import files
+
+    import pandas as pd
+
+    with files("rvsim.data").joinpath("paper_l36.csv").open("r", encoding="utf-8") as handle:
+        return pd.read_csv(handle, comment="#", keep_default_na=False,
+                           dtype={"note": str})
+
+
+def paper_run_values(run: int) -> dict[str, object]:
+    """Factor values (user units, by letter) of row ``run`` (1..36) of the paper's L36."""
+    from ..errors import ParameterError
+
+    scheme = paper_l36_scheme()
+    if not (isinstance(run, int) and 1 <= run <= len(scheme)):
+        raise ParameterError("paper-run", f"must be a run number from 1 to {len(scheme)} "
+                             f"(got {run})")
+    row = scheme[scheme["run"] == run].iloc[0]
+    return {letter: spec.levels[int(row[letter]) - 1] for letter, spec in TABLE2_FACTORS.items()}
