@@ -31,8 +31,12 @@ def reference_table(name: str) -> pd.DataFrame:
     header = lines[0].split(",")
     rows = [ln.split(",", len(header) - 1) for ln in lines[1:]]
     frame = pd.DataFrame(rows, columns=header)
-    return frame.apply(lambda col: pd.to_numeric(col, errors="ignore")
-                       if col.name != "note" else col)
+    for name in frame.columns:
+        try:
+            frame[name] = pd.to_numeric(frame[name])
+        except ValueError:
+            pass  # text column
+    return frame
 
 
 class CliResult:
