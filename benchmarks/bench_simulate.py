@@ -1,0 +1,59 @@
+"""Benchmark one 4 s RV-40E run with every element active (issue 3, item 6).
+
+"Every element active": the paper's L36 run 3 (all three flexibility switches on, fluctuating
+400 N*m load, every error, modification and clearance at its highest level), so all contacts,
+clearances and compliances take part.  Prints, for a cold process, the first-call time
+(compilation or cache load included) and then the median of warm runs: wall time, integration
+steps per second and pin-contact evaluations per second (80 pin contacts per step; pins that the
+kernel proves open are skipped, so the evaluation rate counts the nominal 80 per step).
+
+Usage:  python benchmarks/bench_simulate.py [--repeat 5] [--run 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import statistics
+import time
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--run", type=int, default=3, help="paper L36 run (default 3)")
+    args = parser.parse_args()
+
+    start = time.perf_counter()
+    from rvsim.dynamics import simulate
+    from rvsim.parameters import RV40E, paper_run_values, with_values
+
+    reducer = with_values(RV40E, paper_run_values(args.run))
+    first = simulate(reducer)
+    first_call = time.perf_counter() - start
+    walls = []
+    for _ in range(args.repeat):
+        result = simulate(reducer)
+        walls.append(result.wall_s)
+    wall = statistics.median(walls)
+    pins = 2 * reducer.cycloid.pin_count
+    report = {
+        "machine": f"{platform.machine()} {platform.processor() or ''} "
+                   f"{os.cpu_count()} cpu, Python {platform.python_version()}".strip(),
+        "date": time.strftime("%Y-%m-%d"),
+        "paper_run": args.run,
+        "first_call_s_including_import_and_jit": round(first_call, 2),
+        "median_wall_s": round(wall, 3),
+        "runs": [round(w, 3) for w in walls],
+        "steps": result.steps,
+        "steps_per_s": round(result.steps / wall),
+        "pin_contact_evaluations_per_s": round(result.steps * pins / wall),
+        "te_mean_arcmin": round(first.metrics["te_mean_arcmin"], 4),
+    }
+    print(json.dumps(report, indent=2))
+
+
+if __name__ == "__main__":
+    main()

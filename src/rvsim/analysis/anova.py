@@ -1,0 +1,131 @@
+"""Main-effects ANOVA as Minitab prints it, with pooling, S/N ratios and optimum prediction.
+
+The model is y = mean + sum of factor main effects (categorical).  Sums of squares are
+Minitab's "Adj SS" (type III, sum-to-zero coding; for a balanced orthogonal array they equal
+the sequential and type II ones).  statsmodels fits the model; factor columns are renamed
+before the formula is built because patsy reserves C, I and Q.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pandas as pd
+
+from ..errors import InputFileError
+from ._table import check_design_table, factor_columns
+
+__all__ = ["AnovaTable", "anova", "signal_to_noise_smaller", "sn_response_table",
+           "predict_optimum"]
+
+
+@dataclasses.dataclass(frozen=True)
+class AnovaTable:
+    """Rows by source (factors, Error, Total) with DF, Adj SS, Adj MS, F, P."""
+
+    rows: dict[str, dict[str, float]]
+    pooled: tuple[str, ...]
+    response: str
+
+    def significant(self, alpha: float = 0.1) -> list[str]:
+        return [s for s, r in self.rows.items()
+                if s not in ("Error", "Total") and not math.isnan(r["p"]) and r["p"] < alpha]
+
+    def to_dict(self) -> dict:
+        return {s: {"df": int(r["df"]), "adj_ss": r["adj_ss"], "adj_ms": r["adj_ms"],
+                    "f": r["f"], "p": r["p"]} for s, r in self.rows.items()}
+
+    def to_df(self) -> pd.DataFrame:
+        frame = pd.DataFrame(self.rows).T
+        frame["df"] = frame["df"].astype(int)
+        return frame[["df", "adj_ss", "adj_ms", "f", "p"]]
+
+
+def anova(table: pd.DataFrame, response: str = "te_arcmin", factors=None, *,
+          pool: tuple[str, ...] | list[str] = ()) -> AnovaTable:
+    """Main-effects ANOVA of ``response``; factors in ``pool`` go into the error term."""
+    import statsmodels.formula.api as smf
+    from statsmodels.stats.anova import anova_lm
+
+    factors = factor_columns(table, response, factors)
+    unknown = [p for p in pool if p not in factors]
+    if unknown:
+        raise InputFileError(f"cannot pool {', '.join(unknown)}: not a factor column")
+    data = check_design_table(table, response, factors)
+    kept = [f for f in factors if f not in pool]
+    alias = {f: f"f_{i}" for i, f in enumerate(kept)}
+    frame = pd.DataFrame({alias[f]: data[f] for f in kept})
+    frame["y"] = data[response].to_numpy()
+    rhs = " + ".join(f"C({a}, Sum)" for a in alias.values()) or "1"
+    fit = smf.ols(f"y ~ {rhs}", data=frame).fit()
+    rows: dict[str, dict[str, float]] = {}
+    error_df = float(fit.df_resid)
+    error_ss = float(fit.ssr)
+    error_ms = error_ss / error_df if error_df > 0 else float("nan")
+    if kept:
+        table3 = anova_lm(fit, typ=3)
+        for f, a in alias.items():
+            row = table3.loc[f"C({a}, Sum)"]
+            ss, df = float(row["sum_sq"]), float(row["df"])
+            ms = ss / df
+            f_value = ms / error_ms if error_df > 0 and error_ms > 0 else float("nan")
+            p_value = _p_value(f_value, df, error_df)
+            rows[f] = {"df": df, "adj_ss": ss, "adj_ms": ms, "f": f_value, "p": p_value}
+    rows["Error"] = {"df": error_df, "adj_ss": error_ss, "adj_ms": error_ms,
+                     "f": float("nan"), "p": float("nan")}
+    y = frame["y"].to_numpy()
+    rows["Total"] = {"df": float(len(y) - 1), "adj_ss": float(((y - y.mean()) ** 2).sum()),
+                     "adj_ms": float("nan"), "f": float("nan"), "p": float("nan")}
+    return AnovaTable(rows, tuple(pool), response)
+
+
+def _p_value(f_value: float, df1: float, df2: float) -> float:
+    if not (df2 > 0 and math.isfinite(f_value)):
+        return float("nan")
+    from scipy.stats import f as f_dist
+
+    return float(f_dist.sf(f_value, df1, df2))
+
+
+def signal_to_noise_smaller(values) -> float:
+    """Taguchi smaller-is-better S/N ratio: -10 log10(mean(y^2)) [dB]."""
+    y = np.asarray(values, dtype=float)
+    return float(-10.0 * np.log10(np.mean(y * y)))
+
+
+def sn_response_table(table: pd.DataFrame, response: str = "te_arcmin", factors=None
+                      ) -> pd.DataFrame:
+    """Mean S/N ratio (smaller is better) per factor level, with Delta and Rank (Minitab)."""
+    factors = factor_columns(table, response, factors)
+    data = check_design_table(table, response, factors)
+    data = data.assign(sn=[signal_to_noise_smaller([v]) for v in data[response]])
+    width = max(data[f].nunique() for f in factors)
+    out = {}
+    for f in factors:
+        means = data.groupby(f)["sn"].mean().sort_index().tolist()
+        out[f] = means + [float("nan")] * (width - len(means))
+    frame = pd.DataFrame(out, index=[f"level {i + 1}" for i in range(width)]).T
+    frame["delta"] = frame.max(axis=1) - frame.min(axis=1)
+    frame["rank"] = frame["delta"].rank(ascending=False, method="first").astype(int)
+    return frame
+
+
+def predict_optimum(table: pd.DataFrame, anova_table: AnovaTable, response: str = "te_arcmin",
+                    *, alpha: float = 0.1) -> dict:
+    """Predicted response at the optimum from the significant factors only (Taguchi).
+
+    y_opt = grand mean + sum over significant factors of (best level mean - grand mean).
+    """
+    from .range_analysis import range_analysis
+
+    ra = range_analysis(table, response, [f for f in anova_table.rows
+                                          if f not in ("Error", "Total")] + list(
+        anova_table.pooled))
+    significant = anova_table.significant(alpha)
+    best = ra.optimum
+    value = ra.grand_mean + sum(ra.level_means[f][best[f] - 1] - ra.grand_mean
+                                for f in significant)
+    return {"significant": significant, "levels": {f: best[f] for f in significant},
+            "predicted": value, "alpha": alpha}
