@@ -6,7 +6,41 @@ import pandas as pd
 
 from ..errors import InputFileError
 
-__all__ = ["check_design_table", "factor_columns"]
+__all__ = ["check_design_table", "factor_columns", "read_table"]
+
+
+def read_table(path) -> pd.DataFrame:
+    """Read a CSV results table; a free-text last column may contain unquoted commas."""
+    import csv
+    import io
+    from pathlib import Path
+
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputFileError(f"{path}: file not found") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputFileError(f"{path}: cannot read ({exc})") from None
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.startswith("#")]
+    if not lines:
+        raise InputFileError(f"{path}: empty table")
+    header = next(csv.reader([lines[0]]))
+    rows = []
+    for number, line in enumerate(lines[1:], start=2):
+        fields = next(csv.reader([line]))
+        if len(fields) > len(header):  # unquoted commas in the last (text) column
+            fields = fields[:len(header) - 1] + [",".join(fields[len(header) - 1:])]
+        if len(fields) < len(header):
+            fields += [""] * (len(header) - len(fields))
+        rows.append(fields)
+    frame = pd.read_csv(io.StringIO(""), names=header) if not rows else pd.DataFrame(
+        rows, columns=header)
+    for name in frame.columns:
+        converted = pd.to_numeric(frame[name].replace("", float("nan")), errors="coerce")
+        if converted.notna().sum() == (frame[name] != "").sum():
+            frame[name] = converted
+    return frame
 
 
 def factor_columns(table: pd.DataFrame, response: str, factors=None) -> list[str]:

@@ -27,6 +27,8 @@ def _reducer(args: argparse.Namespace):
 def _simulate(args: argparse.Namespace) -> int:
     if args.save and not args.save.endswith(".npz"):
         raise ParameterError("--save", "histories are written as .npz (numpy.load reads them)")
+    if args.report and not args.report.endswith(".html"):
+        raise ParameterError("--report", "the report is an .html file")
     reducer = _reducer(args)
     try:
         result = simulate(reducer, duration=args.duration, time_step=args.time_step)
@@ -37,6 +39,10 @@ def _simulate(args: argparse.Namespace) -> int:
         return 1
     if args.save:
         result.save(args.save)
+    if args.report:
+        from ..report import write_run_report
+
+        write_run_report(result, reducer, args.report)
     summary = result.summary()
     if args.json:
         print_json(summary)
@@ -64,6 +70,7 @@ def register(sub) -> None:
                    help="apply row N (1..36) of the paper's L36 scheme (Table 3 with Table 2 "
                         "levels); --set values override it")
     p.add_argument("--save", metavar="FILE.npz", help="write the time histories (numpy .npz)")
+    p.add_argument("--report", metavar="FILE.html", help="write a self-contained HTML report")
     p.add_argument("--duration", type=float, help="simulated time [s] (default: "
                    "operating.duration, 4 s)")
     p.add_argument("--time-step", type=float, default=DEFAULT_TIME_STEP,

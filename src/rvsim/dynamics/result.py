@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from .._files import atomic_write
 from ..errors import InputFileError
 from ..units import ARCMIN
 from . import _layout as L
@@ -122,14 +121,11 @@ class Result:
             raise InputFileError(f"{path}: histories are saved as .npz (numpy.load reads them)")
         if not path.parent.exists():
             raise InputFileError(f"{path}: folder {path.parent} does not exist")
-        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npz")
-        os.close(fd)
-        try:
-            arrays = {name: self.channels[:, i] for i, name in enumerate(L.CHANNEL_NAMES)}
-            np.savez_compressed(tmp, **arrays, te_rad=self.te, pin_forces=self.pin_forces,
-                                summary=json.dumps(self.summary()))
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
-        return path
+        arrays = {name: self.channels[:, i] for i, name in enumerate(L.CHANNEL_NAMES)}
+
+        def write(tmp: Path) -> None:
+            with open(tmp, "wb") as handle:
+                np.savez_compressed(handle, **arrays, te_rad=self.te,
+                                    pin_forces=self.pin_forces,
+                                    summary=json.dumps(self.summary()))
+        return atomic_write(path, write)

@@ -8,12 +8,11 @@ user can choose the point count for the tolerance of the machine.
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from .._files import atomic_write
 from ..errors import InputFileError
 from ..parameters import Reducer
 from .cycloid import profile_of
@@ -39,18 +38,6 @@ def chordal_deviation(reducer: Reducer, points: int) -> float:
         proj = a + t[:, None] * d
         worst = max(worst, float(np.max(np.linalg.norm(p - proj, axis=1))))
     return worst
-
-
-def _atomic_write(path: Path, write) -> None:
-    """Write through a temporary file in the same folder so no partial file is left behind."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=path.suffix)
-    os.close(fd)
-    try:
-        write(Path(tmp))
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def export_profile(reducer: Reducer, path: str | Path, *, points: int = 36000) -> dict:
@@ -86,7 +73,7 @@ def export_profile(reducer: Reducer, path: str | Path, *, points: int = 36000) -
                            dxfattribs={"layer": "CONSTRUCTION"})
             msp.add_point((0.0, 0.0), dxfattribs={"layer": "CONSTRUCTION"})
             doc.saveas(tmp)
-    _atomic_write(path, write)
+    atomic_write(path, write)
     return {"file": str(path), "points": points,
             "chordal_deviation_mm": chordal_deviation(reducer, points) * 1e3,
             "teeth": reducer.cycloid.disc_teeth}

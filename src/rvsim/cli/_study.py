@@ -1,0 +1,161 @@
+"""``rvsim study`` and ``rvsim analyze``."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+from .._files import atomic_write_text
+from ..analysis import analyze_table, range_analysis
+from ..analysis._table import read_table
+from ..doe import BUILT_IN_STUDIES, load_study, run
+from ..errors import InputFileError
+from ._common import EXAMPLES, print_json
+
+__all__ = ["register", "write_study_outputs"]
+
+
+def _response_column(table: pd.DataFrame, response: str | None) -> str:
+    if response:
+        return response
+    for name in ("te_mean_arcmin", "te_arcmin"):
+        if name in table.columns:
+            return name
+    raise InputFileError("no response column: name one with --response")
+
+
+def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
+                        *, alpha: float = 0.1) -> dict:
+    """results.csv, analysis.json and main_effects.png in ``folder``; returns the analysis."""
+    atomic_write_text(folder / "results.csv", results.to_csv(index=False))
+    ok = results[results["status"] == "ok"]
+    try:
+        analysis = analyze_table(ok, "te_mean_arcmin", factors, alpha=alpha)
+        analysis["runs_ok"] = int(len(ok))
+        analysis["runs_total"] = int(len(results))
+    except InputFileError as exc:
+        analysis = {"error": f"analysis not possible: {exc}", "runs_ok": int(len(ok)),
+                    "runs_total": int(len(results))}
+    atomic_write_text(folder / "analysis.json", json.dumps(analysis, indent=2, default=float))
+    if "error" not in analysis:
+        from ..plots import figure_to_png, main_effects_plot
+
+        figure_to_png(main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
+                                        ylabel="mean TE [arcmin]"),
+                      folder / "main_effects.png")
+    return analysis
+
+
+def _study(args: argparse.Namespace) -> int:
+    if args.study in BUILT_IN_STUDIES:
+        study = BUILT_IN_STUDIES[args.study]()
+    elif Path(args.study).suffix == ".toml":
+        study = load_study(args.study)
+    else:
+        raise InputFileError(f"unknown study '{args.study}' (built in: "
+                             f"{', '.join(BUILT_IN_STUDIES)}; or a .toml file)")
+    folder = Path(args.out)
+    progress = not args.no_progress and sys.stderr.isatty()
+    results = run(study, folder, workers=args.workers, scheduler=args.scheduler,
+                  progress=progress)
+    factors = [f.label for f in study.factors]
+    analysis = write_study_outputs(folder, results, factors, alpha=args.alpha)
+    if not args.no_report:
+        from ..report import write_study_report
+
+        write_study_report(folder, study=study)
+    failed = int((results["status"] != "ok").sum())
+    if args.json:
+        print_json({"folder": str(folder), "runs": int(len(results)), "failed": failed,
+                    "analysis": analysis})
+    else:
+        print(f"{study.name}: {len(results)} runs, {failed} failed -> {folder}/results.csv, "
+              f"analysis.json" + ("" if args.no_report else ", report.html"))
+        if "order" in analysis:
+            print(f"factor order by range: {analysis['order']}")
+    return 0
+
+
+def _analyze(args: argparse.Namespace) -> int:
+    table = read_table(args.table)
+    factors = args.factors.split(",") if args.factors else None
+    pool = tuple(p for p in args.pool.split(",") if p) if args.pool else ()
+    response = _response_column(table, args.response)
+    result = analyze_table(table, response, factors, pool=pool, alpha=args.alpha)
+    if args.json:
+        print_json(result)
+        return 0
+    ra = range_analysis(table, response, factors)
+    print(ra.to_df().round(4).to_string())
+    print(f"\norder: {result['order']}")
+    print("\nANOVA (main effects)")
+    from ..analysis import anova
+
+    print(anova(table, response, factors, pool=pool).to_df().round(4).to_string())
+    print(f"\nsignificant at alpha = {args.alpha}: {', '.join(result['significant']) or 'none'}")
+    return 0
+
+
+def _report(args: argparse.Namespace) -> int:
+    from ..report import write_study_report
+
+    path = write_study_report(args.folder, alpha=args.alpha)
+    if args.json:
+        print_json({"report": str(path)})
+    else:
+        print(f"wrote {path}")
+    return 0
+
+
+def register(sub) -> None:
+    p = sub.add_parser("report", help="write the HTML report of a study folder",
+                       description="Write DIR/report.html (self-contained: figures embedded, "
+                       "no network requests) from a folder made by 'rvsim study'.",
+                       epilog=EXAMPLES + "rvsim report study",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("folder", help="study folder")
+    p.add_argument("--alpha", type=float, help="significance level marked in the ANOVA "
+                   "(default: the study's)")
+    p.add_argument("--json", action="store_true", help="print a JSON summary")
+    p.set_defaults(func=_report)
+
+    p = sub.add_parser("study", help="run a design of experiments on the dynamic model",
+                       description="Run every row of a study (built in: paper-l36, the paper's "
+                       "Table 2 factors on its L36 array; or a TOML study file) in parallel, "
+                       "store each result as it finishes (re-running skips finished rows), "
+                       "then write results.csv, analysis.json, main_effects.png and "
+                       "report.html into the output folder.",
+                       epilog=EXAMPLES + "rvsim study paper-l36 --out study\n  rvsim study "
+                       "my_study.toml --out tol --workers 2\n  rvsim study paper-l36 --out "
+                       "study --scheduler tcp://127.0.0.1:8786",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("study", help="'paper-l36' or a study .toml file")
+    p.add_argument("--out", required=True, metavar="DIR", help="study folder")
+    p.add_argument("--workers", type=int, help="local worker processes (default: one per core)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler")
+    p.add_argument("--alpha", type=float, default=0.1, help="significance level (default 0.1)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--no-report", action="store_true", help="skip report.html")
+    p.add_argument("--json", action="store_true", help="print a JSON summary")
+    p.set_defaults(func=_study)
+
+    p = sub.add_parser("analyze", help="range analysis and ANOVA of a results table",
+                       description="Range analysis (k, R, order, optimum), a main-effects "
+                       "ANOVA as Minitab prints it, smaller-is-better S/N ratios and the "
+                       "predicted optimum of a design table (factor columns A, B, ... with "
+                       "level numbers, one response column).",
+                       epilog=EXAMPLES + "rvsim analyze study/results.csv --json\n  rvsim "
+                       "analyze table3.csv --response te_arcmin --pool B,C",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("table", help="CSV file")
+    p.add_argument("--response", help="response column (default te_mean_arcmin or te_arcmin)")
+    p.add_argument("--factors", help="comma-separated factor columns (default: single-letter "
+                   "columns)")
+    p.add_argument("--pool", help="comma-separated factors pooled into error")
+    p.add_argument("--alpha", type=float, default=0.1, help="significance level (default 0.1)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=_analyze)

@@ -1,0 +1,122 @@
+"""Matplotlib figures (imported lazily: the core does not need matplotlib).
+
+Every function takes an optional ``ax``/``fig`` and returns the figure; axes carry units.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["main_effects_plot", "speed_plot", "te_plot", "spectrum_plot", "figure_to_png"]
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def main_effects_plot(analysis, ax=None, *, factors=None, ylabel=None):
+    """Level means of each factor (the paper's Figs. 8-10), one panel per factor."""
+    plt = _pyplot()
+    factors = factors or list(analysis.level_means)
+    if ax is None:
+        cols = min(5, len(factors))
+        rows = math.ceil(len(factors) / cols)
+        fig, axes = plt.subplots(rows, cols, figsize=(2.4 * cols, 2.3 * rows), sharey=True,
+                                 squeeze=False)
+        axes = axes.ravel()
+        for extra in axes[len(factors):]:
+            extra.set_visible(False)
+    else:
+        axes = [ax] * len(factors)
+        fig = ax.figure
+    label = ylabel or f"mean of {analysis.response}"
+    for axis, factor in zip(axes, factors):
+        k = analysis.level_means[factor]
+        axis.plot(range(1, len(k) + 1), k, "o-", color="C0")
+        axis.axhline(analysis.grand_mean, color="0.6", lw=0.8, ls="--")
+        axis.set_title(factor)
+        axis.set_xticks(range(1, len(k) + 1))
+        axis.set_xlabel("level")
+    axes[0].set_ylabel(label)
+    fig.tight_layout()
+    return fig
+
+
+def speed_plot(result, ax=None):
+    """Input and output speed against time (paper Fig. 4)."""
+    plt = _pyplot()
+    fig, ax = (plt.subplots(figsize=(7, 3.2)) if ax is None else (ax.figure, ax))
+    deg = 180.0 / math.pi
+    ax.plot(result.time, result.omega_in * deg, label="input shaft")
+    ax.plot(result.time, result.omega_out * deg * result.ratio, label=f"output x {result.ratio:g}")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("speed [deg/s]")
+    ax.legend(loc="lower right")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def te_plot(results: dict, steady_start: float, ax=None):
+    """Transmission error against time for several runs, steady window shaded (Fig. 5)."""
+    plt = _pyplot()
+    fig, ax = (plt.subplots(figsize=(7, 3.4)) if ax is None else (ax.figure, ax))
+    arcmin = 180.0 * 60.0 / math.pi
+    for label, result in results.items():
+        ax.plot(result.time, result.te * arcmin, lw=0.8, label=str(label))
+    ax.axvspan(steady_start, max(r.time[-1] for r in results.values()), color="0.9",
+               label="steady window")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("transmission error [arcmin]")
+    ax.legend(fontsize="small", ncol=2)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 54):
+    """Amplitude spectrum of the steady TE against orders of the crank rotation relative to
+    the carrier (which turns ``pin_count`` times faster than the carrier)."""
+    plt = _pyplot()
+    fig, ax = (plt.subplots(figsize=(7, 3.2)) if ax is None else (ax.figure, ax))
+    window = result.time >= result.steady_start
+    te = result.te[window] * 180.0 * 60.0 / math.pi
+    te = te - te.mean()
+    dt = result.time[1] - result.time[0]
+    amplitude = 2.0 * np.abs(np.fft.rfft(te * np.hanning(len(te)))) / (0.5 * len(te))
+    freq = np.fft.rfftfreq(len(te), dt)
+    crank_hz = abs(np.mean(result.omega_out[window])) * pin_count / (2 * math.pi)
+    orders = freq / crank_hz if crank_hz > 0 else freq
+    ax.plot(orders, amplitude, lw=0.8)
+    for order, name in ((1, "crank"), (pin_count - 1, "zc"), (pin_count, "pin passing zp"),
+                        (planet_teeth, "sun-planet mesh")):
+        ax.axvline(order, color="C3", lw=0.7, ls="--")
+        ax.text(order, ax.get_ylim()[1] * 0.9, f" {name}", color="C3", fontsize=7)
+    ax.set_xlim(0, 100)
+    ax.set_xlabel("order of crank rotation relative to the carrier [-]")
+    ax.set_ylabel("TE amplitude [arcmin]")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def figure_to_png(fig, path=None) -> bytes:
+    """PNG bytes of ``fig`` (also written to ``path`` if given); closes the figure."""
+    import io
+
+    plt = _pyplot()
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=110)
+    plt.close(fig)
+    data = buffer.getvalue()
+    if path is not None:
+        with open(path, "wb") as handle:
+            handle.write(data)
+    return data

@@ -1,0 +1,222 @@
+"""Self-contained HTML reports: one page, figures embedded as PNG data, no network requests.
+
+``write_study_report(folder)`` reads a study folder (study.json, results.csv, analysis.json,
+results.sqlite) and writes ``folder/report.html``; ``write_run_report`` does the same for one
+simulation.  Figures come from :mod:`rvsim.plots`.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+import math
+import types
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ._files import atomic_write_text
+from .errors import InputFileError
+
+__all__ = ["write_study_report", "write_run_report"]
+
+_CSS = """
+body{font-family:system-ui,-apple-system,Segoe UI,Roboto,sans-serif;margin:2em auto;
+max-width:1100px;color:#222;padding:0 1em}
+h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;
+margin-top:2em}table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
+th,td{border:1px solid #ccc;padding:.2em .5em;text-align:right}th{background:#f3f3f3}
+td.l,th.l{text-align:left}.sig{font-weight:bold;background:#fff3cd}img{max-width:100%}
+.note{color:#555;font-size:.9em}.summary td{text-align:left}
+"""
+
+
+def _png(fig) -> str:
+    from .plots import figure_to_png
+
+    data = base64.b64encode(figure_to_png(fig)).decode("ascii")
+    return f'<img alt="figure" src="data:image/png;base64,{data}">'
+
+
+def _table(frame: pd.DataFrame, *, index: bool = True, highlight=None) -> str:
+    rows = []
+    head = ([f'<th class="l">{html.escape(str(frame.index.name or ""))}</th>'] if index else [])
+    head += [f"<th>{html.escape(str(c))}</th>" for c in frame.columns]
+    rows.append("<tr>" + "".join(head) + "</tr>")
+    for idx, row in frame.iterrows():
+        cls = ' class="sig"' if highlight and idx in highlight else ""
+        cells = [f'<td class="l">{html.escape(str(idx))}</td>'] if index else []
+        for value in row:
+            if isinstance(value, float):
+                text = "" if math.isnan(value) else f"{value:.4g}"
+            else:
+                text = str(value)
+            cells.append(f"<td>{html.escape(text)}</td>")
+        rows.append(f"<tr{cls}>" + "".join(cells) + "</tr>")
+    return "<table>" + "".join(rows) + "</table>"
+
+
+def _page(title: str, body: list[str]) -> str:
+    return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>"
+            f"{html.escape(title)}</title><style>{_CSS}</style></head><body>"
+            + "\n".join(body) + "</body></html>")
+
+
+def _history_object(history: dict):
+    return types.SimpleNamespace(time=history["time"], omega_in=history["omega_in"],
+                                 omega_out=history["omega_out"], te=history["te"],
+                                 ratio=float(history["ratio"]),
+                                 steady_start=float(history["steady_start"]))
+
+
+def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict) -> pd.DataFrame:
+    """Table 3 layout: runs, then k1..k3, R, rank and optimum rows."""
+    table = results.set_index("run")[factors + ["te_mean_arcmin"]].copy()
+    table = table.astype(object)
+    table.index = table.index.astype(str)
+    width = max(len(analysis["range"][f]["k"]) for f in factors)
+    order = analysis["order"].split(">")
+    extra = {}
+    for i in range(width):
+        extra[f"k{i + 1}"] = [analysis["range"][f]["k"][i] if i < len(analysis["range"][f]["k"])
+                              else float("nan") for f in factors] + [""]
+    extra["R"] = [analysis["range"][f]["R"] for f in factors] + [""]
+    extra["rank"] = [order.index(f) + 1 for f in factors] + [""]
+    extra["optimal level"] = [analysis["optimum"][f] for f in factors] + [""]
+    for name, values in extra.items():
+        table.loc[name] = values
+    table.index.name = "run"
+    return table.rename(columns={"te_mean_arcmin": "TE [arcmin]"})
+
+
+def write_study_report(folder: str | Path, *, study=None, alpha: float | None = None) -> Path:
+    """Write ``folder/report.html`` from a finished study folder."""
+    from .analysis import range_analysis, sn_response_table
+    from .doe.store import ResultStore
+    from .plots import main_effects_plot, spectrum_plot, speed_plot, te_plot
+
+    folder = Path(folder)
+    needed = [folder / n for n in ("results.csv", "analysis.json", "study.json")]
+    missing = [p.name for p in needed if not p.exists()]
+    if missing:
+        raise InputFileError(f"{folder}: not a study folder (missing {', '.join(missing)}; "
+                             "run 'rvsim study' first)")
+    results = pd.read_csv(folder / "results.csv", keep_default_na=False,
+                          na_values=[""])
+    analysis = json.loads((folder / "analysis.json").read_text())
+    definition = json.loads((folder / "study.json").read_text())
+    factors = [f["label"] for f in definition["factors"]]
+    alpha = alpha if alpha is not None else analysis.get("alpha", 0.1)
+    body = [f"<h1>RV reducer study: {html.escape(definition['name'])}</h1>",
+            f"<p class='note'>Reducer: {html.escape(definition['reducer'])}. Design "
+            f"{html.escape(definition['design'])}, {len(results)} runs, "
+            f"{int((results['status'] == 'ok').sum())} finished. Transmission error TE = "
+            "theta_in/i - theta_out (paper Eq. 22); index: mean TE for t &ge; "
+            f"{definition['steady_start']:g} s.</p>"]
+    body.append("<h2>Study definition</h2>")
+    fdef = pd.DataFrame([{"factor": f["label"], "parameter": f["parameter"],
+                          "levels / range": ", ".join(map(str, f["levels"])) if f["levels"]
+                          else f"{f['low']} .. {f['high']}"} for f in definition["factors"]]
+                        ).set_index("factor")
+    body.append(_table(fdef))
+    if definition.get("fixed"):
+        body.append("<p class='note'>Fixed for every run: " + html.escape(", ".join(
+            f"{k} = {v}" for k, v in definition["fixed"])) + "</p>")
+
+    store = ResultStore(folder)
+    try:
+        histories = {}
+        for _, row in results.head(10).iterrows():
+            if row["status"] != "ok":
+                continue
+            full = [k for k in store.finished() if k.startswith(str(row["key"]))]
+            hist = store.history(full[0]) if full else None
+            if hist is not None:
+                histories[f"run {int(row['run'])}"] = _history_object(hist)
+    finally:
+        store.close()
+    if histories:
+        first = next(iter(histories.values()))
+        body += ["<h2>Input and output speed (Fig. 4)</h2>",
+                 f"<p class='note'>{html.escape(next(iter(histories)))}; output speed "
+                 f"multiplied by the ratio {first.ratio:g}.</p>", _png(speed_plot(first)),
+                 "<h2>Transmission error of the first runs (Fig. 5)</h2>",
+                 _png(te_plot(histories, first.steady_start)),
+                 "<h2>TE spectrum</h2>",
+                 f"<p class='note'>{html.escape(next(iter(histories)))}, steady window; orders "
+                 "of the crank rotation relative to the carrier, with the crank, pin-passing "
+                 "and sun-planet mesh orders marked.</p>", _png(spectrum_plot(first))]
+    if "error" in analysis:
+        body.append(f"<h2>Analysis</h2><p>{html.escape(analysis['error'])}</p>")
+    else:
+        ok = results[results["status"] == "ok"]
+        body += ["<h2>Results and range analysis (Table 3 layout)</h2>",
+                 _table(_results_layout(ok, factors, analysis)),
+                 f"<p>Factor order by range: <b>{html.escape(analysis['order'])}</b>. "
+                 "Optimum (smaller is better): " + html.escape(" ".join(
+                     f"{f}{lvl}" for f, lvl in analysis["optimum"].items())) + "</p>"]
+        anova = pd.DataFrame(analysis["anova"]).T
+        anova.index.name = "source"
+        anova = anova.rename(columns={"df": "DF", "adj_ss": "Adj SS", "adj_ms": "Adj MS",
+                                      "f": "F-Value", "p": "P-Value"})
+        anova["DF"] = anova["DF"].astype(int)
+        significant = [s for s in anova.index if s not in ("Error", "Total")
+                       and anova.loc[s, "P-Value"] < alpha]
+        body += ["<h2>Analysis of variance (Table 8 layout)</h2>",
+                 _table(anova, highlight=significant),
+                 f"<p>Significant at alpha = {alpha:g} (highlighted): "
+                 f"{html.escape(', '.join(significant) or 'none')}. Predicted TE at the "
+                 f"optimum from the significant factors: "
+                 f"{analysis['prediction']['predicted']:.4f} arcmin.</p>",
+                 "<h2>Main effects (Figs. 8-10)</h2>",
+                 _png(main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
+                                        ylabel="mean TE [arcmin]")),
+                 "<h2>Signal-to-noise ratios (smaller is better)</h2>",
+                 _table(sn_response_table(ok, "te_mean_arcmin", factors).round(4))]
+    failed = results[results["status"] != "ok"]
+    if len(failed):
+        body += ["<h2>Failed runs</h2>",
+                 _table(failed.set_index("run")[["status", "error"]])]
+    return atomic_write_text(folder / "report.html", _page(f"rvsim study {definition['name']}", body))
+
+
+def write_run_report(result, reducer, path: str | Path) -> Path:
+    """Write an HTML page for one simulation ``result`` of ``reducer``."""
+    from .parameters import parameter_table
+    from .plots import spectrum_plot, speed_plot, te_plot
+
+    path = Path(path)
+    if not path.parent.exists():
+        raise InputFileError(f"{path}: folder {path.parent} does not exist")
+    summary = pd.DataFrame([{"metric": k, "value": v} for k, v in result.summary().items()]
+                           ).set_index("metric")
+    params = pd.DataFrame(parameter_table(reducer)).set_index("name")
+    changed = params[[not name.startswith("materials") for name in params.index]]
+    window = result.time >= result.steady_start
+    forces = result.pin_forces[window].mean(axis=0)
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 3))
+    pins = np.arange(1, forces.shape[1] + 1)
+    ax.bar(pins - 0.2, forces[0], width=0.4, label="disc 1")
+    ax.bar(pins + 0.2, forces[1], width=0.4, label="disc 2")
+    ax.set_xlabel("pin number [-]")
+    ax.set_ylabel("mean contact force [N]")
+    ax.legend()
+    fig.tight_layout()
+    body = [f"<h1>RV reducer simulation: {html.escape(reducer.name)}</h1>",
+            "<h2>Summary</h2>", _table(summary),
+            "<h2>Input and output speed (Fig. 4)</h2>", _png(speed_plot(result)),
+            "<h2>Transmission error (Fig. 5)</h2>",
+            _png(te_plot({"TE": result}, result.steady_start)),
+            "<h2>TE spectrum</h2>",
+            _png(spectrum_plot(result, pin_count=reducer.cycloid.pin_count,
+                               planet_teeth=reducer.gears.planet_teeth)),
+            "<h2>Pin contact forces (steady window mean)</h2>", _png(fig),
+            "<h2>Parameters</h2>", _table(changed)]
+    return atomic_write_text(path, _page(f"rvsim {reducer.name}", body))
