@@ -84,6 +84,6 @@ def check_design_table(table: pd.DataFrame, response: str, factors: list[str]) -
             raise InputFileError(f"factor column '{f}': unbalanced design (level counts "
                                  f"{dict(sorted(counts.items()))})")
         out[f] = levels
-    if len(out) <= sum(out[f].nunique() - 1 for f in factors) + 1:
+    if len(out) < sum(out[f].nunique() - 1 for f in factors) + 1:
         raise InputFileError("too few runs for a main-effects model of these factors")
     return out

@@ -1,9 +1,9 @@
 """Main-effects ANOVA as Minitab prints it, with pooling, S/N ratios and optimum prediction.
 
 The model is y = mean + sum of factor main effects (categorical).  Sums of squares are
-Minitab's "Adj SS" (type III, sum-to-zero coding; for a balanced orthogonal array they equal
-the sequential and type II ones).  statsmodels fits the model; factor columns are renamed
-before the formula is built because patsy reserves C, I and Q.
+Minitab's "Adj SS" (for a balanced orthogonal array they equal the sequential ones).
+statsmodels fits the models; factor columns are renamed before the formula is built because
+patsy reserves C, I and Q.
 """
 
 from __future__ import annotations
@@ -45,9 +45,13 @@ class AnovaTable:
 
 def anova(table: pd.DataFrame, response: str = "te_arcmin", factors=None, *,
           pool: tuple[str, ...] | list[str] = ()) -> AnovaTable:
-    """Main-effects ANOVA of ``response``; factors in ``pool`` go into the error term."""
+    """Main-effects ANOVA of ``response``; factors in ``pool`` go into the error term.
+
+    Adj SS of a factor is SSR(model without it) - SSR(full model), both fitted by least
+    squares (statsmodels OLS); for a main-effects model that is Minitab's adjusted (type III)
+    sum of squares, and it stays defined for saturated designs (error DF 0: F and P empty).
+    """
     import statsmodels.formula.api as smf
-    from statsmodels.stats.anova import anova_lm
 
     factors = factor_columns(table, response, factors)
     unknown = [p for p in pool if p not in factors]
@@ -58,21 +62,23 @@ def anova(table: pd.DataFrame, response: str = "te_arcmin", factors=None, *,
     alias = {f: f"f_{i}" for i, f in enumerate(kept)}
     frame = pd.DataFrame({alias[f]: data[f] for f in kept})
     frame["y"] = data[response].to_numpy()
-    rhs = " + ".join(f"C({a}, Sum)" for a in alias.values()) or "1"
-    fit = smf.ols(f"y ~ {rhs}", data=frame).fit()
-    rows: dict[str, dict[str, float]] = {}
-    error_df = float(fit.df_resid)
-    error_ss = float(fit.ssr)
+
+    def residual(terms: list[str]) -> tuple[float, float]:
+        rhs = " + ".join(f"C({alias[f]})" for f in terms) or "1"
+        fit = smf.ols(f"y ~ {rhs}", data=frame).fit()
+        return float(fit.ssr), float(fit.df_resid)
+
+    error_ss, error_df = residual(kept)
+    error_ss = max(error_ss, 0.0) if error_df > 0 else 0.0
     error_ms = error_ss / error_df if error_df > 0 else float("nan")
-    if kept:
-        table3 = anova_lm(fit, typ=3)
-        for f, a in alias.items():
-            row = table3.loc[f"C({a}, Sum)"]
-            ss, df = float(row["sum_sq"]), float(row["df"])
-            ms = ss / df
-            f_value = ms / error_ms if error_df > 0 and error_ms > 0 else float("nan")
-            p_value = _p_value(f_value, df, error_df)
-            rows[f] = {"df": df, "adj_ss": ss, "adj_ms": ms, "f": f_value, "p": p_value}
+    rows: dict[str, dict[str, float]] = {}
+    for f in kept:
+        reduced_ss, reduced_df = residual([g for g in kept if g != f])
+        ss, df = reduced_ss - error_ss, reduced_df - error_df
+        ms = ss / df
+        f_value = ms / error_ms if error_df > 0 and error_ms > 0 else float("nan")
+        rows[f] = {"df": df, "adj_ss": ss, "adj_ms": ms, "f": f_value,
+                   "p": _p_value(f_value, df, error_df)}
     rows["Error"] = {"df": error_df, "adj_ss": error_ss, "adj_ms": error_ms,
                      "f": float("nan"), "p": float("nan")}
     y = frame["y"].to_numpy()

@@ -9,14 +9,13 @@ from pathlib import Path
 
 import pandas as pd
 
-from .._files import atomic_write_text
 from ..analysis import analyze_table, range_analysis
 from ..analysis._table import read_table
-from ..doe import BUILT_IN_STUDIES, load_study, run
+from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
 from ..errors import InputFileError
 from ._common import EXAMPLES, print_json
 
-__all__ = ["register", "write_study_outputs"]
+__all__ = ["register"]
 
 
 def _response_column(table: pd.DataFrame, response: str | None) -> str:
@@ -26,28 +25,6 @@ def _response_column(table: pd.DataFrame, response: str | None) -> str:
         if name in table.columns:
             return name
     raise InputFileError("no response column: name one with --response")
-
-
-def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
-                        *, alpha: float = 0.1) -> dict:
-    """results.csv, analysis.json and main_effects.png in ``folder``; returns the analysis."""
-    atomic_write_text(folder / "results.csv", results.to_csv(index=False))
-    ok = results[results["status"] == "ok"]
-    try:
-        analysis = analyze_table(ok, "te_mean_arcmin", factors, alpha=alpha)
-        analysis["runs_ok"] = int(len(ok))
-        analysis["runs_total"] = int(len(results))
-    except InputFileError as exc:
-        analysis = {"error": f"analysis not possible: {exc}", "runs_ok": int(len(ok)),
-                    "runs_total": int(len(results))}
-    atomic_write_text(folder / "analysis.json", json.dumps(analysis, indent=2, default=float))
-    if "error" not in analysis:
-        from ..plots import figure_to_png, main_effects_plot
-
-        figure_to_png(main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
-                                        ylabel="mean TE [arcmin]"),
-                      folder / "main_effects.png")
-    return analysis
 
 
 def _study(args: argparse.Namespace) -> int:

@@ -1,0 +1,53 @@
+"""``rvsim simulate`` as a new user runs it: JSON keys, paper runs, saved histories, errors."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+KEYS = {"te_mean_arcmin", "te_pp_arcmin", "te_rms_arcmin", "speed_ratio", "sim_time_s", "steps",
+        "wall_s", "status"}
+
+
+def test_paper_run_2_json(cli):
+    res = cli("simulate", "--paper-run", "2", "--json")
+    assert res.code == 0, res.err
+    data = json.loads(res.out)
+    assert KEYS <= set(data)
+    assert data["status"] == "ok" and data["sim_time_s"] == pytest.approx(4.0)
+    assert data["speed_ratio"] == pytest.approx(121.0, abs=0.01)
+    assert data["te_mean_arcmin"] > 0
+
+
+def test_default_run_and_saved_histories(tmp_path, cli):
+    path = tmp_path / "run.npz"
+    res = cli("simulate", "--duration", "1.6", "--save", str(path), "--json")
+    assert res.code == 0, res.err
+    data = np.load(path)
+    assert {"time", "theta_in", "theta_out", "te_rad", "pin_forces"} <= set(data.files)
+    frame = pd.DataFrame({k: data[k] for k in ("time", "te_rad")})
+    assert frame["time"].iloc[-1] == pytest.approx(1.6)
+    assert json.loads(str(data["summary"]))["status"] == "ok"
+
+
+@pytest.mark.parametrize("args, words", [
+    (("--paper-run", "0"), "1 to 36"),
+    (("--paper-run", "37"), "1 to 36"),
+    (("--paper-run", "x"), "invalid int value"),
+    (("--save", "run.csv"), ".npz"),
+    (("--report", "run.pdf"), ".html"),
+    (("--set", "E=-5"), "operating.load_torque"),
+    (("--time-step", "0.1"), "time_step"),
+    (("--duration", "0"), "duration"),
+])
+def test_simulate_errors(cli, args, words):
+    res = cli("simulate", *args)
+    assert res.code == 2 and words in res.err and res.err.count("\n") == 1
+
+
+def test_failed_simulation_reports_status(cli):
+    res = cli("simulate", "--duration", "0.3", "--time-step", "0.0002", "--json")
+    assert res.code == 1
+    assert json.loads(res.out)["status"] in ("diverged", "runaway_penetration")
+    assert "simulation failed" in res.err

@@ -1,0 +1,140 @@
+"""Study runner: parallel runs, resumable store, failed rows, kill -9, Dask, input errors."""
+
+import json
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
+
+import pandas as pd
+import pytest
+
+from rvsim.doe import load_study, run
+from rvsim.errors import ParameterError
+from tests.integration.conftest import write_study
+
+
+def _stored(folder):
+    path = folder / "results.sqlite"
+    if not path.exists():
+        return {}
+    with sqlite3.connect(path) as db:
+        try:
+            return dict(db.execute("SELECT key, finished FROM runs").fetchall())
+        except sqlite3.OperationalError:
+            return {}
+
+
+def test_study_cli_writes_outputs_and_rerun_skips(tmp_path, small_study, cli):
+    out = tmp_path / "out"
+    res = cli("study", str(small_study), "--out", str(out), "--workers", "2", "--json")
+    assert res.code == 0, res.err
+    summary = json.loads(res.out)
+    assert summary["runs"] == 4 and summary["failed"] == 0
+    for name in ("results.csv", "analysis.json", "main_effects.png", "report.html",
+                 "study.json"):
+        assert (out / name).exists()
+    table = pd.read_csv(out / "results.csv")
+    assert list(table["run"]) == [1, 2, 3, 4]
+    assert {"H", "I", "E", "te_mean_arcmin", "te_pp_arcmin", "speed_ratio", "status"} <= set(
+        table.columns)
+    first = _stored(out)
+    res = cli("study", str(small_study), "--out", str(out), "--no-report")
+    assert res.code == 0
+    assert _stored(out) == first  # nothing re-evaluated
+
+
+def test_failed_row_is_stored_and_does_not_stop_the_study(tmp_path):
+    path = write_study(tmp_path, factors="""
+[factors.S]
+parameter = "contact.bushing_stiffness_factor"
+levels = [1.0, 1e6]
+[factors.H]
+parameter = "H"
+levels = [0.0, 0.01]
+[factors.E]
+parameter = "E"
+levels = [100, 200]
+""")
+    results = run(load_study(path), tmp_path / "out", workers=1, progress=False)
+    stiff = results["S"] == 2
+    assert (results.loc[~stiff, "status"] == "ok").all()
+    assert (results.loc[stiff, "status"] != "ok").all()
+    assert results.loc[stiff, "error"].str.len().min() > 0
+
+
+@pytest.mark.parametrize("factors, words", [
+    ('[factors.X]\nparameter = "nope.nothing"\nlevels = [1, 2]\n', "unknown parameter"),
+    ('[factors.H]\nparameter = "H"\nlevels = [0.0, 0.01, 0.02]\n', "no free 3-level column"),
+    ('[factors.H]\nparameter = "clearances.support_carrier"\nlevels = [0.0, -0.01]\n',
+     "negative"),
+    ('[factors.H]\nparameter = "H"\nlevels = [0.0]\n', "at least 2"),
+])
+def test_study_input_errors_before_any_run(tmp_path, cli, factors, words):
+    path = write_study(tmp_path, factors=factors)
+    out = tmp_path / "out"
+    res = cli("study", str(path), "--out", str(out))
+    assert res.code == 2 and words in res.err and res.err.count("\n") == 1
+    assert not (out / "results.sqlite").exists()
+
+
+def test_kill_9_mid_study_loses_only_runs_in_flight(tmp_path):
+    path = write_study(tmp_path, design="L9", factors="""
+[factors.H]
+parameter = "H"
+levels = [0.0, 0.01, 0.02]
+[factors.I]
+parameter = "I"
+levels = [0.0, 0.016, 0.032]
+[factors.E]
+parameter = "E"
+levels = [100, 200, 300]
+""", extra='')
+    text = path.read_text().replace('"operating.duration" = 0.4', '"operating.duration" = 1.2')
+    text = text.replace('"operating.steady_start" = 0.3', '"operating.steady_start" = 1.0')
+    path.write_text(text)
+    out = tmp_path / "out"
+    proc = subprocess.Popen([sys.executable, "-m", "rvsim", "study", str(path), "--out",
+                             str(out), "--workers", "1", "--no-progress", "--no-report"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 120
+    while len(_stored(out)) < 2 and time.time() < deadline and proc.poll() is None:
+        time.sleep(0.05)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    before = _stored(out)
+    assert 2 <= len(before) < 9, "the study should have been killed part-way"
+    results = run(load_study(path), out, workers=2, progress=False)
+    after = _stored(out)
+    assert len(after) == 9 and (results["status"] == "ok").all()
+    assert all(after[k] == v for k, v in before.items())  # finished rows kept, not re-run
+
+
+def test_dask_cluster_with_two_worker_processes(tmp_path, small_study):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None) as cluster:
+        assert len(cluster.workers) == 2
+        results = run(load_study(small_study), tmp_path / "out",
+                      scheduler=cluster.scheduler_address, progress=False)
+    assert len(results) == 4 and (results["status"] == "ok").all()
+    local = run(load_study(small_study), tmp_path / "local", workers=1, progress=False)
+    pd.testing.assert_series_equal(results["te_mean_arcmin"], local["te_mean_arcmin"])
+
+
+def test_unreachable_scheduler_is_a_clear_error(tmp_path, small_study, cli):
+    res = cli("study", str(small_study), "--out", str(tmp_path / "o"), "--scheduler",
+              "tcp://127.0.0.1:9")
+    assert res.code == 2 and "Dask scheduler" in res.err
+
+
+def test_paper_l36_definition_validates_all_runs():
+    from rvsim.doe import paper_l36
+
+    reducers = paper_l36().reducers()
+    assert len(reducers) == 36
+    with pytest.raises(ParameterError):
+        from rvsim.parameters import paper_run_values
+        paper_run_values(0)
