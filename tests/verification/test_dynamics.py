@@ -32,7 +32,7 @@ QUICK = {"operating.speed_ramp_time": 0.2, "operating.load_start": 0.2,
 @pytest.fixture(scope="module")
 def paper_run_2():
     reducer = with_values(RV40E, paper_run_values(2))
-    return reducer, simulate(reducer), simulate(reducer, time_step=1e-5)
+    return reducer, simulate(reducer), simulate(reducer, time_step=5e-6)
 
 
 def test_zero_error_no_load_gives_zero_te_and_ratio_121():

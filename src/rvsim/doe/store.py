@@ -20,7 +20,7 @@ from ..parameters import Reducer
 __all__ = ["ResultStore", "run_key", "MODEL_VERSION"]
 
 #: bump when a model change makes stored results stale
-MODEL_VERSION = "dynamics-1"
+MODEL_VERSION = "dynamics-2"
 
 
 def run_key(reducer: Reducer, time_step: float) -> str:

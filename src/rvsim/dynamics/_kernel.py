@@ -12,7 +12,7 @@ import math
 import numba
 import numpy as np
 
-from ..geometry._curve import curve_point, foot_point
+from ..geometry._curve import curve_point, nearest_point
 from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
@@ -56,38 +56,50 @@ def load_torque(P, t):
 
 
 @numba.njit(cache=True)
-def spring_force(delta, c, cb):
+def spring_force(delta, c, cb, guess):
     """Force of a Palmgren contact in series with a linear compliance, for approach ``delta``.
 
-    delta = c * F**0.9 + cb * F.  Returns (F, tangent stiffness dF/ddelta, stored energy).
+    delta = c * F**0.9 + cb * F.  ``guess`` is the force of the previous step (0 if none):
+    Newton from it converges in one or two iterations.  Returns (F, tangent stiffness
+    dF/ddelta, stored energy).
     """
-    f = (delta / c) ** _INV_EXPONENT
-    if cb > 0.0:
-        f = min(f, delta / cb)
-        for _ in range(8):  # Newton on a concave increasing function; converges from below
-            g = c * f ** EXPONENT + cb * f - delta
-            dg = EXPONENT * c * f ** (EXPONENT - 1.0) + cb
-            f -= g / dg
-            if f <= 0.0:
-                f = 1e-30
+    if cb == 0.0:
+        f = (delta / c) ** _INV_EXPONENT
+        # c f^0.9 = delta: stiffness f / (0.9 delta), energy 0.9/1.9 delta f
+        return f, f / (EXPONENT * delta), EXPONENT / (1.0 + EXPONENT) * delta * f
+    if guess > 0.0:
+        f = guess
+    else:
+        # secant compliance at the contact-only force: below the root
+        f = (delta / c) ** _INV_EXPONENT
+        f = delta / (c * f ** (EXPONENT - 1.0) + cb)
     fe = f ** EXPONENT
+    for _ in range(20):
+        # Newton on g(F) = c F^0.9 + cb F - delta (concave, increasing)
+        step = (c * fe + cb * f - delta) / (EXPONENT * c * fe / f + cb)
+        f -= step
+        if f <= 0.0:
+            f = 1e-3 * (f + step)
+        fe = f ** EXPONENT
+        if abs(step) <= 1e-10 * f:
+            break
     stiffness = 1.0 / (EXPONENT * c * fe / f + cb)
     energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
     return f, stiffness, energy
 
 
 @numba.njit(cache=True)
-def contact(delta, rate, c, cb, zeta, mass):
+def contact(delta, rate, c, cb, zeta, mass, guess):
     """Normal force of a compliant contact with damping that vanishes at first touch.
 
     Damping is 2 zeta sqrt(k m) at the current tangent stiffness k (zero at delta = 0); the total
-    force never pulls.  Returns (force, stored energy, dissipated power).
+    force never pulls.  Returns (force, stored energy, dissipated power, elastic force).
     """
-    f, k, energy = spring_force(delta, c, cb)
+    f, k, energy = spring_force(delta, c, cb, guess)
     fn = f + 2.0 * zeta * math.sqrt(k * mass) * rate
     if fn < 0.0:
         fn = 0.0
-    return fn, energy, (fn - f) * rate
+    return fn, energy, (fn - f) * rate, f
 
 
 @numba.njit(cache=True)
@@ -157,13 +169,14 @@ def gear_mesh(P, q, v, Q, j, crank_angle, phase, theta_in, omega_in):
 
 
 @numba.njit(cache=True)
-def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces):
+def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces, elastic):
     """All pin contacts of disc k: returns (energy, dissipated power, max penetration).
 
     ``u[k, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
-    gamma_i - theta (exact in the kinematic pose).  Near contact the offset is below ~0.01 rad;
-    an offset beyond 0.05 rad (a pin far from contact, near the medial axis of a concave
-    stretch of the curve, where the foot point is not unique) is reset and re-solved.
+    gamma_i - theta (exact in the kinematic pose).  Near contact one Newton step from the
+    previous foot point converges; when it does not (first step, after a skip, a pin far from
+    contact near the medial axis of a concave stretch of the curve, where the foot point is not
+    unique) the nearest point is found robustly over one lobe period.
 
     A pin whose gap cannot close before step ``next_eval[k, i]`` is not evaluated: the gap is
     a 1-Lipschitz function of the pin centre in disc axes, whose speed is at most
@@ -180,6 +193,7 @@ def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces):
     lvx, lvy = c * vx + s * vy, -s * vx + c * vy
     rg, a = P[RG], P[A_GEN]
     offset = P[PROFILE_OFFSET] - P[PIN_RADIUS]
+    lobe = math.pi / zp
     speed_bound = 2.0 * (math.sqrt(vx * vx + vy * vy) + abs(w) * (P[RG] + 2.0 * a + 1e-3)) \
         * P[DT] + 1e-15
     energy = 0.0
@@ -189,39 +203,42 @@ def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces):
     for i in range(n):
         if step < next_eval[k, i]:
             forces[k, i] = 0.0
+            elastic[k, i] = 0.0
             continue
         dx = pins[i, 0] - ox
         dy = pins[i, 1] - oy
         qx = c * dx + s * dy
         qy = -s * dx + c * dy
         nominal = pin_angle[i] - angle
-        offset_u = u[k, i]
-        if step == 0 or abs(offset_u) > 0.05:
-            offset_u = foot_point(qx, qy, nominal, rg, a, zp, 40) - nominal
-        ui = nominal + offset_u
+        ui = nominal + u[k, i]
         x, y, tx, ty, ddx, ddy = curve_point(ui, rg, a, zp)
-        # one guarded Newton step from the warm start, then a second-order Taylor update
+        # one guarded Newton step from the previous foot point ...
         rx, ry = qx - x, qy - y
         speed2 = tx * tx + ty * ty
         h = speed2 - (rx * ddx + ry * ddy)
         if h < 0.25 * speed2:
             h = speed2
         du = (rx * tx + ry * ty) / h
-        limit = 0.25 / zp
-        if du > limit:
-            du = limit
-        elif du < -limit:
-            du = -limit
-        x += du * (tx + 0.5 * du * ddx)
-        y += du * (ty + 0.5 * du * ddy)
-        tx += du * ddx
-        ty += du * ddy
-        u[k, i] = offset_u + du
+        if step == 0 or abs(du) > 1e-4 or abs(ui + du - nominal) > lobe:
+            # ... unless it did not converge (first step, after a skip, a pin near the medial
+            # axis): robust nearest point over one lobe period around the nominal parameter
+            ui = nearest_point(qx, qy, nominal, rg, a, zp)
+            x, y, tx, ty, _, _ = curve_point(ui, rg, a, zp)
+        else:
+            # after one step the foot error is ~ zp du^2 and the Taylor error ~ a zp^3 du^3:
+            # far below a nanometre of gap for du < 1e-4
+            x += du * (tx + 0.5 * du * ddx)
+            y += du * (ty + 0.5 * du * ddy)
+            tx += du * ddx
+            ty += du * ddy
+            ui += du
+        u[k, i] = ui - nominal
         norm = math.sqrt(tx * tx + ty * ty)
         nx, ny = ty / norm, -tx / norm
         gap = (qx - x) * nx + (qy - y) * ny + offset
         if gap >= 0.0:
             forces[k, i] = 0.0
+            elastic[k, i] = 0.0
             skip = int(gap / speed_bound)
             next_eval[k, i] = step + (skip if skip < MAX_SKIP else MAX_SKIP)
             continue
@@ -231,8 +248,10 @@ def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces):
             worst = delta
         lever = nx * qy - ny * qx                    # d(gap)/d(theta)
         gap_rate = -(nx * lvx + ny * lvy) + w * lever
-        fn, e, pw = contact(delta, -gap_rate, P[PIN_C], P[PIN_CB], P[ZETA], P[M_DISC])
+        fn, e, pw, fel = contact(delta, -gap_rate, P[PIN_C], P[PIN_CB], P[ZETA], P[M_DISC],
+                                 elastic[k, i])
         forces[k, i] = fn
+        elastic[k, i] = fel
         energy += e
         power += pw
         # generalised forces Q = F d(gap)/dq on the disc
@@ -257,8 +276,10 @@ def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces):
 
 
 @numba.njit(cache=True)
-def arm_bushing(P, q, v, Q, j, k, hole_x, hole_y, wl, wu):
-    """Crank j eccentric in disc k's hole through the arm bushing (clearance K + M)."""
+def arm_bushing(P, q, v, Q, j, k, hole_x, hole_y, wl, wu, elastic):
+    """Crank j eccentric in disc k's hole through the arm bushing (clearance K + M).
+
+    ``elastic[j, k]`` carries the contact's elastic force from step to step (Newton start)."""
     ax, ay, avx, avy = crank_point(q, v, j, wl, wu)
     b = CRANK0 + CRANK_STRIDE * j
     phi = q[b + 4] + k * math.pi
@@ -277,10 +298,12 @@ def arm_bushing(P, q, v, Q, j, k, hole_x, hole_y, wl, wu):
     dist = math.sqrt(rx * rx + ry * ry)
     delta = dist - P[ARM_CLEAR]
     if delta <= 0.0 or dist < 1e-15:
+        elastic[j, k] = 0.0
         return 0.0, 0.0, 0.0
     nx, ny = rx / dist, ry / dist
     rate = nx * (evx - hvx) + ny * (evy - hvy)
-    fn, energy, power = contact(delta, rate, P[ARM_C], P[ARM_CB], P[ZETA], P[M_NODE])
+    fn, energy, power, elastic[j, k] = contact(delta, rate, P[ARM_C], P[ARM_CB], P[ZETA],
+                                               P[M_NODE], elastic[j, k])
     fx, fy = -fn * nx, -fn * ny                      # on the crank
     add_crank_force(Q, j, wl, wu, fx, fy)
     Q[b + 4] += fx * (-e * math.sin(phi)) + fy * (e * math.cos(phi))
@@ -306,7 +329,7 @@ def support_bushing(P, q, v, Q, j, upper, crank_angle):
     nx, ny = rx / dist, ry / dist
     wc = v[CARRIER]
     rate = nx * (v[b] + wc * by) + ny * (v[b + 1] - wc * bx)
-    fn, energy, power = contact(delta, rate, P[SUP_C], P[SUP_CB], P[ZETA], P[M_NODE])
+    fn, energy, power, _ = contact(delta, rate, P[SUP_C], P[SUP_CB], P[ZETA], P[M_NODE], 0.0)
     Q[b] -= fn * nx
     Q[b + 1] -= fn * ny
     Q[CARRIER] += fn * (-nx * by + ny * bx)
@@ -333,7 +356,7 @@ def kinetic_energy(P, v):
 
 @numba.njit(cache=True)
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-           pin_force, Q, channel, mesh_state):
+           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state):
     """Generalised forces Q at time t; fills the force channels and ``mesh_state`` (stiffness,
     deflection of each mesh). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration)."""
@@ -354,7 +377,8 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
         power += pw
     worst = 0.0
     for k in range(2):
-        e, pw, pen = pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, pin_force)
+        e, pw, pen = pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, pin_force,
+                                  pin_elastic)
         energy += e
         power += pw
         if pen > worst:
@@ -363,7 +387,8 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
         for k in range(2):
             wl = P[W_D1_L] if k == 0 else P[W_D2_L]
             wu = P[W_D1_U] if k == 0 else P[W_D2_U]
-            f, e, pw = arm_bushing(P, q, v, Q, j, k, holes[j, 0], holes[j, 1], wl, wu)
+            f, e, pw = arm_bushing(P, q, v, Q, j, k, holes[j, 0], holes[j, 1], wl, wu,
+                                   arm_elastic)
             channel[CH_ARM_F00 + 2 * j + k] = f
             energy += e
             power += pw
@@ -392,6 +417,8 @@ def integrate(P, q, v, n_steps, sample_every, pins, holes, crank_angles, mesh_ph
     for i in range(n_pins):
         pin_angle[i] = 2.0 * math.pi * i / n_pins
     pin_force = np.zeros((2, n_pins))
+    pin_elastic = np.zeros((2, n_pins))
+    arm_elastic = np.zeros((2, 2))
     next_eval = np.zeros((2, n_pins), dtype=np.int64)
     Q = np.zeros(N_DOF)
     channel = np.zeros(channels.shape[1])
@@ -404,8 +431,8 @@ def integrate(P, q, v, n_steps, sample_every, pins, holes, crank_angles, mesh_ph
         for j in range(2):
             previous_k[j] = mesh_state[j, 0]
         pot, diss, t_in, t_load, pen = forces(P, q, v, t, pins, pin_angle, holes, crank_angles,
-                                              mesh_phase, u, next_eval, step, pin_force, Q,
-                                              channel, mesh_state)
+                                              mesh_phase, u, next_eval, step, pin_force,
+                                              pin_elastic, arm_elastic, Q, channel, mesh_state)
         if in_window:
             # work done on the meshes by the stiffness change between steps (parametric)
             for j in range(2):

@@ -26,7 +26,8 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["curve_point", "foot_point", "signed_distance", "signed_distances", "curvature"]
+__all__ = ["curve_point", "foot_point", "nearest_point", "signed_distance", "signed_distances",
+           "curvature"]
 
 
 @numba.njit(cache=True, fastmath=False)
@@ -70,12 +71,35 @@ def foot_point(qx, qy, u0, rg, a, zp, iterations):
 
 
 @numba.njit(cache=True)
+def nearest_point(qx, qy, centre, rg, a, zp):
+    """Parameter of the point of q nearest to (qx, qy) among one period around ``centre``.
+
+    Robust where Newton alone is not (a point near the medial axis of a concave stretch has
+    two feet): 17 samples over +-pi/zp (one lobe period) pick the basin of the global
+    minimum, then guarded Newton converges in it.
+    """
+    best_u = centre
+    best_d = 1e300
+    width = math.pi / zp
+    for j in range(-8, 9):
+        u = centre + j * width / 8.0
+        x = rg * math.cos(u) - a * math.cos(zp * u)
+        y = rg * math.sin(u) - a * math.sin(zp * u)
+        d = (qx - x) ** 2 + (qy - y) ** 2
+        if d < best_d:
+            best_d = d
+            best_u = u
+    return foot_point(qx, qy, best_u, rg, a, zp, 12)
+
+
+@numba.njit(cache=True)
 def signed_distance(qx, qy, u0, rg, a, zp, iterations):
     """Signed distance of (qx, qy) from q, positive outside: (s, u, nx, ny).
 
-    (nx, ny) is the unit outward normal at the foot point u.
+    The nearest point is searched over one lobe period around ``u0`` (``iterations`` > 0) or
+    taken as ``u0`` (``iterations`` = 0); (nx, ny) is the unit outward normal there.
     """
-    u = foot_point(qx, qy, u0, rg, a, zp, iterations)
+    u = nearest_point(qx, qy, u0, rg, a, zp) if iterations > 0 else u0
     x, y, dx, dy, _, _ = curve_point(u, rg, a, zp)
     norm = math.sqrt(dx * dx + dy * dy)
     nx = dy / norm
