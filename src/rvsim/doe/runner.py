@@ -109,8 +109,16 @@ def _run_local(todo: dict, time_step: float, workers: int | None, store: ResultS
 
 
 def _run_dask(todo: dict, time_step: float, scheduler: str, store: ResultStore, bar) -> None:
+    import socket
+    from urllib.parse import urlparse
+
     from distributed import Client, as_completed as dask_completed
 
+    address = urlparse(scheduler if "://" in scheduler else f"tcp://{scheduler}")
+    try:  # fail fast with a clear message instead of the client's 20 s timeout
+        socket.create_connection((address.hostname, address.port or 8786), timeout=3).close()
+    except (OSError, ValueError) as exc:
+        raise InputFileError(f"cannot reach the Dask scheduler at {scheduler} ({exc})") from None
     try:
         client = Client(scheduler, timeout="20s")
     except OSError as exc:
