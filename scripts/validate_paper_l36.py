@@ -15,7 +15,6 @@ import dataclasses
 import json
 from pathlib import Path
 
-import pandas as pd
 from scipy.stats import pearsonr, spearmanr
 
 from rvsim.analysis import analyze_table

@@ -1,7 +1,5 @@
 """Analysis: ANOVA identities, pooling, S/N, optimum prediction, malformed tables."""
 
-import numpy as np
-import pandas as pd
 import pytest
 
 from rvsim.analysis import (anova, analyze_table, predict_optimum, range_analysis,

@@ -11,8 +11,8 @@ from typing import Any
 from ..errors import RvsimError
 from ..parameters import RV40E, Reducer, load_toml, parse_assignment, with_values
 
-__all__ = ["Parser", "UsageError", "add_reducer_options", "reducer_from_args", "print_json",
-           "EXAMPLES"]
+__all__ = ["Parser", "UsageError", "add_command", "add_reducer_options", "reducer_from_args",
+           "print_json", "EXAMPLES"]
 
 
 class UsageError(RvsimError):
@@ -27,6 +27,13 @@ class Parser(argparse.ArgumentParser):
 
 
 EXAMPLES = "examples:\n  "
+
+
+def add_command(sub, name: str, summary: str, description: str, examples: list[str]):
+    """A subcommand parser whose --help ends with worked examples."""
+    return sub.add_parser(name, help=summary, description=description,
+                          epilog=EXAMPLES + "\n  ".join(examples),
+                          formatter_class=argparse.RawDescriptionHelpFormatter)
 
 
 def add_reducer_options(parser: argparse.ArgumentParser) -> None:

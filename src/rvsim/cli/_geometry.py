@@ -7,7 +7,7 @@ import argparse
 from ..analytical import sensitivity_table
 from ..geometry.export import export_profile
 from ..parameters import parameter_table
-from ._common import EXAMPLES, add_reducer_options, print_json, reducer_from_args
+from ._common import add_command, add_reducer_options, print_json, reducer_from_args
 
 __all__ = ["register"]
 
@@ -66,11 +66,11 @@ def _sensitivity(args: argparse.Namespace) -> int:
 
 
 def register(sub) -> None:
-    p = sub.add_parser("params", help="list every parameter with its unit and value",
-                       description="List every reducer parameter: dotted name, value, unit.",
-                       epilog=EXAMPLES + "rvsim params\n  rvsim params --toml > my_reducer.toml"
-                       "\n  rvsim params --set cycloid.eccentricity=1.4 --json",
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = add_command(sub, "params", "list every parameter with its unit and value",
+                    "List every reducer parameter: dotted name, value, unit.",
+                    ["rvsim params",
+                    "rvsim params --toml > my_reducer.toml",
+                    "rvsim params --set cycloid.eccentricity=1.4 --json"])
     add_reducer_options(p)
     fmt = p.add_mutually_exclusive_group()
     fmt.add_argument("--json", action="store_true", help="print one JSON object")
@@ -78,13 +78,12 @@ def register(sub) -> None:
                      help="print a complete TOML file to edit and pass to --params")
     p.set_defaults(func=_params)
 
-    p = sub.add_parser("profile", help="export the cycloid disc profile (CSV or DXF)",
-                       description="Write the (modified) cycloid disc profile in millimetres. "
-                       "The format follows the extension: .csv (x_mm,y_mm) or .dxf (closed "
-                       "polyline).",
-                       epilog=EXAMPLES + "rvsim profile --out disc.dxf\n  rvsim profile --set "
-                       "I=0.016 --set J=0.026 --out disc.csv --points 7200",
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = add_command(sub, "profile", "export the cycloid disc profile (CSV or DXF)",
+                    "Write the (modified) cycloid disc profile in millimetres. "
+                    "The format follows the extension: .csv (x_mm,y_mm) or .dxf (closed "
+                    "polyline).",
+                    ["rvsim profile --out disc.dxf",
+                    "rvsim profile --set I=0.016 --set J=0.026 --out disc.csv --points 7200"])
     add_reducer_options(p)
     p.add_argument("--out", required=True, metavar="FILE", help="output file (.csv or .dxf)")
     p.add_argument("--points", type=int, default=36000, help="points on the profile "
@@ -92,12 +91,12 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_profile)
 
-    p = sub.add_parser("sensitivity", help="the paper's analytical error model (Table 1)",
-                       description="Error terms of Eqs. (2)-(10), their sensitivity indices "
-                       "(Eq. 15) and the mean transmission error of Eq. (11), with the error "
-                       "values of the paper's Table 1.",
-                       epilog=EXAMPLES + "rvsim sensitivity\n  rvsim sensitivity --json",
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = add_command(sub, "sensitivity", "the paper's analytical error model (Table 1)",
+                    "Error terms of Eqs. (2)-(10), their sensitivity indices "
+                    "(Eq. 15) and the mean transmission error of Eq. (11), with the error "
+                    "values of the paper's Table 1.",
+                    ["rvsim sensitivity",
+                    "rvsim sensitivity --json"])
     add_reducer_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_sensitivity)

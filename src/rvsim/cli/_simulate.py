@@ -8,7 +8,7 @@ import sys
 from ..dynamics import DEFAULT_TIME_STEP, simulate
 from ..errors import ParameterError, SimulationError
 from ..parameters import paper_run_values, with_values
-from ._common import EXAMPLES, add_reducer_options, print_json, reducer_from_args
+from ._common import add_command, add_reducer_options, print_json, reducer_from_args
 
 __all__ = ["register"]
 
@@ -57,14 +57,14 @@ def _simulate(args: argparse.Namespace) -> int:
 
 
 def register(sub) -> None:
-    p = sub.add_parser("simulate", help="simulate the reducer's dynamics and report TE",
-                       description="Simulate the whole reducer (both stages, 80 pin contacts, "
-                       "bushings with clearances, flexibility) and report the transmission "
-                       "error TE = theta_in/i - theta_out (paper Eq. 22).  Without options: "
-                       "the RV-40E, every error zero, 300 N*m.",
-                       epilog=EXAMPLES + "rvsim simulate --json\n  rvsim simulate --paper-run 2 "
-                       "--save run2.npz\n  rvsim simulate --set E=400 --set H=0.02 --json",
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = add_command(sub, "simulate", "simulate the reducer's dynamics and report TE",
+                    "Simulate the whole reducer (both stages, 80 pin contacts, "
+                    "bushings with clearances, flexibility) and report the transmission "
+                    "error TE = theta_in/i - theta_out (paper Eq. 22).  Without options: "
+                    "the RV-40E, every error zero, 300 N*m.",
+                    ["rvsim simulate --json",
+                    "rvsim simulate --paper-run 2 --save run2.npz",
+                    "rvsim simulate --set E=400 --set H=0.02 --json"])
     add_reducer_options(p)
     p.add_argument("--paper-run", type=int, metavar="N",
                    help="apply row N (1..36) of the paper's L36 scheme (Table 3 with Table 2 "

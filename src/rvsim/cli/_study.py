@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 
@@ -13,7 +12,7 @@ from ..analysis import analyze_table, range_analysis
 from ..analysis._table import read_table
 from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
 from ..errors import InputFileError
-from ._common import EXAMPLES, print_json
+from ._common import add_command, print_json
 
 __all__ = ["register"]
 
@@ -89,27 +88,25 @@ def _report(args: argparse.Namespace) -> int:
 
 
 def register(sub) -> None:
-    p = sub.add_parser("report", help="write the HTML report of a study folder",
-                       description="Write DIR/report.html (self-contained: figures embedded, "
-                       "no network requests) from a folder made by 'rvsim study'.",
-                       epilog=EXAMPLES + "rvsim report study",
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = add_command(sub, "report", "write the HTML report of a study folder",
+                    "Write DIR/report.html (self-contained: figures embedded, "
+                    "no network requests) from a folder made by 'rvsim study'.",
+                    ["rvsim report study"])
     p.add_argument("folder", help="study folder")
     p.add_argument("--alpha", type=float, help="significance level marked in the ANOVA "
                    "(default: the study's)")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_report)
 
-    p = sub.add_parser("study", help="run a design of experiments on the dynamic model",
-                       description="Run every row of a study (built in: paper-l36, the paper's "
-                       "Table 2 factors on its L36 array; or a TOML study file) in parallel, "
-                       "store each result as it finishes (re-running skips finished rows), "
-                       "then write results.csv, analysis.json, main_effects.png and "
-                       "report.html into the output folder.",
-                       epilog=EXAMPLES + "rvsim study paper-l36 --out study\n  rvsim study "
-                       "my_study.toml --out tol --workers 2\n  rvsim study paper-l36 --out "
-                       "study --scheduler tcp://127.0.0.1:8786",
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = add_command(sub, "study", "run a design of experiments on the dynamic model",
+                    "Run every row of a study (built in: paper-l36, the paper's "
+                    "Table 2 factors on its L36 array; or a TOML study file) in parallel, "
+                    "store each result as it finishes (re-running skips finished rows), "
+                    "then write results.csv, analysis.json, main_effects.png and "
+                    "report.html into the output folder.",
+                    ["rvsim study paper-l36 --out study",
+                    "rvsim study my_study.toml --out tol --workers 2",
+                    "rvsim study paper-l36 --out study --scheduler tcp://127.0.0.1:8786"])
     p.add_argument("study", help="'paper-l36' or a study .toml file")
     p.add_argument("--out", required=True, metavar="DIR", help="study folder")
     p.add_argument("--workers", type=int, help="local worker processes (default: one per core)")
@@ -120,14 +117,13 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_study)
 
-    p = sub.add_parser("analyze", help="range analysis and ANOVA of a results table",
-                       description="Range analysis (k, R, order, optimum), a main-effects "
-                       "ANOVA as Minitab prints it, smaller-is-better S/N ratios and the "
-                       "predicted optimum of a design table (factor columns A, B, ... with "
-                       "level numbers, one response column).",
-                       epilog=EXAMPLES + "rvsim analyze study/results.csv --json\n  rvsim "
-                       "analyze table3.csv --response te_arcmin --pool B,C",
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = add_command(sub, "analyze", "range analysis and ANOVA of a results table",
+                    "Range analysis (k, R, order, optimum), a main-effects "
+                    "ANOVA as Minitab prints it, smaller-is-better S/N ratios and the "
+                    "predicted optimum of a design table (factor columns A, B, ... with "
+                    "level numbers, one response column).",
+                    ["rvsim analyze study/results.csv --json",
+                    "rvsim analyze table3.csv --response te_arcmin --pool B,C"])
     p.add_argument("table", help="CSV file")
     p.add_argument("--response", help="response column (default te_mean_arcmin or te_arcmin)")
     p.add_argument("--factors", help="comma-separated factor columns (default: single-letter "
