@@ -95,10 +95,12 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 5
     crank_hz = abs(np.mean(result.omega_out[window])) * pin_count / (2 * math.pi)
     orders = freq / crank_hz if crank_hz > 0 else freq
     ax.plot(orders, amplitude, lw=0.8)
-    for order, name in ((1, "crank"), (pin_count - 1, "zc"), (pin_count, "pin passing zp"),
-                        (planet_teeth, "sun-planet mesh")):
+    top = ax.get_ylim()[1]
+    marks = ((1, "crank"), (pin_count - 1, "zc"), (pin_count, "zp, pin passing"),
+             (planet_teeth, "sun-planet mesh"))
+    for i, (order, name) in enumerate(marks):
         ax.axvline(order, color="C3", lw=0.7, ls="--")
-        ax.text(order, ax.get_ylim()[1] * 0.9, f" {name}", color="C3", fontsize=7)
+        ax.text(order, top * (0.92 - 0.08 * i), f" {name}", color="C3", fontsize=7)
     ax.set_xlim(0, 100)
     ax.set_xlabel("order of crank rotation relative to the carrier [-]")
     ax.set_ylabel("TE amplitude [arcmin]")

@@ -49,11 +49,13 @@ def _table(frame: pd.DataFrame, *, index: bool = True, highlight=None) -> str:
         cls = ' class="sig"' if highlight and idx in highlight else ""
         cells = [f'<td class="l">{html.escape(str(idx))}</td>'] if index else []
         for value in row:
+            numeric = isinstance(value, (int, float, np.number)) and not isinstance(value, bool)
             if isinstance(value, float):
                 text = "" if math.isnan(value) else f"{value:.4g}"
             else:
                 text = str(value)
-            cells.append(f"<td>{html.escape(text)}</td>")
+            align = "" if numeric else ' class="l"'
+            cells.append(f"<td{align}>{html.escape(text)}</td>")
         rows.append(f"<tr{cls}>" + "".join(cells) + "</tr>")
     return "<table>" + "".join(rows) + "</table>"
 
