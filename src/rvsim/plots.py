@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 
 __all__ = ["main_effects_plot", "speed_plot", "te_plot", "spectrum_plot", "figure_to_png"]
 
@@ -86,14 +85,10 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 5
     the carrier (which turns ``pin_count`` times faster than the carrier)."""
     plt = _pyplot()
     fig, ax = (plt.subplots(figsize=(7, 3.2)) if ax is None else (ax.figure, ax))
-    window = result.time >= result.steady_start
-    te = result.te[window] * 180.0 * 60.0 / math.pi
-    te = te - te.mean()
-    dt = result.time[1] - result.time[0]
-    amplitude = 2.0 * np.abs(np.fft.rfft(te * np.hanning(len(te)))) / (0.5 * len(te))
-    freq = np.fft.rfftfreq(len(te), dt)
-    crank_hz = abs(np.mean(result.omega_out[window])) * pin_count / (2 * math.pi)
-    orders = freq / crank_hz if crank_hz > 0 else freq
+    from .dynamics.result import te_spectrum
+
+    orders, amplitude = te_spectrum(result.time, result.te, result.omega_out,
+                                    result.steady_start, pin_count)
     ax.plot(orders, amplitude, lw=0.8)
     top = ax.get_ylim()[1]
     marks = ((1, "crank"), (pin_count - 1, "zc"), (pin_count, "zp, pin passing"),
