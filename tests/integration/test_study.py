@@ -138,3 +138,42 @@ def test_paper_l36_definition_validates_all_runs():
     with pytest.raises(ParameterError):
         from rvsim.parameters import paper_run_values
         paper_run_values(0)
+
+
+@pytest.mark.parametrize("args, words", [
+    (("report", "/nonexistent/folder"), "not a study folder"),
+    (("study", "no-such-study", "--out", "x"), "unknown study"),
+    (("study", "/nonexistent/s.toml", "--out", "x"), "not found"),
+    (("study", "paper-l36"), "--out"),
+])
+def test_report_and_study_error_paths(cli, args, words):
+    res = cli(*args)
+    assert res.code == 2 and words in res.err and res.err.count("\n") == 1
+
+
+def test_report_command_rewrites_the_report(tmp_path, small_study, cli):
+    out = tmp_path / "out"
+    assert cli("study", str(small_study), "--out", str(out), "--no-report").code == 0
+    assert not (out / "report.html").exists()
+    res = cli("report", str(out), "--alpha", "0.05", "--json")
+    assert res.code == 0, res.err
+    assert json.loads(res.out)["report"].endswith("report.html")
+    assert "alpha = 0.05" in (out / "report.html").read_text()
+
+
+def test_sampling_study_lhs(tmp_path, cli):
+    path = write_study(tmp_path, design="lhs", factors="""
+[factors.H]
+parameter = "H"
+range = [0.0, 0.03]
+[factors.I]
+parameter = "I"
+range = [0.0, 0.04]
+""", extra="samples = 6\nseed = 3")
+    study = load_study(path)
+    table = study.table()
+    assert len(table) == 6 and table["H"].between(0, 0.03).all()
+    results = run(study, tmp_path / "out", workers=2, progress=False)
+    assert (results["status"] == "ok").all()
+    # TE grows with both clearances: rank correlation with H + I/... is positive
+    assert results["te_mean_arcmin"].corr(results["H"] * 0.68 + results["I"]) > 0.9
