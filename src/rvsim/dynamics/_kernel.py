@@ -21,7 +21,8 @@ from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CAR
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
                       MINV_UU, MU, N_DOF, PEN_LIMIT, PIN_C, PIN_CB, PIN_RADIUS, PROFILE_OFFSET,
-                      PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, SIN_AW, STATUS_NONFINITE, STATUS_OK,
+                      PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RUNOUT_X0, RUNOUT_X1, RUNOUT_Y0,
+                      RUNOUT_Y1, SIN_AW, STATUS_NONFINITE, STATUS_OK,
                       STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CB, SUP_CLEAR_L, SUP_CLEAR_U,
                       V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA, ZP)
 
@@ -194,6 +195,8 @@ def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces, ela
     rg, a = P[RG], P[A_GEN]
     offset = P[PROFILE_OFFSET] - P[PIN_RADIUS]
     lobe = math.pi / zp
+    runout_x = P[RUNOUT_X0] if k == 0 else P[RUNOUT_X1]
+    runout_y = P[RUNOUT_Y0] if k == 0 else P[RUNOUT_Y1]
     speed_bound = 2.0 * (math.sqrt(vx * vx + vy * vy) + abs(w) * (P[RG] + 2.0 * a + 1e-3)) \
         * P[DT] + 1e-15
     energy = 0.0
@@ -207,8 +210,8 @@ def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces, ela
             continue
         dx = pins[i, 0] - ox
         dy = pins[i, 1] - oy
-        qx = c * dx + s * dy
-        qy = -s * dx + c * dy
+        qx = c * dx + s * dy - runout_x
+        qy = -s * dx + c * dy - runout_y
         nominal = pin_angle[i] - angle
         ui = nominal + u[k, i]
         x, y, tx, ty, ddx, ddy = curve_point(ui, rg, a, zp)

@@ -28,6 +28,7 @@ ZETA MU V_FRIC
 J_CARRIER M_DISC J_DISC J_CRANK MINV_LL MINV_LU MINV_UU M_NODE
 W_D1_L W_D1_U W_D2_L W_D2_U W_G_L W_G_U
 PEN_LIMIT STEADY_START
+RUNOUT_X0 RUNOUT_Y0 RUNOUT_X1 RUNOUT_Y1
 """.split()
 for _i, _n in enumerate(_names):
     globals()[_n] = _i

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from ..geometry.cycloid import pin_centres, profile_offset
 from ..geometry.involute import gear_geometry
 from ..parameters import Reducer
 from . import _layout as L
@@ -199,9 +200,9 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.W_G_L], P[L.W_G_U] = _station_weights(r, k.gear_z)
     P[L.PEN_LIMIT] = 0.2e-3
 
-    gamma = 2.0 * np.pi * np.arange(c.pin_count) / c.pin_count
-    radius = c.pin_circle_radius + e.pin_circle_radius
-    pins = radius * np.column_stack([np.cos(gamma), np.sin(gamma)])
+    pins = pin_centres(r)
+    P[L.RUNOUT_X0], P[L.RUNOUT_Y0] = profile_offset(r, 0)
+    P[L.RUNOUT_X1], P[L.RUNOUT_Y1] = profile_offset(r, 1)
     crank_angles = np.array([0.0, math.pi])
     holes = gear.centre_distance * np.column_stack([np.cos(crank_angles),
                                                     np.sin(crank_angles)])

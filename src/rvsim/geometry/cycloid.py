@@ -25,7 +25,8 @@ from ..parameters import Reducer
 from ._curve import curvature, signed_distances
 
 __all__ = [
-    "CycloidProfile", "profile_of", "pin_centres", "nominal_disc_pose", "pin_gaps",
+    "CycloidProfile", "profile_of", "pin_centres", "profile_offset", "nominal_disc_pose",
+    "pin_gaps",
     "geometric_backlash", "undercut_ratio", "pin_contact_geometry", "NEWTON_ITERATIONS",
 ]
 
@@ -80,11 +81,37 @@ def profile_of(reducer: Reducer) -> CycloidProfile:
 
 
 def pin_centres(reducer: Reducer) -> np.ndarray:
-    """Actual pin centres in housing axes, shape (zp, 2) [m]."""
-    c = reducer.cycloid
+    """Actual pin centres in housing axes, shape (zp, 2) [m].
+
+    Pin circle r_p + H; with ``errors.pin_position_tolerance`` t > 0 every pin is moved
+    radially and along the circle by independent uniform amounts in [-t, t], drawn from
+    ``numpy.random.default_rng(errors.pin_position_seed)`` (reproducible).
+    """
+    c, e = reducer.cycloid, reducer.errors
     gamma = 2.0 * np.pi * np.arange(c.pin_count) / c.pin_count
-    radius = c.pin_circle_radius + reducer.errors.pin_circle_radius
-    return radius * np.column_stack([np.cos(gamma), np.sin(gamma)])
+    radius = np.full(c.pin_count, c.pin_circle_radius + e.pin_circle_radius)
+    if e.pin_position_tolerance > 0.0:
+        rng = np.random.default_rng(e.pin_position_seed)
+        tol = e.pin_position_tolerance
+        radius = radius + rng.uniform(-tol, tol, c.pin_count)
+        gamma = gamma + rng.uniform(-tol, tol, c.pin_count) / c.pin_circle_radius
+    return radius[:, None] * np.column_stack([np.cos(gamma), np.sin(gamma)])
+
+
+def profile_offset(reducer: Reducer, disc: int) -> tuple[float, float]:
+    """Centre of disc ``disc``'s profile relative to its crank-hole pattern, in profile axes.
+
+    Radial runout Delta F_t1 puts the profile centre Delta F_t1 / 2 off the hole pattern, along
+    the part's x axis; disc 2 is the same part turned half a turn.  [m]
+    """
+    half = 0.5 * reducer.errors.disc_runout
+    if half == 0.0:
+        return 0.0, 0.0
+    # body axes -> profile axes: the profile frame is the body frame turned by the tooth
+    # phase -disc*pi/zc and the rotation modification
+    angle = disc * math.pi + disc * math.pi / reducer.cycloid.disc_teeth \
+        - reducer.errors.rotation_modification
+    return half * math.cos(angle), half * math.sin(angle)
 
 
 def nominal_disc_pose(reducer: Reducer, crank_angle: float, disc: int = 0):
@@ -113,6 +140,7 @@ def pin_gaps(reducer: Reducer, crank_angle: float, *, disc: int = 0,
     x, y, rot = nominal_disc_pose(reducer, crank_angle, disc)
     angle = rot + extra_rotation - disc * math.pi / zc + prof.rotation
     q = _disc_axes(pin_centres(reducer), x + offset[0], y + offset[1], angle)
+    q -= np.array(profile_offset(reducer, disc))
     gamma = 2.0 * np.pi * np.arange(reducer.cycloid.pin_count) / reducer.cycloid.pin_count
     u0 = gamma - angle  # exact foot parameter of the nominal pose
     s, _ = signed_distances(q[:, 0].copy(), q[:, 1].copy(), u0, prof.generating_radius,

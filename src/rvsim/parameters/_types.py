@@ -145,6 +145,13 @@ class Errors:
     rotation_modification: float = quantity(0.0, "arcmin",
                                             "cycloid rotation modification (profile turned, "
                                             "beyond the paper)", minimum=None)
+    disc_runout: float = quantity(0.0, "mm", "radial runout of the disc profile relative to "
+                                  "its crank holes (Table 1 Delta F_t1; profile centre offset "
+                                  "by half of it)")
+    pin_position_tolerance: float = quantity(0.0, "mm", "each pin centre displaced radially "
+                                             "and along the circle by uniform random amounts "
+                                             "within +-this (Table 1 delta t_Sigma)")
+    pin_position_seed: int = count(0, "seed of the random pin position errors", minimum=0)
 
 
 @dataclasses.dataclass(frozen=True)
