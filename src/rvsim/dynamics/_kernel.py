@@ -12,6 +12,12 @@ import math
 import numba
 import numpy as np
 
+from ._cache_guard import invalidate_stale_cache
+
+# numba's on-disk cache is keyed on this file only; the index constants of _layout and the
+# curve functions of geometry._curve are compiled in, so clear the cache when those change
+invalidate_stale_cache()
+
 from ..geometry._curve import curve_point, nearest_point
 from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,

@@ -16,34 +16,98 @@ N_DOF = 17
 N_CRANKS = 2
 N_DISCS = 2
 
-# ---- constants vector P ---------------------------------------------------------------------
-_names = """
-DT N_STEPS_UNUSED RATIO
-INPUT_SPEED RAMP_TIME
-LOAD LOAD_T0 LOAD_T1 FLUCT_AMP FLUCT_FREQ
-RB1 RB2 CENTRE_DIST SIN_AW BACKLASH BASE_PITCH CONTACT_RATIO K_MESH MESH_MASS
-RG A_GEN ZP ZC PROFILE_OFFSET PIN_RADIUS ECC PROFILE_ROT
-PIN_C PIN_CB ARM_C ARM_CB ARM_CLEAR SUP_C SUP_CB SUP_CLEAR_L SUP_CLEAR_U
-ZETA MU V_FRIC
-J_CARRIER M_DISC J_DISC J_CRANK MINV_LL MINV_LU MINV_UU M_NODE
-W_D1_L W_D1_U W_D2_L W_D2_U W_G_L W_G_U
-PEN_LIMIT STEADY_START
-RUNOUT_X0 RUNOUT_Y0 RUNOUT_X1 RUNOUT_Y1
-""".split()
-for _i, _n in enumerate(_names):
-    globals()[_n] = _i
-N_PARAMS = len(_names)
-PARAM_NAMES = tuple(_names)
+# ---- constants vector P (model.build_model fills it; docs/model.md gives the meaning) ------
+DT             = 0
+INPUT_SPEED    = 1
+RAMP_TIME      = 2
+LOAD           = 3
+LOAD_T0        = 4
+LOAD_T1        = 5
+FLUCT_AMP      = 6
+FLUCT_FREQ     = 7
+RB1            = 8
+RB2            = 9
+CENTRE_DIST    = 10
+SIN_AW         = 11
+BACKLASH       = 12
+BASE_PITCH     = 13
+CONTACT_RATIO  = 14
+K_MESH         = 15
+MESH_MASS      = 16
+RG             = 17
+A_GEN          = 18
+ZP             = 19
+ZC             = 20
+PROFILE_OFFSET = 21
+PIN_RADIUS     = 22
+ECC            = 23
+PROFILE_ROT    = 24
+PIN_C          = 25
+PIN_CB         = 26
+ARM_C          = 27
+ARM_CB         = 28
+ARM_CLEAR      = 29
+SUP_C          = 30
+SUP_CB         = 31
+SUP_CLEAR_L    = 32
+SUP_CLEAR_U    = 33
+ZETA           = 34
+MU             = 35
+V_FRIC         = 36
+J_CARRIER      = 37
+M_DISC         = 38
+J_DISC         = 39
+J_CRANK        = 40
+MINV_LL        = 41
+MINV_LU        = 42
+MINV_UU        = 43
+M_NODE         = 44
+W_D1_L         = 45
+W_D1_U         = 46
+W_D2_L         = 47
+W_D2_U         = 48
+W_G_L          = 49
+W_G_U          = 50
+PEN_LIMIT      = 51
+STEADY_START   = 52
+RUNOUT_X0      = 53
+RUNOUT_Y0      = 54
+RUNOUT_X1      = 55
+RUNOUT_Y1      = 56
+N_PARAMS = 57
+PARAM_NAMES = (
+    "DT", "INPUT_SPEED", "RAMP_TIME", "LOAD", "LOAD_T0", "LOAD_T1", "FLUCT_AMP", "FLUCT_FREQ",
+    "RB1", "RB2", "CENTRE_DIST", "SIN_AW", "BACKLASH", "BASE_PITCH", "CONTACT_RATIO", "K_MESH",
+    "MESH_MASS", "RG", "A_GEN", "ZP", "ZC", "PROFILE_OFFSET", "PIN_RADIUS", "ECC",
+    "PROFILE_ROT", "PIN_C", "PIN_CB", "ARM_C", "ARM_CB", "ARM_CLEAR", "SUP_C", "SUP_CB",
+    "SUP_CLEAR_L", "SUP_CLEAR_U", "ZETA", "MU", "V_FRIC", "J_CARRIER", "M_DISC", "J_DISC",
+    "J_CRANK", "MINV_LL", "MINV_LU", "MINV_UU", "M_NODE", "W_D1_L", "W_D1_U", "W_D2_L",
+    "W_D2_U", "W_G_L", "W_G_U", "PEN_LIMIT", "STEADY_START", "RUNOUT_X0", "RUNOUT_Y0",
+    "RUNOUT_X1", "RUNOUT_Y1")
 
 # ---- per-sample output channels (columns of the ``channels`` array) -------------------------
-_channels = """
-TIME THETA_IN OMEGA_IN THETA_OUT OMEGA_OUT TORQUE_IN TORQUE_LOAD
-MESH_F0 MESH_F1 ARM_F00 ARM_F01 ARM_F10 ARM_F11 SUP_FL0 SUP_FU0 SUP_FL1 SUP_FU1
-""".split()
-for _i, _n in enumerate(_channels):
-    globals()["CH_" + _n] = _i
-N_CHANNELS = len(_channels)
-CHANNEL_NAMES = tuple(c.lower() for c in _channels)
+CH_TIME        = 0
+CH_THETA_IN    = 1
+CH_OMEGA_IN    = 2
+CH_THETA_OUT   = 3
+CH_OMEGA_OUT   = 4
+CH_TORQUE_IN   = 5
+CH_TORQUE_LOAD = 6
+CH_MESH_F0     = 7
+CH_MESH_F1     = 8
+CH_ARM_F00     = 9
+CH_ARM_F01     = 10
+CH_ARM_F10     = 11
+CH_ARM_F11     = 12
+CH_SUP_FL0     = 13
+CH_SUP_FU0     = 14
+CH_SUP_FL1     = 15
+CH_SUP_FU1     = 16
+N_CHANNELS = 17
+CHANNEL_NAMES = (
+    "time", "theta_in", "omega_in", "theta_out", "omega_out", "torque_in", "torque_load",
+    "mesh_f0", "mesh_f1", "arm_f00", "arm_f01", "arm_f10", "arm_f11", "sup_fl0", "sup_fu0",
+    "sup_fl1", "sup_fu1")
 
 # ---- energy accumulators over the steady window ---------------------------------------------
 E_INPUT, E_OUTPUT, E_DISSIPATED, E_PARAMETRIC, E_KIN0, E_POT0, E_KIN1, E_POT1 = range(8)

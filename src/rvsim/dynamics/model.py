@@ -127,7 +127,6 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     masses = mass_properties(r)
     P = np.zeros(L.N_PARAMS)
     P[L.DT] = time_step
-    P[L.RATIO] = r.ratio
     op = r.operating
     P[L.INPUT_SPEED] = op.input_speed
     P[L.RAMP_TIME] = op.speed_ramp_time
