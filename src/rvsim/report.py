@@ -170,8 +170,9 @@ def write_study_report(folder: str | Path, *, study=None, alpha: float | None = 
                  _table(anova, highlight=significant),
                  f"<p>Significant at alpha = {alpha:g} (highlighted): "
                  f"{html.escape(', '.join(significant) or 'none')}. Predicted TE at the "
-                 f"optimum from the significant factors: "
-                 f"{analysis['prediction']['predicted']:.4f} arcmin.</p>",
+                 "optimum from the significant factors"
+                 + (": " if significant else " (none: the grand mean): ")
+                 + f"{analysis['prediction']['predicted']:.4f} arcmin.</p>",
                  "<h2>Main effects (Figs. 8-10)</h2>",
                  _png(main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
                                         ylabel="mean TE [arcmin]")),

@@ -65,6 +65,7 @@ def test_study_report_in_browser(tmp_path, small_study):
     report = write_study_report(out)
     seen = _open(report, tmp_path / "study_report.png")
     _check(seen, min_images=4)
+    assert "mean TE for t \u2265 0.3 s" in seen["text"]  # the study's own steady window
     for heading in ("Study definition", "Input and output speed", "Transmission error",
                     "TE spectrum", "Table 3 layout", "Table 8 layout", "Main effects",
                     "Signal-to-noise"):

@@ -74,7 +74,7 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
     reducers = study.reducers()              # validates every run before any simulation
     folder.mkdir(parents=True, exist_ok=True)
     time_step = study.time_step or DEFAULT_TIME_STEP
-    _write_definition(study, folder, time_step)
+    _write_definition(study, folder, time_step, reducers[0])
     keys = [run_key(r, time_step) for r in reducers]
     store = ResultStore(folder)
     try:
@@ -131,7 +131,7 @@ def _run_dask(todo: dict, time_step: float, scheduler: str, store: ResultStore, 
             bar.update(1)
 
 
-def _write_definition(study: Study, folder: Path, time_step: float) -> None:
+def _write_definition(study: Study, folder: Path, time_step: float, first: Reducer) -> None:
     import json
 
     definition = {
@@ -139,7 +139,7 @@ def _write_definition(study: Study, folder: Path, time_step: float) -> None:
         "seed": study.seed, "time_step": time_step,
         "reducer": f"{study.base.name} ({study.base.citation})" if study.base.citation
         else study.base.name,
-        "steady_start": study.base.operating.steady_start,
+        "steady_start": first.operating.steady_start,   # fixed settings included
         "factors": [{"label": f.label, "parameter": f.parameter, "levels": list(f.levels),
                      "low": f.low, "high": f.high} for f in study.factors],
         "fixed": [[k, v] for k, v in study.fixed],
