@@ -130,10 +130,11 @@ def write_study_report(folder: str | Path, *, study=None, alpha: float | None = 
     store = ResultStore(folder)
     try:
         histories = {}
+        keys = list(store.finished())
         for _, row in results.head(10).iterrows():
             if row["status"] != "ok":
                 continue
-            full = [k for k in store.finished() if k.startswith(str(row["key"]))]
+            full = [k for k in keys if k.startswith(str(row["key"]))]
             hist = store.history(full[0]) if full else None
             if hist is not None:
                 histories[f"run {int(row['run'])}"] = _history_object(hist)

@@ -70,3 +70,15 @@ def test_failed_profile_export_leaves_no_file(tmp_path, cli):
     res = cli("profile", "--out", str(out), "--points", "10")
     assert res.code == 2 and not out.exists()
     assert list(tmp_path.iterdir()) == []
+
+
+def test_set_values_win_over_a_paper_run():
+    import argparse
+
+    from rvsim.cli._common import reducer_from_args
+    from rvsim.parameters import paper_run_values
+
+    args = argparse.Namespace(params=None, assignments=["H=0.05"])
+    reducer = reducer_from_args(args, paper_run_values(2))
+    assert reducer.errors.pin_circle_radius == pytest.approx(5e-5)       # from --set
+    assert reducer.errors.equidistant_modification == pytest.approx(3.2e-5)  # from run 2

@@ -46,10 +46,12 @@ def add_reducer_options(parser: argparse.ArgumentParser) -> None:
                              "errors.pin_circle_radius=0.02 or H=0.02 (repeatable)")
 
 
-def reducer_from_args(args: argparse.Namespace) -> Reducer:
-    """The reducer named by --params and --set (built-in RV-40E by default), validated."""
+def reducer_from_args(args: argparse.Namespace, preset: dict | None = None) -> Reducer:
+    """The reducer of --params (built-in RV-40E by default) with ``preset`` values (e.g. a
+    paper run) and then the --set values applied, validated."""
     reducer = load_toml(args.params) if args.params else RV40E
-    values = dict(parse_assignment(a) for a in args.assignments)
+    values = dict(preset or {})
+    values.update(parse_assignment(a) for a in args.assignments)
     return with_values(reducer, values)
 
 

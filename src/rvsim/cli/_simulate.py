@@ -7,21 +7,16 @@ import sys
 
 from ..dynamics import DEFAULT_TIME_STEP, simulate
 from ..errors import ParameterError, SimulationError
-from ..parameters import paper_run_values, with_values
+from ..parameters import paper_run_values
 from ._common import add_command, add_reducer_options, print_json, reducer_from_args
 
 __all__ = ["register"]
 
 
 def _reducer(args: argparse.Namespace):
-    reducer = reducer_from_args(args)
-    if args.paper_run is not None:
-        values = paper_run_values(args.paper_run)
-        reducer = with_values(reducer, values)
-        # --set wins over the paper row
-        if args.assignments:
-            reducer = with_values(reducer, dict(a.split("=", 1) for a in args.assignments))
-    return reducer
+    # the paper row first, --set values win over it
+    preset = paper_run_values(args.paper_run) if args.paper_run is not None else None
+    return reducer_from_args(args, preset)
 
 
 def _simulate(args: argparse.Namespace) -> int:

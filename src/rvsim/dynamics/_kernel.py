@@ -368,7 +368,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state):
     """Generalised forces Q at time t; fills the force channels and ``mesh_state`` (stiffness,
     deflection of each mesh). Returns (potential energy, dissipated power, input torque,
-    load torque, max pin penetration)."""
+    load torque, max pin penetration, input angle, input speed)."""
     for i in range(N_DOF):
         Q[i] = 0.0
     theta_in, omega_in = input_motion(P, t)
@@ -408,7 +408,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
             power += pw
     torque_load = load_torque(P, t)
     Q[CARRIER] -= torque_load
-    return energy, power, torque_in, torque_load, worst
+    return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
 @numba.njit(cache=True)
@@ -439,9 +439,9 @@ def integrate(P, q, v, n_steps, sample_every, pins, holes, crank_angles, mesh_ph
         t = step * dt
         for j in range(2):
             previous_k[j] = mesh_state[j, 0]
-        pot, diss, t_in, t_load, pen = forces(P, q, v, t, pins, pin_angle, holes, crank_angles,
-                                              mesh_phase, u, next_eval, step, pin_force,
-                                              pin_elastic, arm_elastic, Q, channel, mesh_state)
+        pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
+            P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
+            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state)
         if in_window:
             # work done on the meshes by the stiffness change between steps (parametric)
             for j in range(2):
@@ -451,7 +451,6 @@ def integrate(P, q, v, n_steps, sample_every, pins, holes, crank_angles, mesh_ph
             return STATUS_NONFINITE, step
         if pen > P[PEN_LIMIT]:
             return STATUS_PENETRATION, step
-        theta_in, omega_in = input_motion(P, t)
         if step % sample_every == 0 and row < channels.shape[0]:
             channel[CH_TIME] = t
             channel[CH_THETA_IN] = theta_in
