@@ -14,18 +14,19 @@ SHORT = """
 """
 
 
+def factors(**specs):
+    """TOML [factors.X] tables: ``X=(parameter, levels)`` or ``X=(parameter, "range", [lo, hi])``."""
+    blocks = []
+    for label, spec in specs.items():
+        key, values = ("range", spec[2]) if len(spec) == 3 else ("levels", spec[1])
+        blocks.append(f'[factors.{label}]\nparameter = "{spec[0]}"\n{key} = {values}\n')
+    return "".join(blocks)
+
+
 def write_study(folder, design="L4", factors=None, extra=""):
-    factors = factors or """
-[factors.H]
-parameter = "errors.pin_circle_radius"
-levels = [0.0, 0.02]
-[factors.I]
-parameter = "I"
-levels = [0.0, 0.03]
-[factors.E]
-parameter = "operating.load_torque"
-levels = [100, 300]
-"""
+    factors = factors or globals()["factors"](H=("errors.pin_circle_radius", [0.0, 0.02]),
+                                              I=("I", [0.0, 0.03]),
+                                              E=("operating.load_torque", [100, 300]))
     path = folder / "study.toml"
     path.write_text(f'name = "small"\ndesign = "{design}"\n{extra}\n{SHORT}\n'
                     + textwrap.dedent(factors))

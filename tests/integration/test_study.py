@@ -13,7 +13,7 @@ import pytest
 
 from rvsim.doe import load_study, run
 from rvsim.errors import ParameterError
-from tests.integration.conftest import write_study
+from tests.integration.conftest import factors, write_study
 
 
 def _stored(folder):
@@ -47,17 +47,9 @@ def test_study_cli_writes_outputs_and_rerun_skips(tmp_path, small_study, cli):
 
 
 def test_failed_row_is_stored_and_does_not_stop_the_study(tmp_path):
-    path = write_study(tmp_path, factors="""
-[factors.S]
-parameter = "contact.bushing_stiffness_factor"
-levels = [1.0, 1e6]
-[factors.H]
-parameter = "H"
-levels = [0.0, 0.01]
-[factors.E]
-parameter = "E"
-levels = [100, 200]
-""")
+    path = write_study(tmp_path, factors=factors(
+        S=("contact.bushing_stiffness_factor", [1.0, 1e6]), H=("H", [0.0, 0.01]),
+        E=("E", [100, 200])))
     results = run(load_study(path), tmp_path / "out", workers=1, progress=False)
     stiff = results["S"] == 2
     assert (results.loc[~stiff, "status"] == "ok").all()
@@ -81,17 +73,8 @@ def test_study_input_errors_before_any_run(tmp_path, cli, factors, words):
 
 
 def test_kill_9_mid_study_loses_only_runs_in_flight(tmp_path):
-    path = write_study(tmp_path, design="L9", factors="""
-[factors.H]
-parameter = "H"
-levels = [0.0, 0.01, 0.02]
-[factors.I]
-parameter = "I"
-levels = [0.0, 0.016, 0.032]
-[factors.E]
-parameter = "E"
-levels = [100, 200, 300]
-""", extra='')
+    path = write_study(tmp_path, design="L9", factors=factors(
+        H=("H", [0.0, 0.01, 0.02]), I=("I", [0.0, 0.016, 0.032]), E=("E", [100, 200, 300])))
     text = path.read_text().replace('"operating.duration" = 0.4', '"operating.duration" = 1.2')
     text = text.replace('"operating.steady_start" = 0.3', '"operating.steady_start" = 1.0')
     path.write_text(text)
@@ -162,14 +145,9 @@ def test_report_command_rewrites_the_report(tmp_path, small_study, cli):
 
 
 def test_sampling_study_lhs(tmp_path, cli):
-    path = write_study(tmp_path, design="lhs", factors="""
-[factors.H]
-parameter = "H"
-range = [0.0, 0.03]
-[factors.I]
-parameter = "I"
-range = [0.0, 0.04]
-""", extra="samples = 6\nseed = 3")
+    path = write_study(tmp_path, design="lhs", factors=factors(
+        H=("H", "range", [0.0, 0.03]), I=("I", "range", [0.0, 0.04])),
+        extra="samples = 6\nseed = 3")
     study = load_study(path)
     table = study.table()
     assert len(table) == 6 and table["H"].between(0, 0.03).all()
