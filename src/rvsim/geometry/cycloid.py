@@ -8,9 +8,10 @@ Conventions (docs/model.md, "Cycloid stage geometry"):
   the disc turns by -beta/zc, i.e. with the carrier.
 * Disc k's teeth are cut with phase -k*pi/zc so that both identical discs mesh (zc odd: a disc
   turned half a revolution is half a pitch out).
-* Every error and modification opens clearance (paper Sec. 3.2): pin radius r_rp - F,
-  eccentricity a - G (crank only), pin circle r_p + H, profile offset r_rp + I, generating
-  circle r_p - J.
+* Errors and modifications: pin radius r_rp - F, pin circle r_p + H, profile offset r_rp + I
+  and generating circle r_p - J open clearance at every pin (paper Sec. 3.2); the crank
+  eccentricity a - G (crank only), a rotation modification, disc runout and pin position errors
+  close it at some pins (:mod:`rvsim.geometry.assembly` rejects an assembly that overlaps).
 """
 
 from __future__ import annotations
