@@ -120,7 +120,7 @@ def profile_points(u, rg, a, zp, offset):
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def profile_axes(px, py, ox, oy, cos_t, sin_t, shift_x, shift_y):
     """A point (px, py) in housing axes, in the profile axes of a disc.
 
@@ -133,7 +133,7 @@ def profile_axes(px, py, ox, oy, cos_t, sin_t, shift_x, shift_y):
     return cos_t * dx + sin_t * dy - shift_x, -sin_t * dx + cos_t * dy - shift_y
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track):
     """Gap of the pin centred at (qx, qy) (profile axes) to the profile.
 
