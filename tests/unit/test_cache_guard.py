@@ -64,3 +64,32 @@ def test_stale_kernel_is_removed_and_not_loaded(tmp_path):
     again = _run(tmp_path)
     assert again["hits"] == 0                              # recompiled, not loaded
     assert (folder / STAMP_NAME).read_text() != "fingerprint of older sources"
+
+
+def test_every_module_compiled_into_the_kernel_is_a_dependency():
+    import ast
+    from pathlib import Path
+
+    from rvsim.dynamics import _kernel
+    from rvsim.dynamics._cache_guard import DEPENDENCIES
+
+    def local_imports(path):
+        found = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level > 0:
+                base = path.parent
+                for _ in range(node.level - 1):
+                    base = base.parent
+                target = base.joinpath(*node.module.split(".")).with_suffix(".py")
+                if target.name != "_cache_guard.py":
+                    found.add(target.resolve())
+        return found
+
+    kernel = Path(_kernel.__file__)
+    seen, todo = set(), [kernel.resolve()]
+    while todo:                      # the kernel's imports, and theirs, recursively
+        path = todo.pop()
+        if path not in seen:
+            seen.add(path)
+            todo.extend(local_imports(path))
+    assert seen == {Path(p).resolve() for p in DEPENDENCIES}
