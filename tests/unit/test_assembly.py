@@ -66,9 +66,14 @@ def test_the_checked_pose_is_the_dynamic_models_initial_state():
 
     reducer = with_values(RV40E, {"G": 0.01, "I": 0.03})
     q0 = build_model(reducer, 1e-5).q0
+    model = build_model(reducer, 1e-5)
     for disc in range(2):
         d = L.DISC0 + L.DISC_STRIDE * disc
         assert q0[d:d + 3] == pytest.approx(nominal_disc_pose(reducer, 0.0, disc), abs=1e-15)
+    for crank in range(2):   # both support nodes on the bore centre, eccentric phase 0
+        b = L.CRANK0 + L.CRANK_STRIDE * crank
+        assert q0[b:b + 5] == pytest.approx([*model.holes[crank], *model.holes[crank], 0.0])
+    assert q0[L.CARRIER] == 0.0
 
 
 def test_every_paper_l36_run_assembles():
