@@ -66,19 +66,22 @@ def test_pin_position_errors_are_bounded_and_reproducible():
     from rvsim.geometry import pin_centres
 
     values = {"errors.pin_position_tolerance": 0.005, "errors.pin_position_seed": 7}
-    a = pin_centres(with_values(RV40E, values))
-    b = pin_centres(with_values(RV40E, values))
+    # pin errors alone make the pins overlap the disc (no check): only the centres matter here
+    a = pin_centres(with_values(RV40E, values, check=False))
+    b = pin_centres(with_values(RV40E, values, check=False))
     nominal = pin_centres(RV40E)
     np.testing.assert_array_equal(a, b)
     radial = np.hypot(a[:, 0], a[:, 1]) - 82e-3
     assert np.abs(radial).max() <= 5e-6 and np.abs(radial).max() > 1e-6
     assert np.linalg.norm(a - nominal, axis=1).max() <= 5e-6 * math.sqrt(2) + 1e-12
-    other = pin_centres(with_values(RV40E, {**values, "errors.pin_position_seed": 8}))
+    other = pin_centres(with_values(RV40E, {**values, "errors.pin_position_seed": 8},
+                                    check=False))
     assert not np.allclose(a, other)
 
 
 def test_runout_moves_the_profile_by_half_of_it():
-    reducer = with_values(RV40E, {"errors.disc_runout": 0.02})
+    # runout alone overlaps pins at assembly (validation rejects it); the geometry is tested here
+    reducer = with_values(RV40E, {"errors.disc_runout": 0.02}, check=False)
     gaps = pin_gaps(reducer, 0.0)
     # shifting the profile centre by 0.01 mm changes gaps by at most 0.01 mm, both signs
     assert np.abs(gaps).max() == pytest.approx(1e-5, rel=0.05)

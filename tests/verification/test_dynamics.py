@@ -127,17 +127,3 @@ def test_unstable_step_reports_status():
     partial = simulate(reducer, time_step=1e-4, raise_on_failure=False)
     assert partial.status == info.value.status
     assert partial.steps < 1.0 / 1e-4
-
-
-def test_disc_runout_gives_the_te_amplitude_of_eq7():
-    # Eq. (7): Delta phi_6 = Delta F_t1 / (2 a zc), once per output revolution.  A 3x input
-    # speed makes the 2.5 s steady window cover more than one output revolution.
-    runout = 0.014
-    reducer = with_values(RV40E, {"I": 0.016, "errors.disc_runout": runout,
-                                  "operating.input_speed": 21000})
-    result = simulate(reducer)
-    window = result.time >= 1.5
-    assert np.ptp(result.theta_out[window]) > 2 * math.pi
-    amplitude = 0.5 * result.metrics["te_pp_arcmin"]
-    eq7 = runout / (2 * 1.5 * 39) / ARCMIN
-    assert amplitude == pytest.approx(eq7, rel=0.05)

@@ -1,9 +1,13 @@
 """Keep numba's on-disk cache of the kernel consistent with the modules compiled into it.
 
 numba invalidates a cached function when its own source file changes, not when a module it
-imports does.  The kernel compiles in the index constants of ``_layout`` and the curve
+imports does.  The kernel compiles in the index constants of ``_layout`` and the curve and gap
 functions of ``geometry._curve``; this guard stores a fingerprint of those files beside the
 cache and deletes the kernel's cache files when the fingerprint changes.
+
+The cache folder is the one numba itself picks, asked from numba's own cache locators in
+numba's order (``numba.core.caching.CacheImpl``): ``NUMBA_CACHE_DIR`` when set, else
+``__pycache__`` beside ``_kernel.py`` when writable, else numba's user-wide cache folder.
 """
 
 from __future__ import annotations
@@ -11,33 +15,51 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
-__all__ = ["invalidate_stale_cache"]
+__all__ = ["invalidate_stale_cache", "kernel_cache_folder", "DEPENDENCIES", "STAMP_NAME"]
 
 _HERE = Path(__file__).parent
-_DEPENDENCIES = (_HERE / "_layout.py", _HERE.parent / "geometry" / "_curve.py",
-                 _HERE / "_kernel.py")
+_KERNEL = _HERE / "_kernel.py"
+#: every source file compiled into the kernel's cached machine code
+DEPENDENCIES = (_HERE / "_layout.py", _HERE.parent / "geometry" / "_curve.py", _KERNEL)
+STAMP_NAME = "rvsim_kernel_dependencies.sha256"
 
 
 def _fingerprint() -> str:
     digest = hashlib.sha256()
-    for path in _DEPENDENCIES:
+    for path in DEPENDENCIES:
         digest.update(path.read_bytes())
     return digest.hexdigest()
 
 
+def _probe() -> None:  # stands for a kernel function: the locators only read its line number
+    pass
+
+
+def kernel_cache_folder() -> Path | None:
+    """The folder numba caches the kernel's functions in (None: no usable cache folder)."""
+    from numba.core.caching import CacheImpl
+
+    for locator_class in CacheImpl._locator_classes:
+        locator = locator_class.from_function(_probe, str(_KERNEL))
+        if locator is not None:
+            return Path(locator.get_cache_path())
+    return None
+
+
 def invalidate_stale_cache() -> None:
     """Delete cached kernel code compiled against other versions of its dependencies."""
-    cache = _HERE / "__pycache__"
-    stamp = cache / "rvsim_kernel_dependencies.sha256"
     try:
+        cache = kernel_cache_folder()
+        if cache is None:
+            return  # numba compiles in memory: nothing stale can be loaded
+        stamp = cache / STAMP_NAME
         current = _fingerprint()
         if stamp.exists() and stamp.read_text() == current:
             return
-        if cache.exists():
-            for pattern in ("_kernel.*.nbi", "_kernel.*.nbc"):
-                for stale in cache.glob(pattern):
-                    stale.unlink(missing_ok=True)
-        cache.mkdir(exist_ok=True)
+        for pattern in ("_kernel.*.nbi", "_kernel.*.nbc"):
+            for stale in cache.glob(pattern):
+                stale.unlink(missing_ok=True)
+        cache.mkdir(parents=True, exist_ok=True)
         stamp.write_text(current)
     except OSError:
-        pass  # read-only install: numba then compiles in memory, nothing stale can be loaded
+        pass  # read-only cache folder: numba cannot write there either

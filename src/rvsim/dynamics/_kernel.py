@@ -18,7 +18,7 @@ from ._cache_guard import invalidate_stale_cache
 # curve functions of geometry._curve are compiled in, so clear the cache when those change
 invalidate_stale_cache()
 
-from ..geometry._curve import curve_point, nearest_point
+from ..geometry._curve import pin_gap, profile_axes
 from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
@@ -176,33 +176,32 @@ def gear_mesh(P, q, v, Q, j, crank_angle, phase, theta_in, omega_in):
 
 
 @numba.njit(cache=True)
-def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces, elastic):
-    """All pin contacts of disc k: returns (energy, dissipated power, max penetration).
+def pin_contacts(P, q, v, Q, disc, pins, pin_angle, u, next_eval, step, forces, elastic):
+    """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
 
-    ``u[k, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
+    ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
     gamma_i - theta (exact in the kinematic pose).  Near contact one Newton step from the
     previous foot point converges; when it does not (first step, after a skip, a pin far from
     contact near the medial axis of a concave stretch of the curve, where the foot point is not
-    unique) the nearest point is found robustly over one lobe period.
+    unique) the nearest point is found robustly over one lobe period (geometry._curve.pin_gap).
 
-    A pin whose gap cannot close before step ``next_eval[k, i]`` is not evaluated: the gap is
-    a 1-Lipschitz function of the pin centre in disc axes, whose speed is at most
+    A pin whose gap cannot close before step ``next_eval[disc, i]`` is not evaluated: the gap
+    is a 1-Lipschitz function of the pin centre in disc axes, whose speed is at most
     |dO/dt| + |dtheta/dt| * (pin circle + a), so a gap g stays open for g / (2 v dt) steps
     (factor 2 for speed changes within at most 64 steps).
     """
-    d = DISC0 + DISC_STRIDE * k
+    d = DISC0 + DISC_STRIDE * disc
     ox, oy, th = q[d], q[d + 1], q[d + 2]
     vx, vy, w = v[d], v[d + 1], v[d + 2]
     zp = P[ZP]
-    angle = th - k * math.pi / P[ZC] + P[PROFILE_ROT]
-    c, s = math.cos(angle), math.sin(angle)
+    angle = th - disc * math.pi / P[ZC] + P[PROFILE_ROT]
+    cos_t, sin_t = math.cos(angle), math.sin(angle)
     # housing velocity seen from the disc centre, in disc axes (rotation part added per pin)
-    lvx, lvy = c * vx + s * vy, -s * vx + c * vy
+    lvx, lvy = cos_t * vx + sin_t * vy, -sin_t * vx + cos_t * vy
     rg, a = P[RG], P[A_GEN]
-    offset = P[PROFILE_OFFSET] - P[PIN_RADIUS]
-    lobe = math.pi / zp
-    runout_x = P[RUNOUT_X0] if k == 0 else P[RUNOUT_X1]
-    runout_y = P[RUNOUT_Y0] if k == 0 else P[RUNOUT_Y1]
+    clearance = P[PROFILE_OFFSET] - P[PIN_RADIUS]
+    runout_x = P[RUNOUT_X0] if disc == 0 else P[RUNOUT_X1]
+    runout_y = P[RUNOUT_Y0] if disc == 0 else P[RUNOUT_Y1]
     speed_bound = 2.0 * (math.sqrt(vx * vx + vy * vy) + abs(w) * (P[RG] + 2.0 * a + 1e-3)) \
         * P[DT] + 1e-15
     energy = 0.0
@@ -210,72 +209,48 @@ def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces, ela
     worst = 0.0
     n = pins.shape[0]
     for i in range(n):
-        if step < next_eval[k, i]:
-            forces[k, i] = 0.0
-            elastic[k, i] = 0.0
+        if step < next_eval[disc, i]:
+            forces[disc, i] = 0.0
+            elastic[disc, i] = 0.0
             continue
-        dx = pins[i, 0] - ox
-        dy = pins[i, 1] - oy
-        qx = c * dx + s * dy - runout_x
-        qy = -s * dx + c * dy - runout_y
+        qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, runout_x, runout_y)
         nominal = pin_angle[i] - angle
-        ui = nominal + u[k, i]
-        x, y, tx, ty, ddx, ddy = curve_point(ui, rg, a, zp)
-        # one guarded Newton step from the previous foot point ...
-        rx, ry = qx - x, qy - y
-        speed2 = tx * tx + ty * ty
-        h = speed2 - (rx * ddx + ry * ddy)
-        if h < 0.25 * speed2:
-            h = speed2
-        du = (rx * tx + ry * ty) / h
-        if step == 0 or abs(du) > 1e-4 or abs(ui + du - nominal) > lobe:
-            # ... unless it did not converge (first step, after a skip, a pin near the medial
-            # axis): robust nearest point over one lobe period around the nominal parameter
-            ui = nearest_point(qx, qy, nominal, rg, a, zp)
-            x, y, tx, ty, _, _ = curve_point(ui, rg, a, zp)
-        else:
-            # after one step the foot error is ~ zp du^2 and the Taylor error ~ a zp^3 du^3:
-            # far below a nanometre of gap for du < 1e-4
-            x += du * (tx + 0.5 * du * ddx)
-            y += du * (ty + 0.5 * du * ddy)
-            tx += du * ddx
-            ty += du * ddy
-            ui += du
-        u[k, i] = ui - nominal
-        norm = math.sqrt(tx * tx + ty * ty)
-        nx, ny = ty / norm, -tx / norm
-        gap = (qx - x) * nx + (qy - y) * ny + offset
+        gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp, clearance,
+                                  step > 0)
+        u[disc, i] = ui - nominal
         if gap >= 0.0:
-            forces[k, i] = 0.0
-            elastic[k, i] = 0.0
+            forces[disc, i] = 0.0
+            elastic[disc, i] = 0.0
             skip = int(gap / speed_bound)
-            next_eval[k, i] = step + (skip if skip < MAX_SKIP else MAX_SKIP)
+            next_eval[disc, i] = step + (skip if skip < MAX_SKIP else MAX_SKIP)
             continue
-        next_eval[k, i] = step + 1
+        next_eval[disc, i] = step + 1
         delta = -gap
         if delta > worst:
             worst = delta
-        lever = nx * qy - ny * qx                    # d(gap)/d(theta)
+        # pin centre from the disc centre (the profile centre is off it by the runout)
+        px, py = qx + runout_x, qy + runout_y
+        lever = nx * py - ny * px                    # d(gap)/d(theta)
         gap_rate = -(nx * lvx + ny * lvy) + w * lever
         fn, e, pw, fel = contact(delta, -gap_rate, P[PIN_C], P[PIN_CB], P[ZETA], P[M_DISC],
-                                 elastic[k, i])
-        forces[k, i] = fn
-        elastic[k, i] = fel
+                                 elastic[disc, i])
+        forces[disc, i] = fn
+        elastic[disc, i] = fel
         energy += e
         power += pw
         # generalised forces Q = F d(gap)/dq on the disc
-        fx = -fn * (c * nx - s * ny)
-        fy = -fn * (s * nx + c * ny)
+        fx = -fn * (cos_t * nx - sin_t * ny)
+        fy = -fn * (sin_t * nx + cos_t * ny)
         torque = fn * lever
         if P[MU] > 0.0:
             # contact point on the disc (disc axes, from its centre) and sliding speed there
-            cx = qx - (P[PIN_RADIUS] - gap) * nx
-            cy = qy - (P[PIN_RADIUS] - gap) * ny
+            cx = px - (P[PIN_RADIUS] - gap) * nx
+            cy = py - (P[PIN_RADIUS] - gap) * ny
             tix, tiy = -ny, nx
             slide = (lvx - w * cy) * tix + (lvy + w * cx) * tiy
             ft = -P[MU] * fn * math.tanh(slide / P[V_FRIC])
-            fx += ft * (c * tix - s * tiy)
-            fy += ft * (s * tix + c * tiy)
+            fx += ft * (cos_t * tix - sin_t * tiy)
+            fy += ft * (sin_t * tix + cos_t * tiy)
             torque += ft * (cx * tiy - cy * tix)
             power -= ft * slide
         Q[d] += fx
@@ -285,37 +260,40 @@ def pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, forces, ela
 
 
 @numba.njit(cache=True)
-def arm_bushing(P, q, v, Q, j, k, hole_x, hole_y, wl, wu, elastic):
-    """Crank j eccentric in disc k's hole through the arm bushing (clearance K + M).
+def arm_bushing(P, q, v, Q, crank, disc, hole_x, hole_y, wl, wu, elastic):
+    """Crank ``crank``'s eccentric in disc ``disc``'s hole through the arm bushing (K + M).
 
-    ``elastic[j, k]`` carries the contact's elastic force from step to step (Newton start)."""
-    ax, ay, avx, avy = crank_point(q, v, j, wl, wu)
-    b = CRANK0 + CRANK_STRIDE * j
-    phi = q[b + 4] + k * math.pi
-    e = P[ECC]
-    ex = ax + e * math.cos(phi)
-    ey = ay + e * math.sin(phi)
-    evx = avx - e * math.sin(phi) * v[b + 4]
-    evy = avy + e * math.cos(phi) * v[b + 4]
-    d = DISC0 + DISC_STRIDE * k
-    c, s = math.cos(q[d + 2]), math.sin(q[d + 2])
-    hx = q[d] + c * hole_x - s * hole_y
-    hy = q[d + 1] + s * hole_x + c * hole_y
+    ``elastic[crank, disc]`` carries the contact's elastic force from step to step (Newton
+    start)."""
+    ax, ay, avx, avy = crank_point(q, v, crank, wl, wu)
+    b = CRANK0 + CRANK_STRIDE * crank
+    phi = q[b + 4] + disc * math.pi
+    ecc = P[ECC]
+    cos_p, sin_p = math.cos(phi), math.sin(phi)
+    ex = ax + ecc * cos_p
+    ey = ay + ecc * sin_p
+    evx = avx - ecc * sin_p * v[b + 4]
+    evy = avy + ecc * cos_p * v[b + 4]
+    d = DISC0 + DISC_STRIDE * disc
+    cos_t, sin_t = math.cos(q[d + 2]), math.sin(q[d + 2])
+    hx = q[d] + cos_t * hole_x - sin_t * hole_y
+    hy = q[d + 1] + sin_t * hole_x + cos_t * hole_y
     hvx = v[d] - v[d + 2] * (hy - q[d + 1])
     hvy = v[d + 1] + v[d + 2] * (hx - q[d])
     rx, ry = ex - hx, ey - hy
     dist = math.sqrt(rx * rx + ry * ry)
     delta = dist - P[ARM_CLEAR]
     if delta <= 0.0 or dist < 1e-15:
-        elastic[j, k] = 0.0
+        elastic[crank, disc] = 0.0
         return 0.0, 0.0, 0.0
     nx, ny = rx / dist, ry / dist
     rate = nx * (evx - hvx) + ny * (evy - hvy)
-    fn, energy, power, elastic[j, k] = contact(delta, rate, P[ARM_C], P[ARM_CB], P[ZETA],
-                                               P[M_NODE], elastic[j, k])
+    fn, energy, power, elastic[crank, disc] = contact(delta, rate, P[ARM_C], P[ARM_CB],
+                                                      P[ZETA], P[M_NODE],
+                                                      elastic[crank, disc])
     fx, fy = -fn * nx, -fn * ny                      # on the crank
-    add_crank_force(Q, j, wl, wu, fx, fy)
-    Q[b + 4] += fx * (-e * math.sin(phi)) + fy * (e * math.cos(phi))
+    add_crank_force(Q, crank, wl, wu, fx, fy)
+    Q[b + 4] += fx * (-ecc * sin_p) + fy * (ecc * cos_p)
     Q[d] -= fx
     Q[d + 1] -= fy
     Q[d + 2] -= -fx * (hy - q[d + 1]) + fy * (hx - q[d])
@@ -323,12 +301,12 @@ def arm_bushing(P, q, v, Q, j, k, hole_x, hole_y, wl, wu, elastic):
 
 
 @numba.njit(cache=True)
-def support_bushing(P, q, v, Q, j, upper, crank_angle):
-    """Crank j's lower or upper support node in its carrier / flange bore."""
-    b = CRANK0 + CRANK_STRIDE * j + (2 if upper else 0)
-    ca = q[CARRIER] + crank_angle
-    bx = P[CENTRE_DIST] * math.cos(ca)
-    by = P[CENTRE_DIST] * math.sin(ca)
+def support_bushing(P, q, v, Q, crank, upper, crank_angle):
+    """Crank ``crank``'s lower or upper support node in its carrier / flange bore."""
+    b = CRANK0 + CRANK_STRIDE * crank + (2 if upper else 0)
+    carrier_angle = q[CARRIER] + crank_angle
+    bx = P[CENTRE_DIST] * math.cos(carrier_angle)
+    by = P[CENTRE_DIST] * math.sin(carrier_angle)
     rx, ry = q[b] - bx, q[b + 1] - by
     dist = math.sqrt(rx * rx + ry * ry)
     clearance = P[SUP_CLEAR_U] if upper else P[SUP_CLEAR_L]

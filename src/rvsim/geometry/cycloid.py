@@ -8,9 +8,10 @@ Conventions (docs/model.md, "Cycloid stage geometry"):
   the disc turns by -beta/zc, i.e. with the carrier.
 * Disc k's teeth are cut with phase -k*pi/zc so that both identical discs mesh (zc odd: a disc
   turned half a revolution is half a pitch out).
-* Every error and modification opens clearance (paper Sec. 3.2): pin radius r_rp - F,
-  eccentricity a - G (crank only), pin circle r_p + H, profile offset r_rp + I, generating
-  circle r_p - J.
+* Errors and modifications: pin radius r_rp - F, pin circle r_p + H, profile offset r_rp + I
+  and generating circle r_p - J open clearance at every pin (paper Sec. 3.2); the crank
+  eccentricity a - G (crank only), a rotation modification, disc runout and pin position errors
+  close it at some pins (:mod:`rvsim.geometry.assembly` rejects an assembly that overlaps).
 """
 
 from __future__ import annotations
@@ -22,16 +23,13 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..parameters import Reducer
-from ._curve import curvature, signed_distances
+from ._curve import curvature, pin_gaps_at, profile_points
 
 __all__ = [
     "CycloidProfile", "profile_of", "pin_centres", "profile_offset", "nominal_disc_pose",
     "pin_gaps",
-    "geometric_backlash", "undercut_ratio", "pin_contact_geometry", "NEWTON_ITERATIONS",
+    "geometric_backlash", "undercut_ratio", "pin_contact_geometry",
 ]
-
-#: Newton iterations for a cold-started foot point (converges to machine precision in 3-5)
-NEWTON_ITERATIONS = 30
 
 
 @dataclasses.dataclass(frozen=True)
@@ -56,16 +54,10 @@ class CycloidProfile:
     def points(self, n: int = 3600, phase: float = 0.0) -> np.ndarray:
         """``n`` points of the closed profile (first point not repeated), shape (n, 2) [m]."""
         u = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
-        rg, a, zp = self.generating_radius, self.eccentricity, self.pin_count
-        x = rg * np.cos(u) - a * np.cos(zp * u)
-        y = rg * np.sin(u) - a * np.sin(zp * u)
-        dx = -rg * np.sin(u) + a * zp * np.sin(zp * u)
-        dy = rg * np.cos(u) - a * zp * np.cos(zp * u)
-        norm = np.hypot(dx, dy)
-        px = x - self.offset * dy / norm
-        py = y + self.offset * dx / norm
-        c, s = math.cos(self.rotation + phase), math.sin(self.rotation + phase)
-        return np.column_stack([c * px - s * py, s * px + c * py])
+        p = profile_points(u, self.generating_radius, self.eccentricity,
+                           float(self.pin_count), self.offset)
+        cos_t, sin_t = math.cos(self.rotation + phase), math.sin(self.rotation + phase)
+        return p @ np.array([[cos_t, sin_t], [-sin_t, cos_t]])
 
 
 def profile_of(reducer: Reducer) -> CycloidProfile:
@@ -121,11 +113,17 @@ def nominal_disc_pose(reducer: Reducer, crank_angle: float, disc: int = 0):
     return a * math.cos(beta), a * math.sin(beta), -crank_angle / reducer.cycloid.disc_teeth
 
 
-def _disc_axes(points: np.ndarray, x: float, y: float, angle: float) -> np.ndarray:
-    c, s = math.cos(angle), math.sin(angle)
-    dx = points[:, 0] - x
-    dy = points[:, 1] - y
-    return np.column_stack([c * dx + s * dy, -s * dx + c * dy])
+def _disc_gaps(reducer: Reducer, crank_angle: float, disc: int, extra_rotation: float,
+               offset: tuple[float, float]):
+    """:func:`~rvsim.geometry._curve.pin_gaps_at` of every pin, and the profile angle."""
+    prof = profile_of(reducer)
+    x, y, rot = nominal_disc_pose(reducer, crank_angle, disc)
+    angle = rot + extra_rotation - disc * math.pi / reducer.cycloid.disc_teeth + prof.rotation
+    shift_x, shift_y = profile_offset(reducer, disc)
+    clearance = prof.offset - (reducer.cycloid.pin_radius - reducer.errors.pin_radius)
+    return pin_gaps_at(pin_centres(reducer), x + offset[0], y + offset[1], angle, shift_x,
+                       shift_y, prof.generating_radius, prof.eccentricity,
+                       float(prof.pin_count), clearance), angle
 
 
 def pin_gaps(reducer: Reducer, crank_angle: float, *, disc: int = 0,
@@ -135,18 +133,8 @@ def pin_gaps(reducer: Reducer, crank_angle: float, *, disc: int = 0,
     The disc is placed in its nominal pose for ``crank_angle`` (eccentricity error included),
     then turned by ``extra_rotation`` and shifted by ``offset``.  Negative values are overlap.
     """
-    prof = profile_of(reducer)
-    zc = reducer.cycloid.disc_teeth
-    x, y, rot = nominal_disc_pose(reducer, crank_angle, disc)
-    angle = rot + extra_rotation - disc * math.pi / zc + prof.rotation
-    q = _disc_axes(pin_centres(reducer), x + offset[0], y + offset[1], angle)
-    q -= np.array(profile_offset(reducer, disc))
-    gamma = 2.0 * np.pi * np.arange(reducer.cycloid.pin_count) / reducer.cycloid.pin_count
-    u0 = gamma - angle  # exact foot parameter of the nominal pose
-    s, _ = signed_distances(q[:, 0].copy(), q[:, 1].copy(), u0, prof.generating_radius,
-                            prof.eccentricity, float(prof.pin_count), NEWTON_ITERATIONS)
-    pin_radius = reducer.cycloid.pin_radius - reducer.errors.pin_radius
-    return s + prof.offset - pin_radius
+    (gap, *_), _ = _disc_gaps(reducer, crank_angle, disc, extra_rotation, offset)
+    return gap
 
 
 def geometric_backlash(reducer: Reducer, crank_angle: float = 0.0, disc: int = 0):
@@ -208,20 +196,8 @@ def pin_contact_geometry(reducer: Reducer, crank_angle: float, *, disc: int = 0)
     largest value is a * zc.  ``normal`` is the unit outward normal of the disc profile in
     housing axes; a pin pushes the disc along -normal.
     """
-    prof = profile_of(reducer)
-    zc = reducer.cycloid.disc_teeth
-    x, y, rot = nominal_disc_pose(reducer, crank_angle, disc)
-    angle = rot - disc * math.pi / zc + prof.rotation
-    q = _disc_axes(pin_centres(reducer), x, y, angle)
-    gamma = 2.0 * np.pi * np.arange(reducer.cycloid.pin_count) / reducer.cycloid.pin_count
-    _, u = signed_distances(q[:, 0].copy(), q[:, 1].copy(), gamma - angle,
-                            prof.generating_radius, prof.eccentricity, float(prof.pin_count),
-                            NEWTON_ITERATIONS)
-    zp = prof.pin_count
-    tx = -prof.generating_radius * np.sin(u) + prof.eccentricity * zp * np.sin(zp * u)
-    ty = prof.generating_radius * np.cos(u) - prof.eccentricity * zp * np.cos(zp * u)
-    norm = np.hypot(tx, ty)
-    nx, ny = ty / norm, -tx / norm
-    c, s = math.cos(angle), math.sin(angle)
-    normal = np.column_stack([c * nx - s * ny, s * nx + c * ny])
-    return nx * q[:, 1] - ny * q[:, 0], normal
+    (_, _, nx, ny, qx, qy), angle = _disc_gaps(reducer, crank_angle, disc, 0.0, (0.0, 0.0))
+    cos_t, sin_t = math.cos(angle), math.sin(angle)
+    normal = np.column_stack([cos_t * nx - sin_t * ny, sin_t * nx + cos_t * ny])
+    shift_x, shift_y = profile_offset(reducer, disc)  # lever about the disc centre
+    return nx * (qy + shift_y) - ny * (qx + shift_x), normal

@@ -208,6 +208,9 @@ def _check_consistency(r: Reducer) -> None:
     if crank_circle + hole + c.eccentricity >= root:
         raise ParameterError("crank.eccentric_radius", "the crank holes cut through the disc's "
                              "tooth root (crank circle + hole radius >= root radius)")
+    from ..geometry.assembly import check_assembly
+
+    check_assembly(r)  # every pin, bushing and mesh at the pose the dynamic model starts from
 
 
 def parameter_table(reducer: Reducer) -> list[dict[str, Any]]:

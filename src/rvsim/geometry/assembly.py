@@ -1,0 +1,127 @@
+"""Interference check of the assembled reducer, before any simulation.
+
+The dynamic model starts every run from the assembled pose (:func:`rvsim.dynamics.model.
+build_model`, ``q0``): carrier and input at zero, each crank centred in its support bores with
+its eccentric for disc k at angle k*pi, each disc in its nominal (kinematic) pose for crank
+angle 0 with the crank's eccentricity a - G, at rest.  In that pose:
+
+* **pins**: every pin's gap to both discs is computed exactly (:func:`~rvsim.geometry.cycloid.
+  pin_gaps`).  Errors that close clearance (G, rotation modification, disc runout, pin position
+  errors) make some gaps negative unless the clearance-opening errors and modifications (F, H, I,
+  J) exceed them; G alone makes the disc overlap the pin opposite its eccentric by G.
+* **bushings**: the eccentric and journal centres coincide with their bore centres, so the
+  radial approach is minus the clearance (K + M, O + L, O + N), never an overlap for the
+  non-negative clearances validation allows.  It is computed all the same, so a future pose or
+  parameter cannot slip through.
+* **sun-planet meshes**: the cranks start at zero phase with the input at zero, so the mesh
+  deflection along the line of action is zero and the approach is minus half the backlash.
+
+An overlap larger than :data:`CONTACT_TOLERANCE` (round-off of the gap evaluation) is an
+interference: :func:`check_assembly` raises :class:`~rvsim.errors.ParameterError` naming the
+parts, the overlap and the parameters that close clearance.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..parameters import Reducer
+from .cycloid import nominal_disc_pose, pin_gaps
+
+__all__ = ["CONTACT_TOLERANCE", "Overlap", "assembly_overlaps", "check_assembly"]
+
+#: an overlap at or below this is contact (round-off of the exact gap), not interference [m]
+CONTACT_TOLERANCE = 1e-9
+
+#: parameters whose non-zero value can close clearance at the assembled pose
+_CLOSING = ("errors.eccentricity", "errors.rotation_modification", "errors.disc_runout",
+            "errors.pin_position_tolerance")
+
+
+@dataclasses.dataclass(frozen=True)
+class Overlap:
+    """The approach of one pair of parts at the assembled pose (positive = overlap) [m]."""
+
+    parts: str
+    approach: float
+
+
+def _pin_overlaps(reducer: Reducer) -> list[Overlap]:
+    result = []
+    for disc in range(2):
+        gaps = pin_gaps(reducer, 0.0, disc=disc)
+        for pin in range(gaps.shape[0]):
+            angle = 360.0 * pin / gaps.shape[0]
+            result.append(Overlap(f"disc {disc + 1} overlaps pin {pin} (at {angle:g} deg)",
+                                  -float(gaps[pin])))
+    return result
+
+
+def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
+    from .involute import gear_geometry
+
+    cl = reducer.clearances
+    centre = gear_geometry(reducer).centre_distance
+    arm_clearance = cl.crank_arm_bushing + cl.disc_arm_bushing
+    eccentric = reducer.cycloid.eccentricity - reducer.errors.eccentricity
+    result = []
+    for crank in range(2):
+        hole_angle = crank * math.pi
+        hole = centre * np.array([math.cos(hole_angle), math.sin(hole_angle)])
+        for disc in range(2):
+            # eccentric of crank ``crank`` for disc ``disc`` (crank centred, phase 0) ...
+            phase = disc * math.pi
+            pin = hole + eccentric * np.array([math.cos(phase), math.sin(phase)])
+            # ... and the disc's crank hole, carried by the disc's assembled pose
+            x, y, angle = nominal_disc_pose(reducer, 0.0, disc)
+            cos_t, sin_t = math.cos(angle), math.sin(angle)
+            bore = np.array([x + cos_t * hole[0] - sin_t * hole[1],
+                             y + sin_t * hole[0] + cos_t * hole[1]])
+            result.append(Overlap(f"crank {crank + 1} eccentric overlaps the arm bushing of "
+                                  f"disc {disc + 1}",
+                                  float(np.linalg.norm(pin - bore)) - arm_clearance))
+        # the crank's support journals start on their bore centres
+        for name, clearance in (("lower (flange)", cl.crank_support_bushing + cl.support_flange),
+                                ("upper (carrier)",
+                                 cl.crank_support_bushing + cl.support_carrier)):
+            result.append(Overlap(f"crank {crank + 1} overlaps its {name} support bushing",
+                                  0.0 - clearance))
+    return result
+
+
+def _mesh_overlaps(reducer: Reducer) -> list[Overlap]:
+    # input, carrier and crank phases are zero: the mesh deflection along the line of action
+    # is zero, so the approach is minus half the normal backlash (kernel gear_mesh)
+    return [Overlap(f"planet {crank + 1} overlaps the sun", 0.0 - 0.5 * reducer.gears.backlash)
+            for crank in range(2)]
+
+
+def assembly_overlaps(reducer: Reducer) -> list[Overlap]:
+    """Approach of every pin, bushing and mesh at the assembled pose (positive = overlap)."""
+    return _pin_overlaps(reducer) + _bushing_overlaps(reducer) + _mesh_overlaps(reducer)
+
+
+def _closing_parameters(reducer: Reducer) -> str:
+    from ..parameters._io import SPECS, get_value
+
+    named = []
+    for name in _CLOSING:
+        value = get_value(reducer, name)
+        if value != 0.0:
+            named.append(f"{name} = {value:g} {SPECS[name].unit}")
+    if not named:
+        return ""
+    return f" (clearance closed by {' and '.join(named)}, not opened enough by F, H, I, J)"
+
+
+def check_assembly(reducer: Reducer) -> None:
+    """Raise :class:`ParameterError` if any two parts overlap at the assembled pose."""
+    # round-off ties (disc 2 mirrors disc 1) go to the first part listed
+    worst = max(assembly_overlaps(reducer), key=lambda o: round(o.approach, 12))
+    if worst.approach > CONTACT_TOLERANCE:
+        raise ParameterError("assembly", f"{worst.parts} by {worst.approach * 1e6:.1f} um at "
+                             f"the assembled pose{_closing_parameters(reducer)}")

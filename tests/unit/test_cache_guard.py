@@ -1,0 +1,95 @@
+"""The numba cache guard works on the folder numba really uses (issue 8, item 7).
+
+Each case runs in a fresh interpreter (numba reads NUMBA_CACHE_DIR at import), with the cache
+redirected into a temporary folder: never the project's own cache.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+PROBE = textwrap.dedent("""
+    import json, sys
+    from numba.core import caching
+    if sys.argv[1] == "no-in-tree":
+        # an unwritable __pycache__ (as a read-only install has): numba falls back to its
+        # user-wide folder
+        def unwritable(self):
+            raise OSError("read-only")
+        caching.InTreeCacheLocator.ensure_cache_path = unwritable
+    from rvsim.dynamics._cache_guard import kernel_cache_folder
+    from rvsim.dynamics._kernel import step_function
+    step_function(0.5, 0.0, 1.0)          # compiles, or loads from the cache
+    print(json.dumps({"numba": step_function._cache._cache_path,
+                      "guard": str(kernel_cache_folder()),
+                      "hits": sum(step_function.stats.cache_hits.values())}))
+""")
+
+
+def _run(tmp_path, mode="env"):
+    env = dict(os.environ)
+    env.pop("NUMBA_CACHE_DIR", None)
+    if mode == "env":
+        env["NUMBA_CACHE_DIR"] = str(tmp_path / "numba-cache")
+    env["XDG_CACHE_HOME"] = str(tmp_path / "user-cache")
+    out = subprocess.run([sys.executable, "-c", PROBE, mode], env=env, capture_output=True,
+                         text=True, timeout=300, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+@pytest.mark.parametrize("mode, root", [("env", "numba-cache"), ("no-in-tree", "user-cache")])
+def test_guard_checks_the_folder_numba_caches_in(tmp_path, mode, root):
+    seen = _run(tmp_path, mode)
+    assert seen["guard"] == seen["numba"]
+    assert seen["numba"].startswith(str(tmp_path / root))
+
+
+def test_stale_kernel_is_removed_and_not_loaded(tmp_path):
+    first = _run(tmp_path)
+    assert first["hits"] == 0                              # compiled and written
+    assert _run(tmp_path)["hits"] == 1                     # same sources: loaded
+    from pathlib import Path
+
+    from rvsim.dynamics._cache_guard import STAMP_NAME
+
+    folder = Path(first["numba"])
+    cached = sorted(p.name for p in folder.glob("_kernel.*"))
+    assert cached                                          # index and data files
+    # a dependency changed since the cache was written: the stamp no longer matches
+    (folder / STAMP_NAME).write_text("fingerprint of older sources")
+    again = _run(tmp_path)
+    assert again["hits"] == 0                              # recompiled, not loaded
+    assert (folder / STAMP_NAME).read_text() != "fingerprint of older sources"
+
+
+def test_every_module_compiled_into_the_kernel_is_a_dependency():
+    import ast
+    from pathlib import Path
+
+    from rvsim.dynamics import _kernel
+    from rvsim.dynamics._cache_guard import DEPENDENCIES
+
+    def local_imports(path):
+        found = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level > 0:
+                base = path.parent
+                for _ in range(node.level - 1):
+                    base = base.parent
+                target = base.joinpath(*node.module.split(".")).with_suffix(".py")
+                if target.name != "_cache_guard.py":
+                    found.add(target.resolve())
+        return found
+
+    kernel = Path(_kernel.__file__)
+    seen, todo = set(), [kernel.resolve()]
+    while todo:                      # the kernel's imports, and theirs, recursively
+        path = todo.pop()
+        if path not in seen:
+            seen.add(path)
+            todo.extend(local_imports(path))
+    assert seen == {Path(p).resolve() for p in DEPENDENCIES}
