@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import argparse
 
-from ..analytical import sensitivity_table
-from ..geometry.export import export_profile
 from ..parameters import parameter_table
 from ._common import add_command, add_reducer_options, print_json, reducer_from_args
 
@@ -40,6 +38,8 @@ def _params(args: argparse.Namespace) -> int:
 
 
 def _profile(args: argparse.Namespace) -> int:
+    from ..geometry.export import export_profile
+
     reducer = reducer_from_args(args)
     summary = export_profile(reducer, args.out, points=args.points)
     if args.json:
@@ -51,6 +51,8 @@ def _profile(args: argparse.Namespace) -> int:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
+    from ..analytical import sensitivity_table
+
     table = sensitivity_table(reducer_from_args(args))
     if args.json:
         print_json(table.to_dict())

@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..dynamics import DEFAULT_TIME_STEP, simulate
 from ..errors import ParameterError, SimulationError
 from ..parameters import paper_run_values
 from ._common import add_command, add_reducer_options, print_json, reducer_from_args
@@ -20,13 +19,16 @@ def _reducer(args: argparse.Namespace):
 
 
 def _simulate(args: argparse.Namespace) -> int:
+    from ..dynamics import DEFAULT_TIME_STEP, simulate
+
     if args.save and not args.save.endswith(".npz"):
         raise ParameterError("--save", "histories are written as .npz (numpy.load reads them)")
     if args.report and not args.report.endswith(".html"):
         raise ParameterError("--report", "the report is an .html file")
     reducer = _reducer(args)
     try:
-        result = simulate(reducer, duration=args.duration, time_step=args.time_step)
+        result = simulate(reducer, duration=args.duration, time_step=DEFAULT_TIME_STEP if args.time_step is None
+                          else args.time_step)
     except SimulationError as exc:
         if args.json:
             print_json({"status": exc.status, "error": str(exc)})
@@ -68,7 +70,7 @@ def register(sub) -> None:
     p.add_argument("--report", metavar="FILE.html", help="write a self-contained HTML report")
     p.add_argument("--duration", type=float, help="simulated time [s] (default: "
                    "operating.duration, 4 s)")
-    p.add_argument("--time-step", type=float, default=DEFAULT_TIME_STEP,
-                   help=f"integration step [s] (default {DEFAULT_TIME_STEP:g})")
+    p.add_argument("--time-step", type=float,
+                   help="integration step [s] (default: the model's, 1e-5 s)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_simulate)

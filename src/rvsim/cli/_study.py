@@ -6,18 +6,13 @@ import argparse
 import sys
 from pathlib import Path
 
-import pandas as pd
-
-from ..analysis import analyze_table, range_analysis
-from ..analysis._table import read_table
-from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
 from ..errors import InputFileError
 from ._common import add_command, print_json
 
 __all__ = ["register"]
 
 
-def _response_column(table: pd.DataFrame, response: str | None) -> str:
+def _response_column(table, response: str | None) -> str:
     if response:
         return response
     for name in ("te_mean_arcmin", "te_arcmin"):
@@ -27,6 +22,8 @@ def _response_column(table: pd.DataFrame, response: str | None) -> str:
 
 
 def _study(args: argparse.Namespace) -> int:
+    from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
+
     if args.study in BUILT_IN_STUDIES:
         study = BUILT_IN_STUDIES[args.study]()
     elif Path(args.study).suffix == ".toml":
@@ -57,6 +54,9 @@ def _study(args: argparse.Namespace) -> int:
 
 
 def _analyze(args: argparse.Namespace) -> int:
+    from ..analysis import analyze_table, anova, range_analysis
+    from ..analysis._table import read_table
+
     table = read_table(args.table)
     factors = args.factors.split(",") if args.factors else None
     pool = tuple(p for p in args.pool.split(",") if p) if args.pool else ()
@@ -69,8 +69,6 @@ def _analyze(args: argparse.Namespace) -> int:
     print(ra.to_df().round(4).to_string())
     print(f"\norder: {result['order']}")
     print("\nANOVA (main effects)")
-    from ..analysis import anova
-
     print(anova(table, response, factors, pool=pool).to_df().round(4).to_string())
     print(f"\nsignificant at alpha = {args.alpha}: {', '.join(result['significant']) or 'none'}")
     return 0

@@ -1,6 +1,11 @@
-"""The dynamic virtual prototype: contact dynamics of the whole RV reducer."""
+"""The dynamic virtual prototype: contact dynamics of the whole RV reducer.
 
-from .result import Result, te_metrics, te_spectrum
-from .simulate import DEFAULT_SAMPLE_RATE, DEFAULT_TIME_STEP, decompose_te, simulate
+Names load on first use (the compiled kernel imports numba), see :mod:`lazy_loader`.
+"""
 
-__all__ = ["simulate", "decompose_te", "Result", "te_metrics", "te_spectrum", "DEFAULT_TIME_STEP", "DEFAULT_SAMPLE_RATE"]
+import lazy_loader
+
+__getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
+    "result": ["Result", "te_metrics", "te_spectrum"],
+    "simulate": ["simulate", "decompose_te", "DEFAULT_TIME_STEP", "DEFAULT_SAMPLE_RATE"],
+})
