@@ -27,7 +27,7 @@ CHUNK_STEPS = 5000
 #: memory the histories of one run may take [bytes]
 MAX_HISTORY_BYTES = 2 * 1024 ** 3
 #: largest |energy residual| / input work over the steady window of a trusted run (healthy runs:
-#: at most 1.05e-4 over the paper's 36 runs; docs/model.md section 9)
+#: at most 1.19e-4 over the paper's 36 runs; docs/model.md section 9)
 ENERGY_RESIDUAL_LIMIT = 1e-2
 #: largest relative deviation of the steady speed ratio from the design ratio
 SPEED_RATIO_LIMIT = 0.05
