@@ -10,7 +10,7 @@ import numpy as np
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from . import _layout as L
-from ._kernel import integrate, new_state
+from ._kernel import COUNT_ROW, integrate, new_state
 from .model import build_model
 from .result import Result
 
@@ -101,7 +101,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
             bar.close()
     wall = _time.perf_counter() - start
     steps = n_steps if status == L.STATUS_OK else step
-    rows = min(steps // sample_every + (1 if status == L.STATUS_OK else 0), n_samples)
+    rows = int(state[-1][COUNT_ROW])          # samples the kernel stored
     result = Result(time=channels[:rows, L.CH_TIME].copy(), channels=channels[:rows],
                     pin_forces=pin_forces[:rows], ratio=reducer.ratio,
                     steady_start=reducer.operating.steady_start,
