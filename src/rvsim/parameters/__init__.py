@@ -9,7 +9,8 @@ from ._io import (BUILT_IN_SETS, SPECS, get_value, load_toml, parameter_table, p
 
 __all__ = [
     "Reducer", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances", "Flexibility",
-    "Operating", "ContactModel", "Rating", "Material", "Materials", "RV40E", "CITATION", "TABLE2_FACTORS",
+    "Operating", "ContactModel", "Rating", "Material", "Materials", "RV40E", "CITATION",
+    "TABLE2_FACTORS",
     "FactorSpec", "paper_l36_scheme", "paper_run_values", "BUILT_IN_SETS", "SPECS", "get_value", "load_toml", "parameter_table",
     "parse_assignment", "resolve_name", "validate", "with_values",
 ]
