@@ -154,7 +154,7 @@ def test_disc_runout_gives_the_te_amplitude_of_eq7():
     assert np.ptp(result.theta_out[window]) > 2 * math.pi
     amplitude = 0.5 * result.metrics["te_pp_arcmin"]
     eq7 = runout / (2 * 1.5 * 39) / ARCMIN
-    assert amplitude == pytest.approx(eq7, rel=0.05)
+    assert amplitude == pytest.approx(eq7, rel=0.02)  # measured 0.54 %
 
 
 # (te_mean_arcmin, te_pp_arcmin, max_pin_force_n) of the paper's runs at the default step,
