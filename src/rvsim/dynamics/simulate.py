@@ -43,11 +43,11 @@ def _check_run_options(reducer: Reducer, duration: float, time_step: float,
     if not math.isfinite(duration):
         raise ParameterError("duration", f"must be a finite number of seconds (got {duration:g})")
     steady = reducer.operating.steady_start
-    if not duration > steady:
+    rate = min(sample_rate, 1.0 / time_step)
+    if not duration >= steady + 2.0 / rate:
         raise ParameterError("duration", f"must be longer than the start of the steady window "
                              f"(operating.steady_start = {steady:g} s), where the TE metrics "
-                             f"are taken (got {duration:g} s)")
-    rate = min(sample_rate, 1.0 / time_step)
+                             f"are taken, by at least two samples (got {duration:g} s)")
     per_second = rate * (L.N_CHANNELS + 2 * reducer.cycloid.pin_count) * 8
     if duration * per_second > MAX_HISTORY_BYTES:
         raise ParameterError("duration", f"{duration:g} s of histories at {rate:g} Hz need "
