@@ -186,6 +186,70 @@ def write_study_report(folder: str | Path, *, study=None, alpha: float | None = 
     return atomic_write_text(folder / "report.html", _page(f"rvsim study {definition['name']}", body))
 
 
+def _speed_note(result, reducer) -> str:
+    """What the speed curve of Fig. 4 shows, in words, with this run's figures."""
+    op = reducer.operating
+    deg = 180.0 / np.pi
+    out = result.omega_out * deg * result.ratio
+    steady_in = op.input_speed * deg
+
+    def span(lo, hi):
+        m = (result.time >= lo) & (result.time < hi)
+        return (out[m].min(), out[m].max()) if m.any() else None
+
+    text = [f"The input follows the STEP ramp to {steady_in:.0f} deg/s over "
+            f"{op.speed_ramp_time:g} s (Eq. 19); the output speed is shown multiplied by the "
+            f"ratio {result.ratio:g}, so a rigid, backlash-free drive would overlay the two "
+            f"curves.  The carrier drives a load of {op.load_inertia:g} kg*m^2 "
+            "(operating.load_inertia)."]
+    before = span(0.0, op.load_start)
+    if before is not None:
+        lo, hi = before
+        if op.load_fluctuation:
+            cause = (f"the fluctuating torque of Eq. (20) ({op.fluctuation_amplitude:g} N*m at "
+                     f"{op.fluctuation_frequency:g} Hz) acts on the unloaded carrier and "
+                     "throws it back and forth through the play of the clearances, errors and "
+                     "modifications, and the contacts ring after each impact")
+        else:
+            cause = ("without load the carrier is only dragged along; start-up vibration and "
+                     "the play of clearances and errors show as deviations")
+        text.append(f"Before the load is applied (t < {op.load_start:g} s) the output "
+                    f"speed x {result.ratio:g} ranges from {lo:.0f} to {hi:.0f} deg/s: "
+                    f"{cause}.")
+    steady = span(op.steady_start, float("inf"))
+    if steady is not None:
+        lo, hi = steady
+        text.append(f"Once the {op.load_torque:g} N*m load has taken up the play (t >= "
+                    f"{op.steady_start:g} s) it stays between {lo:.0f} and {hi:.0f} deg/s "
+                    f"({100 * (lo / steady_in - 1):+.1f} % to {100 * (hi / steady_in - 1):+.1f} "
+                    f"% of the input): what remains is the torsional vibration of the loaded "
+                    f"drive{_speed_peaks(result, reducer)}.")
+    return "<p class='note'>" + html.escape(" ".join(text)) + "</p>"
+
+
+def _speed_peaks(result, reducer) -> str:
+    """The two strongest frequencies of the steady output speed, with their crank orders."""
+    from .dynamics.result import crank_frequency
+
+    window = result.time >= result.steady_start
+    speed = result.omega_out[window]
+    if len(speed) < 16:
+        return ""
+    amplitude = np.abs(np.fft.rfft((speed - speed.mean()) * np.hanning(len(speed))))
+    freq = np.fft.rfftfreq(len(speed), result.time[1] - result.time[0])
+    crank_hz = crank_frequency(result.time, result.omega_out, result.steady_start,
+                               reducer.cycloid.pin_count)
+    peaks = []
+    for i in np.argsort(amplitude[1:])[::-1] + 1:
+        if all(abs(freq[i] - f) > 5.0 for f in peaks):
+            peaks.append(freq[i])
+        if len(peaks) == 2:
+            break
+    words = [f"{f:.1f} Hz (crank order {f / crank_hz:.2f})" if crank_hz > 0 else f"{f:.1f} Hz"
+             for f in peaks]
+    return "; its strongest components are at " + " and ".join(words)
+
+
 def write_run_report(result, reducer, path: str | Path) -> Path:
     """Write an HTML page for one simulation ``result`` of ``reducer``."""
     from .parameters import parameter_table
@@ -215,12 +279,16 @@ def write_run_report(result, reducer, path: str | Path) -> Path:
     fig.tight_layout()
     body = [f"<h1>RV reducer simulation: {html.escape(reducer.name)}</h1>",
             "<h2>Summary</h2>", _table(summary),
-            "<h2>Input and output speed (Fig. 4)</h2>", _png(speed_plot(result)),
+            "<h2>Input and output speed (Fig. 4)</h2>", _speed_note(result, reducer),
+            _png(speed_plot(result)),
             "<h2>Transmission error (Fig. 5)</h2>",
             _png(te_plot({"TE": result}, result.steady_start)),
             "<h2>TE spectrum</h2>",
             _png(spectrum_plot(result, pin_count=reducer.cycloid.pin_count,
-                               planet_teeth=reducer.gears.planet_teeth)),
+                               planet_teeth=reducer.gears.planet_teeth,
+                               fluctuation_frequency=(reducer.operating.fluctuation_frequency
+                                                      if reducer.operating.load_fluctuation
+                                                      else None))),
             "<h2>Pin contact forces (steady window mean)</h2>", _png(fig),
             "<h2>Parameters</h2>", _table(changed)]
     return atomic_write_text(path, _page(f"rvsim {reducer.name}", body))

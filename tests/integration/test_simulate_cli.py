@@ -47,7 +47,7 @@ def test_simulate_errors(cli, args, words):
 
 
 def test_failed_simulation_reports_status(cli):
-    res = cli("simulate", "--duration", "0.3", "--time-step", "0.0002", "--json")
+    res = cli("simulate", "--duration", "1.6", "--time-step", "0.0002", "--json")
     assert res.code == 1
     assert json.loads(res.out)["status"] in ("diverged", "runaway_penetration")
     assert "simulation failed" in res.err

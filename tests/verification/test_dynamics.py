@@ -5,10 +5,16 @@
   lever arm l_i carry F_i proportional to l_i**(1/0.9) under the Palmgren law, the rest carry
   nothing; both discs share equally) and the crank bearing forces follow from the disc's force
   and moment balance with the pin resultant shared equally by the two cranks;
-* steady torque balance T_in * 121 = T_out (no friction) within 1 %;
-* halving the time step changes the steady mean TE by < 0.5 %;
+* steady torque balance T_in * 121 = T_out (no friction) within 0.5 % (measured 0.16 %);
+* halving the time step changes the steady mean TE by < 1e-4 relative (measured 3.4e-5);
 * energy: input work = output work + dissipation (+ changes of kinetic and potential energy and
-  the work of the time-varying mesh stiffness) within 1 % over the steady window.
+  the work of the time-varying mesh stiffness) within 5e-5 of the input work over the steady
+  window (measured 6.5e-6);
+* regression pins: the mean and peak-to-peak TE and the largest pin force of paper runs 1-3.
+
+Tolerances are a small factor (2-10) above what was measured (figures in each test); the
+pinned numbers are deterministic to the last bit on one machine, pinned to 1e-6 relative so
+that another platform's floating point passes and any change of the model fails.
 """
 
 import math
@@ -39,17 +45,19 @@ def test_zero_error_no_load_gives_zero_te_and_ratio_121():
     reducer = with_values(RV40E, {"E": 0, "operating.duration": 2.0})
     result = simulate(reducer)
     window = result.time >= 1.5
-    # what is left is start-up vibration decaying through contact damping: < 1e-4 arcmin
-    # (measured 5e-5); the mean is zero to 1e-6 arcmin
-    assert np.max(np.abs(result.te[window])) / ARCMIN < 1e-4
-    assert abs(np.mean(result.te[window])) / ARCMIN < 1e-6
-    assert result.metrics["speed_ratio"] == pytest.approx(121.0, abs=1e-4)  # measured 6e-6
+    # what is left is start-up vibration decaying through contact damping: < 5e-5 arcmin
+    # (measured 1.6e-5); the mean is zero to 2e-6 arcmin (measured 8.8e-7)
+    assert np.max(np.abs(result.te[window])) / ARCMIN < 5e-5
+    assert abs(np.mean(result.te[window])) / ARCMIN < 2e-6
+    assert result.metrics["speed_ratio"] == pytest.approx(121.0, abs=5e-6)  # measured 5.3e-7
 
 
 @pytest.fixture(scope="module")
 def rigid_bearings():
+    # the bare carrier (no load inertia): these are static balances, and a load inertia brings
+    # the drive's torsional mode down to the pin-passing orders, whose ringing they would see
     reducer = with_values(RV40E, {**QUICK, "contact.bushing_stiffness_factor": 1e3,
-                                  "operating.duration": 0.7})
+                                  "operating.duration": 0.7, "operating.load_inertia": 0.0})
     return reducer, simulate(reducer, time_step=1e-6, sample_rate=500)
 
 
@@ -63,10 +71,11 @@ def test_pin_load_sharing_follows_textbook(rigid_bearings):
         force = result.pin_forces[i, disc]
         shape = np.where(lever > 0, np.abs(lever) ** (1 / 0.9), 0.0)
         expected = shape * (force @ lever) / (shape @ lever)
-        assert np.max(np.abs(force - expected)) < 0.02 * force.max()
+        # measured 0.48 % of the largest force
+        assert np.max(np.abs(force - expected)) < 0.01 * force.max()
         assert np.all(force[lever < -1e-3] == 0.0)
         torques.append(force @ lever)
-    assert torques[0] == pytest.approx(torques[1], rel=0.01)
+    assert torques[0] == pytest.approx(torques[1], rel=0.005)  # measured 0.17 %
 
 
 def test_crank_bearing_forces_follow_disc_balance(rigid_bearings):
@@ -86,7 +95,8 @@ def test_crank_bearing_forces_follow_disc_balance(rigid_bearings):
             tangent = np.array([-hole[1], hole[0]]) / centre
             bearing = -resultant / 2 - moment / (2 * centre) * tangent
             simulated = result.arm_bushing_forces[i, crank, disc]
-            assert simulated == pytest.approx(np.linalg.norm(bearing), rel=0.03)
+            # measured up to 2.9 %: the crank's own inertia and the bushings' tilt
+            assert simulated == pytest.approx(np.linalg.norm(bearing), rel=0.04)
 
 
 def test_steady_torque_balance(paper_run_2):
@@ -94,20 +104,21 @@ def test_steady_torque_balance(paper_run_2):
     window = result.time >= 1.5
     torque_in = result.channel("torque_in")[window].mean()
     torque_out = result.channel("torque_load")[window].mean()
-    assert torque_in * 121 == pytest.approx(torque_out, rel=0.01)
+    assert torque_in * 121 == pytest.approx(torque_out, rel=0.005)  # measured 0.16 %
 
 
-def test_halving_time_step_changes_mean_te_below_half_percent(paper_run_2):
+def test_halving_time_step_changes_mean_te_below_1e_4(paper_run_2):
     _, coarse, fine = paper_run_2
     a, b = coarse.metrics["te_mean_arcmin"], fine.metrics["te_mean_arcmin"]
-    assert abs(a - b) < 0.005 * abs(b)
+    assert abs(a - b) < 1e-4 * abs(b)  # measured 3.4e-5
 
 
-def test_energy_balance_within_one_percent(paper_run_2):
-    _, result, _ = paper_run_2
+def test_energy_balance_within_5e_5(paper_run_2):
+    _, result, fine = paper_run_2
     e = result.energy
     assert e["input_work"] > 100.0
-    assert abs(e["relative_residual"]) < 0.01
+    assert abs(e["relative_residual"]) < 5e-5  # measured 6.5e-6
+    assert abs(fine.energy["relative_residual"]) < 1e-5  # measured 1.9e-6: first order in dt
     assert e["dissipated"] >= 0.0
 
 
@@ -115,8 +126,8 @@ def test_friction_dissipates_and_balance_still_holds():
     reducer = with_values(RV40E, {**QUICK, "contact.friction_coefficient": 0.05,
                                   "I": 0.016, "J": 0.026})
     result = simulate(reducer)
-    assert result.energy["dissipated"] > 0.01 * result.energy["input_work"]
-    assert abs(result.energy["relative_residual"]) < 0.01
+    assert result.energy["dissipated"] > 0.03 * result.energy["input_work"]  # measured 4.5 %
+    assert abs(result.energy["relative_residual"]) < 1e-4  # measured 1.7e-5
 
 
 def test_unstable_step_reports_status():
@@ -127,3 +138,23 @@ def test_unstable_step_reports_status():
     partial = simulate(reducer, time_step=1e-4, raise_on_failure=False)
     assert partial.status == info.value.status
     assert partial.steps < 1.0 / 1e-4
+
+
+# (te_mean_arcmin, te_pp_arcmin, max_pin_force_n) of the paper's runs at the default step,
+# measured 2026-11-22 with operating.load_inertia = 0.3 kg m^2 (docs/validation.md)
+PINNED = {1: (4.1476033262314465, 1.0450165132806353, 874.3739556716317),
+          2: (9.260248819690974, 1.1618873357504818, 1328.416086813028),
+          3: (14.372935920846361, 1.5262727151234703, 1727.0821130746167)}
+
+
+@pytest.mark.parametrize("run", [1, 3])
+def test_paper_runs_are_pinned(run):
+    metrics = simulate(with_values(RV40E, paper_run_values(run))).metrics
+    measured = (metrics["te_mean_arcmin"], metrics["te_pp_arcmin"], metrics["max_pin_force_n"])
+    assert measured == pytest.approx(PINNED[run], rel=1e-6)
+
+
+def test_paper_run_2_is_pinned(paper_run_2):
+    metrics = paper_run_2[1].metrics
+    measured = (metrics["te_mean_arcmin"], metrics["te_pp_arcmin"], metrics["max_pin_force_n"])
+    assert measured == pytest.approx(PINNED[2], rel=1e-6)

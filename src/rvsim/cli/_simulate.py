@@ -27,12 +27,14 @@ def _simulate(args: argparse.Namespace) -> int:
         raise ParameterError("--report", "the report is an .html file")
     reducer = _reducer(args)
     try:
-        result = simulate(reducer, duration=args.duration, time_step=DEFAULT_TIME_STEP if args.time_step is None
-                          else args.time_step)
+        # a progress bar only for a person watching (stderr is a terminal)
+        result = simulate(reducer, duration=args.duration,
+                          time_step=DEFAULT_TIME_STEP if args.time_step is None
+                          else args.time_step, progress=sys.stderr.isatty())
     except SimulationError as exc:
         if args.json:
             print_json({"status": exc.status, "error": str(exc)})
-        print(f"rvsim: simulation failed: {exc}", file=sys.stderr)
+        print(f"rvsim: simulation failed ({exc.status}): {exc}", file=sys.stderr)
         return 1
     if args.save:
         result.save(args.save)

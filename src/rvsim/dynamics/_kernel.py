@@ -128,14 +128,15 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
 
 @numba.njit(cache=True)
 def gear_mesh(P, q, v, Q, j, crank_angle, phase, theta_in, omega_in):
-    """Sun-planet mesh j: returns (force, input torque, energy, dissipated power, stiffness)."""
+    """Sun-planet mesh j: returns (force, input torque, energy, dissipated power, stiffness,
+    deflection)."""
     px, py, pvx, pvy = crank_point(q, v, j, P[W_G_L], P[W_G_U])
     r2 = px * px + py * py
     r = math.sqrt(r2)
     # angle of the line of centres, kept continuous: carrier angle + assembly angle + deviation
-    ca = q[CARRIER] + crank_angle
-    cs, sn = math.cos(ca), math.sin(ca)
-    beta = ca + math.atan2(-sn * px + cs * py, cs * px + sn * py)
+    line = q[CARRIER] + crank_angle
+    cos_l, sin_l = math.cos(line), math.sin(line)
+    beta = line + math.atan2(-sin_l * px + cos_l * py, cos_l * px + sin_l * py)
     dbeta_x, dbeta_y = -py / r2, px / r2
     dr_x, dr_y = px / r, py / r
     rb1, rb2 = P[RB1], P[RB2]
@@ -148,7 +149,7 @@ def gear_mesh(P, q, v, Q, j, crank_angle, phase, theta_in, omega_in):
     # number of tooth pairs in contact from the roll position (rectangular-wave stiffness)
     roll = (rb1 * (theta_in - beta)) / P[BASE_PITCH] + phase
     frac = roll - math.floor(roll)
-    k = P[K_MESH] * (2.0 if frac < P[CONTACT_RATIO] - 1.0 else 1.0)
+    stiffness = P[K_MESH] * (2.0 if frac < P[CONTACT_RATIO] - 1.0 else 1.0)
     half = 0.5 * P[BACKLASH]
     force = 0.0
     sign = 0.0
@@ -161,18 +162,18 @@ def gear_mesh(P, q, v, Q, j, crank_angle, phase, theta_in, omega_in):
     energy = 0.0
     power = 0.0
     if sign != 0.0:
-        c = 2.0 * P[ZETA] * math.sqrt(k * P[MESH_MASS])
-        force = k * delta + c * rate
+        damping = 2.0 * P[ZETA] * math.sqrt(stiffness * P[MESH_MASS])
+        force = stiffness * delta + damping * rate
         if force < 0.0:
             force = 0.0
-        energy = 0.5 * k * delta * delta
-        power = (force - k * delta) * rate
+        energy = 0.5 * stiffness * delta * delta
+        power = (force - stiffness * delta) * rate
         # generalised forces: Q = -F d(delta)/dq
         gx = sign * (-(rb1 + rb2) * dbeta_x) - P[SIN_AW] * dr_x
         gy = sign * (-(rb1 + rb2) * dbeta_y) - P[SIN_AW] * dr_y
         add_crank_force(Q, j, P[W_G_L], P[W_G_U], -force * gx, -force * gy)
         Q[b + 4] -= force * sign * rb2
-    return force, force * sign * rb1, energy, power, k, delta
+    return force, force * sign * rb1, energy, power, stiffness, delta
 
 
 @numba.njit(cache=True)
@@ -325,20 +326,21 @@ def support_bushing(P, q, v, Q, crank, upper, crank_angle):
 
 @numba.njit(cache=True)
 def kinetic_energy(P, v):
-    e = 0.5 * P[J_CARRIER] * v[CARRIER] ** 2
+    energy = 0.5 * P[J_CARRIER] * v[CARRIER] ** 2
+    # crank node mass matrix: the inverse of [[LL, LU], [LU, UU]]
+    det = P[MINV_LL] * P[MINV_UU] - P[MINV_LU] ** 2
+    m_ll, m_lu, m_uu = P[MINV_UU] / det, -P[MINV_LU] / det, P[MINV_LL] / det
     for j in range(2):
         b = CRANK0 + CRANK_STRIDE * j
-        # node mass matrix is the inverse of [[LL, LU], [LU, UU]]
-        det = P[MINV_LL] * P[MINV_UU] - P[MINV_LU] ** 2
-        mll, mlu, muu = P[MINV_UU] / det, -P[MINV_LU] / det, P[MINV_LL] / det
         for axis in range(2):
-            vl, vu = v[b + axis], v[b + 2 + axis]
-            e += 0.5 * (mll * vl * vl + 2.0 * mlu * vl * vu + muu * vu * vu)
-        e += 0.5 * P[J_CRANK] * v[b + 4] ** 2
-    for k in range(2):
-        d = DISC0 + DISC_STRIDE * k
-        e += 0.5 * P[M_DISC] * (v[d] ** 2 + v[d + 1] ** 2) + 0.5 * P[J_DISC] * v[d + 2] ** 2
-    return e
+            v_low, v_up = v[b + axis], v[b + 2 + axis]
+            energy += 0.5 * (m_ll * v_low * v_low + 2.0 * m_lu * v_low * v_up
+                             + m_uu * v_up * v_up)
+        energy += 0.5 * P[J_CRANK] * v[b + 4] ** 2
+    for disc in range(2):
+        d = DISC0 + DISC_STRIDE * disc
+        energy += 0.5 * P[M_DISC] * (v[d] ** 2 + v[d + 1] ** 2) + 0.5 * P[J_DISC] * v[d + 2] ** 2
+    return energy
 
 
 @numba.njit(cache=True)
@@ -354,34 +356,34 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     power = 0.0
     torque_in = 0.0
     for j in range(2):
-        f, tq, e, pw, kk, dl = gear_mesh(P, q, v, Q, j, crank_angles[j], mesh_phase[j],
-                                         theta_in, omega_in)
-        channel[CH_MESH_F0 + j] = f
-        mesh_state[j, 0] = kk
-        mesh_state[j, 1] = dl
-        torque_in += tq
+        force, torque, e, pw, stiffness, deflection = gear_mesh(
+            P, q, v, Q, j, crank_angles[j], mesh_phase[j], theta_in, omega_in)
+        channel[CH_MESH_F0 + j] = force
+        mesh_state[j, 0] = stiffness
+        mesh_state[j, 1] = deflection
+        torque_in += torque
         energy += e
         power += pw
     worst = 0.0
-    for k in range(2):
-        e, pw, pen = pin_contacts(P, q, v, Q, k, pins, pin_angle, u, next_eval, step, pin_force,
-                                  pin_elastic)
+    for disc in range(2):
+        e, pw, pen = pin_contacts(P, q, v, Q, disc, pins, pin_angle, u, next_eval, step,
+                                  pin_force, pin_elastic)
         energy += e
         power += pw
         if pen > worst:
             worst = pen
     for j in range(2):
-        for k in range(2):
-            wl = P[W_D1_L] if k == 0 else P[W_D2_L]
-            wu = P[W_D1_U] if k == 0 else P[W_D2_U]
-            f, e, pw = arm_bushing(P, q, v, Q, j, k, holes[j, 0], holes[j, 1], wl, wu,
-                                   arm_elastic)
-            channel[CH_ARM_F00 + 2 * j + k] = f
+        for disc in range(2):
+            wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
+            wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
+            force, e, pw = arm_bushing(P, q, v, Q, j, disc, holes[j, 0], holes[j, 1], wl, wu,
+                                       arm_elastic)
+            channel[CH_ARM_F00 + 2 * j + disc] = force
             energy += e
             power += pw
         for upper in range(2):
-            f, e, pw = support_bushing(P, q, v, Q, j, upper == 1, crank_angles[j])
-            channel[CH_SUP_FL0 + 2 * j + upper] = f
+            force, e, pw = support_bushing(P, q, v, Q, j, upper == 1, crank_angles[j])
+            channel[CH_SUP_FL0 + 2 * j + upper] = force
             energy += e
             power += pw
     torque_load = load_torque(P, t)
@@ -389,46 +391,59 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
-@numba.njit(cache=True)
-def integrate(P, q, v, n_steps, sample_every, pins, holes, crank_angles, mesh_phase,
-              channels, pin_forces, energy):
-    """Advance ``n_steps`` of size P[DT] from t = 0; returns (status, steps done).
+#: slots of the integer ``counters`` array carried between calls of :func:`integrate`
+COUNT_ROW, COUNT_IN_WINDOW = 0, 1
 
-    Samples every ``sample_every`` steps into ``channels`` (rows) and ``pin_forces``
-    (rows x 2 discs x zp pins).  ``energy`` accumulates the steady-window balance.
+
+def new_state(n_pins, n_channels):
+    """Work arrays that :func:`integrate` carries from one call to the next (all zero at t = 0):
+    (pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic, mesh_state, channel,
+    counters)."""
+    pin_angle = 2.0 * np.pi * np.arange(n_pins) / n_pins
+    return (pin_angle, np.zeros((2, n_pins)), np.zeros((2, n_pins), dtype=np.int64),
+            np.zeros((2, n_pins)), np.zeros((2, n_pins)), np.zeros((2, 2)), np.zeros((2, 2)),
+            np.zeros(n_channels), np.zeros(2, dtype=np.int64))
+
+
+@numba.njit(cache=True)
+def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes, crank_angles,
+              mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic,
+              mesh_state, channel, counters, channels, pin_forces, energy):
+    """Advance from step ``first_step`` to ``stop_step`` (exclusive) of a run of ``n_steps``
+    steps of size P[DT] that starts at t = 0; returns (status, next step).
+
+    The caller integrates in chunks (so that it can be interrupted and show progress) and
+    carries the state between calls: ``q``, ``v``, the work arrays of :func:`new_state` and
+    ``energy``.  The last step, ``n_steps``, only evaluates and samples; after it the next step
+    is ``n_steps + 1``.  Samples every ``sample_every`` steps into ``channels`` (rows) and
+    ``pin_forces`` (rows x 2 discs x zp pins).  ``energy`` accumulates the steady-window
+    balance.
     """
     dt = P[DT]
-    n_pins = pins.shape[0]
-    u = np.zeros((2, n_pins))
-    pin_angle = np.empty(n_pins)
-    for i in range(n_pins):
-        pin_angle[i] = 2.0 * math.pi * i / n_pins
-    pin_force = np.zeros((2, n_pins))
-    pin_elastic = np.zeros((2, n_pins))
-    arm_elastic = np.zeros((2, 2))
-    next_eval = np.zeros((2, n_pins), dtype=np.int64)
     Q = np.zeros(N_DOF)
-    channel = np.zeros(channels.shape[1])
-    row = 0
-    in_window = False
-    mesh_state = np.zeros((2, 2))
-    previous_k = np.zeros(2)
-    for step in range(n_steps + 1):
+    previous_stiffness = np.zeros(2)
+    row = counters[COUNT_ROW]
+    in_window = counters[COUNT_IN_WINDOW] == 1
+    status = STATUS_OK
+    step = first_step
+    while step < stop_step:
         t = step * dt
         for j in range(2):
-            previous_k[j] = mesh_state[j, 0]
+            previous_stiffness[j] = mesh_state[j, 0]
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
             pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state)
         if in_window:
             # work done on the meshes by the stiffness change between steps (parametric)
             for j in range(2):
-                energy[E_PARAMETRIC] += 0.5 * (mesh_state[j, 0] - previous_k[j]) \
+                energy[E_PARAMETRIC] += 0.5 * (mesh_state[j, 0] - previous_stiffness[j]) \
                     * mesh_state[j, 1] ** 2
         if not (math.isfinite(pot) and math.isfinite(q[CARRIER]) and math.isfinite(v[CARRIER])):
-            return STATUS_NONFINITE, step
+            status = STATUS_NONFINITE
+            break
         if pen > P[PEN_LIMIT]:
-            return STATUS_PENETRATION, step
+            status = STATUS_PENETRATION
+            break
         if step % sample_every == 0 and row < channels.shape[0]:
             channel[CH_TIME] = t
             channel[CH_THETA_IN] = theta_in
@@ -444,6 +459,7 @@ def integrate(P, q, v, n_steps, sample_every, pins, holes, crank_angles, mesh_ph
             if in_window:
                 energy[E_KIN1] = kinetic_energy(P, v)
                 energy[E_POT1] = pot
+            step += 1
             break
         if not in_window and t >= P[STEADY_START]:
             in_window = True
@@ -459,15 +475,18 @@ def integrate(P, q, v, n_steps, sample_every, pins, holes, crank_angles, mesh_ph
         for j in range(2):
             b = CRANK0 + CRANK_STRIDE * j
             for axis in range(2):
-                fl, fu = Q[b + axis], Q[b + 2 + axis]
-                v[b + axis] += dt * (P[MINV_LL] * fl + P[MINV_LU] * fu)
-                v[b + 2 + axis] += dt * (P[MINV_LU] * fl + P[MINV_UU] * fu)
+                f_low, f_up = Q[b + axis], Q[b + 2 + axis]
+                v[b + axis] += dt * (P[MINV_LL] * f_low + P[MINV_LU] * f_up)
+                v[b + 2 + axis] += dt * (P[MINV_LU] * f_low + P[MINV_UU] * f_up)
             v[b + 4] += dt * Q[b + 4] / P[J_CRANK]
-        for k in range(2):
-            d = DISC0 + DISC_STRIDE * k
+        for disc in range(2):
+            d = DISC0 + DISC_STRIDE * disc
             v[d] += dt * Q[d] / P[M_DISC]
             v[d + 1] += dt * Q[d + 1] / P[M_DISC]
             v[d + 2] += dt * Q[d + 2] / P[J_DISC]
         for i in range(N_DOF):
             q[i] += dt * v[i]
-    return STATUS_OK, n_steps
+        step += 1
+    counters[COUNT_ROW] = row
+    counters[COUNT_IN_WINDOW] = 1 if in_window else 0
+    return status, step

@@ -8,7 +8,7 @@
   loaded at its tip (bending + shear), per Timoshenko & Gere, *Mechanics of Materials*.
 * Pin body (factor B): total compression of a cylinder between two line loads (Roark's
   Formulas for Stress and Strain, 7th ed., Table 14.1 case 2c), linearised at the pin load that
-  carries the rated torque at the largest lever arm.
+  carries the reducer's rated torque (``rating.rated_torque``) at the largest lever arm.
 * Bushing ring (factor C): radial compression of the ring wall, t / (E r_m b), load spread over
   +-30 deg (chord = r_m).
 """
@@ -20,13 +20,10 @@ import math
 from ..parameters import Material
 
 __all__ = ["effective_modulus", "palmgren_coefficient", "tooth_compliance", "pin_compliance",
-           "ring_compliance", "PALMGREN_REFERENCE", "RATED_TORQUE_RV40E"]
+           "ring_compliance", "PALMGREN_REFERENCE"]
 
 #: Palmgren's constant holds for bearing steel on bearing steel
 PALMGREN_REFERENCE = Material("bearing steel", 2.075e11, 7850.0, 0.3)
-
-#: rated torque of the RV-40E [N*m]: the paper's fluctuation of 41.2 N*m is 10 % of it
-RATED_TORQUE_RV40E = 412.0
 
 
 def effective_modulus(m1: Material, m2: Material) -> float:

@@ -15,8 +15,7 @@ from ..geometry.cycloid import pin_centres, profile_offset
 from ..geometry.involute import gear_geometry
 from ..parameters import Reducer
 from . import _layout as L
-from .compliance import (RATED_TORQUE_RV40E, palmgren_coefficient, pin_compliance,
-                         ring_compliance, tooth_compliance)
+from .compliance import palmgren_coefficient, pin_compliance, ring_compliance, tooth_compliance
 
 __all__ = ["KernelModel", "build_model", "MassProperties", "mass_properties"]
 
@@ -157,7 +156,8 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.PROFILE_ROT] = e.rotation_modification
 
     P[L.PIN_C] = palmgren_coefficient(c.disc_width, m.cycloid_disc, m.pin)
-    pin_load = RATED_TORQUE_RV40E / (2.0 * c.eccentricity * c.disc_teeth)
+    # the pin load that carries the rated torque at the largest lever arm
+    pin_load = r.rating.rated_torque / (2.0 * c.eccentricity * c.disc_teeth)
     root_radius = c.pin_circle_radius - c.pin_radius - c.eccentricity
     body = 0.0
     if r.flexibility.cycloid_disc:
@@ -187,7 +187,8 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.MU] = r.contact.friction_coefficient
     P[L.V_FRIC] = r.contact.friction_velocity
 
-    P[L.J_CARRIER] = masses.carrier_inertia
+    # the driven load turns with the carrier (rigid coupling; docs/model.md section 7)
+    P[L.J_CARRIER] = masses.carrier_inertia + op.load_inertia
     P[L.M_DISC] = masses.disc_mass
     P[L.J_DISC] = masses.disc_inertia
     P[L.J_CRANK] = masses.crank_inertia

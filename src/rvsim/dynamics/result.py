@@ -13,7 +13,18 @@ from ..errors import InputFileError
 from ..units import ARCMIN
 from . import _layout as L
 
-__all__ = ["Result", "te_metrics", "te_spectrum"]
+__all__ = ["Result", "te_metrics", "te_spectrum", "crank_frequency"]
+
+
+def crank_frequency(time: np.ndarray, omega_out: np.ndarray, steady_start: float,
+                    pin_count: int) -> float:
+    """Mean rate of the crank rotation relative to the carrier over the steady window [Hz]:
+    the unit of the spectrum's orders (the crank turns ``pin_count`` times faster than the
+    carrier, relative to it)."""
+    window = time >= steady_start - 1e-12
+    if not window.any():
+        return 0.0
+    return float(abs(np.mean(omega_out[window])) * pin_count / (2.0 * np.pi))
 
 
 def te_spectrum(time: np.ndarray, te: np.ndarray, omega_out: np.ndarray, steady_start: float,
@@ -33,7 +44,7 @@ def te_spectrum(time: np.ndarray, te: np.ndarray, omega_out: np.ndarray, steady_
     dt = time[1] - time[0]
     amplitude = 2.0 * np.abs(np.fft.rfft(signal * np.hanning(n))) / (0.5 * n)
     freq = np.fft.rfftfreq(n, dt)
-    crank_hz = abs(np.mean(omega_out[window])) * pin_count / (2.0 * np.pi)
+    crank_hz = crank_frequency(time, omega_out, steady_start, pin_count)
     return (freq / crank_hz if crank_hz > 0 else freq), amplitude
 
 

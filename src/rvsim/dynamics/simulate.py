@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import time as _time
 
 import numpy as np
@@ -9,33 +10,69 @@ import numpy as np
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from . import _layout as L
-from ._kernel import integrate
+from ._kernel import COUNT_ROW, integrate, new_state
 from .model import build_model
 from .result import Result
 
-__all__ = ["simulate", "decompose_te", "DEFAULT_TIME_STEP", "DEFAULT_SAMPLE_RATE"]
+__all__ = ["simulate", "decompose_te", "DEFAULT_TIME_STEP", "DEFAULT_SAMPLE_RATE",
+           "CHUNK_STEPS", "MAX_HISTORY_BYTES", "ENERGY_RESIDUAL_LIMIT", "SPEED_RATIO_LIMIT"]
 
 #: integration step [s]; docs/model.md and the convergence test justify it
 DEFAULT_TIME_STEP = 1e-5
 #: rate at which histories are stored [Hz]
 DEFAULT_SAMPLE_RATE = 2000.0
+#: steps per call of the compiled driver (0.05 s simulated at the default step, about 20 ms of
+#: wall time): Ctrl-C and the progress bar act between calls
+CHUNK_STEPS = 5000
+#: memory the histories of one run may take [bytes]
+MAX_HISTORY_BYTES = 2 * 1024 ** 3
+#: largest |energy residual| / input work over the steady window of a trusted run (healthy runs:
+#: at most 1.19e-4 over the paper's 36 runs; docs/model.md section 9)
+ENERGY_RESIDUAL_LIMIT = 1e-2
+#: largest relative deviation of the steady speed ratio from the design ratio
+SPEED_RATIO_LIMIT = 0.05
+
+
+def _check_run_options(reducer: Reducer, duration: float, time_step: float,
+                       sample_rate: float) -> None:
+    if not 0 < time_step <= 1e-3:
+        raise ParameterError("time_step", f"must be in (0, 1e-3] s (got {time_step:g})")
+    if not (math.isfinite(sample_rate) and sample_rate > 0):
+        raise ParameterError("sample_rate", f"must be a positive number of Hz (got "
+                             f"{sample_rate:g})")
+    if not math.isfinite(duration):
+        raise ParameterError("duration", f"must be a finite number of seconds (got {duration:g})")
+    steady = reducer.operating.steady_start
+    rate = min(sample_rate, 1.0 / time_step)
+    if not duration >= steady + 2.0 / rate:
+        raise ParameterError("duration", f"must be longer than the start of the steady window "
+                             f"(operating.steady_start = {steady:g} s), where the TE metrics "
+                             f"are taken, by at least two samples (got {duration:g} s)")
+    per_second = rate * (L.N_CHANNELS + 2 * reducer.cycloid.pin_count) * 8
+    if duration * per_second > MAX_HISTORY_BYTES:
+        raise ParameterError("duration", f"{duration:g} s of histories at {rate:g} Hz need "
+                             f"{duration * per_second / 1e9:.3g} GB, more than the "
+                             f"{MAX_HISTORY_BYTES / 1e9:.3g} GB limit (at most "
+                             f"{MAX_HISTORY_BYTES / per_second:.0f} s at this sample rate)")
 
 
 def simulate(reducer: Reducer, *, duration: float | None = None,
              time_step: float = DEFAULT_TIME_STEP, sample_rate: float = DEFAULT_SAMPLE_RATE,
-             raise_on_failure: bool = True) -> Result:
+             raise_on_failure: bool = True, progress: bool = False) -> Result:
     """Simulate ``reducer`` from rest over ``duration`` (default: its operating duration).
 
-    Returns a :class:`Result`.  A run that diverges or whose pins penetrate more than 0.2 mm
-    raises :class:`~rvsim.errors.SimulationError` (or, with ``raise_on_failure=False``, returns
-    the partial result with its ``status``).
+    Returns a :class:`Result`.  A run that diverges, whose pins penetrate more than 0.2 mm, or
+    that ends in a physically absurd state (energy balance off by more than
+    :data:`ENERGY_RESIDUAL_LIMIT` of the input work, steady speed ratio more than
+    :data:`SPEED_RATIO_LIMIT` away from the design ratio) raises
+    :class:`~rvsim.errors.SimulationError` (or, with ``raise_on_failure=False``, returns the
+    result with its ``status``).  ``progress=True`` shows a progress bar on stderr.  The
+    compiled loop returns every :data:`CHUNK_STEPS` steps, so Ctrl-C (KeyboardInterrupt)
+    stops a run within a fraction of a second.
     """
     validate(reducer)
-    duration = reducer.operating.duration if duration is None else duration
-    if not duration > 0:
-        raise ParameterError("duration", "must be positive")
-    if not 0 < time_step <= 1e-3:
-        raise ParameterError("time_step", "must be in (0, 1e-3] s")
+    duration = float(reducer.operating.duration if duration is None else duration)
+    _check_run_options(reducer, duration, time_step, sample_rate)
     model = build_model(reducer, time_step)
     n_steps = int(round(duration / time_step))
     sample_every = max(1, int(round(1.0 / (sample_rate * time_step))))
@@ -45,21 +82,72 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     energy = np.zeros(L.N_ENERGY)
     q = model.q0.copy()
     v = np.zeros(L.N_DOF)
+    state = new_state(reducer.cycloid.pin_count, L.N_CHANNELS)
+    bar = _progress_bar(duration) if progress else None
     start = _time.perf_counter()
-    status, steps = integrate(model.P, q, v, n_steps, sample_every, model.pins, model.holes,
-                              model.crank_angles, model.mesh_phase, channels, pin_forces, energy)
+    step = 0
+    try:
+        while True:
+            stop = min(step + CHUNK_STEPS, n_steps + 1)
+            status, step = integrate(model.P, q, v, step, stop, n_steps, sample_every,
+                                     model.pins, model.holes, model.crank_angles,
+                                     model.mesh_phase, *state, channels, pin_forces, energy)
+            if bar is not None:
+                bar.update(min(step, n_steps) * time_step - bar.n)
+            if status != L.STATUS_OK or step > n_steps:
+                break
+    finally:
+        if bar is not None:
+            bar.close()
     wall = _time.perf_counter() - start
-    rows = steps // sample_every + (1 if status == L.STATUS_OK else 0)
-    rows = min(rows, n_samples)
+    steps = n_steps if status == L.STATUS_OK else step
+    rows = int(state[-1][COUNT_ROW])          # samples the kernel stored
     result = Result(time=channels[:rows, L.CH_TIME].copy(), channels=channels[:rows],
                     pin_forces=pin_forces[:rows], ratio=reducer.ratio,
                     steady_start=reducer.operating.steady_start,
                     status=L.STATUS_TEXT[status], steps=int(steps), wall_s=wall,
                     energy=_energy_balance(energy), reducer_name=reducer.name)
+    if status != L.STATUS_OK:
+        message = (f"simulation stopped at t = {steps * time_step:.4f} s: "
+                   f"{result.status.replace('_', ' ')}")
+    else:
+        status, message = _check_finished_run(result)
+        result.status = L.STATUS_TEXT[status]
     if status != L.STATUS_OK and raise_on_failure:
-        raise SimulationError(result.status, f"simulation stopped at t = {steps * time_step:.4f}"
-                              f" s: {result.status.replace('_', ' ')}")
+        raise SimulationError(result.status, message)
     return result
+
+
+def _progress_bar(duration: float):
+    import sys
+
+    from tqdm import tqdm
+
+    return tqdm(total=duration, unit="s", desc="simulating", file=sys.stderr, leave=False,
+                bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.2f}/{total:.2f} s simulated "
+                           "[{elapsed}<{remaining}]")
+
+
+def _check_finished_run(result: Result) -> tuple[int, str]:
+    """Status of a run that finished: energy balance and speed ratio (docs/model.md 9)."""
+    e = result.energy
+    # relative to the input work; without load, to the kinetic energy (the input work is then
+    # only the small damping loss)
+    scale = max(abs(e["input_work"]), e["kinetic_start"])
+    residual = e["residual"] / scale if scale > 0 else 0.0
+    if not abs(residual) <= ENERGY_RESIDUAL_LIMIT:
+        return L.STATUS_ENERGY, (
+            f"energy balance off by {100 * residual:.3g} % of the input work over the steady "
+            f"window (limit {100 * ENERGY_RESIDUAL_LIMIT:g} %): the state is not physical "
+            "(parameters outside the model's range, or a time step too large for them)")
+    ratio = result.metrics["speed_ratio"]
+    deviation = ratio / result.ratio - 1.0
+    if not abs(deviation) <= SPEED_RATIO_LIMIT:
+        return L.STATUS_SPEED_RATIO, (
+            f"steady speed ratio {ratio:.4g} is {100 * deviation:+.3g} % off the design "
+            f"ratio {result.ratio:.4g} (limit {100 * SPEED_RATIO_LIMIT:g} %): the drive does "
+            "not transmit the motion")
+    return L.STATUS_OK, ""
 
 
 def _energy_balance(e: np.ndarray) -> dict[str, float]:
@@ -74,6 +162,7 @@ def _energy_balance(e: np.ndarray) -> dict[str, float]:
     residual = (terms["input_work"] - terms["output_work"] - terms["dissipated"]
                 - terms["kinetic_change"] - terms["potential_change"] + terms["parametric_work"])
     terms = {k: float(v) for k, v in terms.items()}
+    terms["kinetic_start"] = float(e[L.E_KIN0])
     terms["residual"] = float(residual)
     terms["relative_residual"] = (float(residual / terms["input_work"])
                                   if terms["input_work"] else float("nan"))

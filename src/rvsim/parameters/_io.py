@@ -195,6 +195,7 @@ def _check_consistency(r: Reducer) -> None:
         raise ParameterError("operating.load_ramp_end", "must be later than load_start")
     if op.steady_start >= op.duration:
         raise ParameterError("operating.steady_start", "must be earlier than duration")
+    _check_clearances(r)
     from ..geometry.cycloid import check_profile
     from ..geometry.involute import check_gear_stage
 
@@ -211,6 +212,25 @@ def _check_consistency(r: Reducer) -> None:
     from ..geometry.assembly import check_assembly
 
     check_assembly(r)  # every pin, bushing and mesh at the pose the dynamic model starts from
+
+
+def _check_clearances(r: Reducer) -> None:
+    """The bushing clearances between a disc and the housing must stay below the cycloid tooth
+    height 2a: with that much play a disc can slip over the pins (docs/parameters.md)."""
+    cl = r.clearances
+    chain = {"clearances.crank_arm_bushing": cl.crank_arm_bushing,
+             "clearances.disc_arm_bushing": cl.disc_arm_bushing,
+             "clearances.crank_support_bushing": cl.crank_support_bushing,
+             "clearances.support_flange": cl.support_flange,
+             "clearances.support_carrier": cl.support_carrier}
+    play = (cl.crank_arm_bushing + cl.disc_arm_bushing + cl.crank_support_bushing
+            + max(cl.support_flange, cl.support_carrier))
+    tooth = 2.0 * r.cycloid.eccentricity
+    if play >= tooth:
+        largest = max(chain, key=chain.get)
+        raise ParameterError(largest, f"the play of a disc, K + M + O + max(L, N) = "
+                             f"{play * 1e3:g} mm, reaches the cycloid tooth height 2a = "
+                             f"{tooth * 1e3:g} mm (the disc could slip over the pins)")
 
 
 def parameter_table(reducer: Reducer) -> list[dict[str, Any]]:

@@ -15,7 +15,7 @@ from ._schema import count, flag, quantity
 
 __all__ = [
     "Material", "Materials", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances",
-    "Flexibility", "Operating", "ContactModel", "Reducer",
+    "Flexibility", "Operating", "ContactModel", "Rating", "Reducer",
 ]
 
 _MM = 1e-3
@@ -38,16 +38,18 @@ class Material:
 
 @dataclasses.dataclass(frozen=True)
 class Materials:
-    """Materials of the parts (paper Table 5)."""
+    """Materials of the parts the model uses (paper Table 5; bushings assumed).
 
-    input_shaft: Material = _material("15CrMo", 212.0, 7880.0, 0.284)
+    Table 5 also lists the input shaft, the pin housing and the flange: the model has no use for
+    them (the input shaft's motion is prescribed, the housing is rigid and fixed, and the flange
+    is bolted to the carrier, one body of the carrier's material), so they are not parameters.
+    """
+
     planet_gear: Material = _material("38CrMoAl", 211.0, 7850.0, 0.277)
     carrier: Material = _material("ZG65Mn", 198.0, 7850.0, 0.230)
     cycloid_disc: Material = _material("20CrMnMo", 207.0, 7870.0, 0.254)
     crankshaft: Material = _material("20CrMnMo", 207.0, 7870.0, 0.254)
-    pin_housing: Material = _material("GCr15", 219.0, 7830.0, 0.300)
     pin: Material = _material("QT500-7", 168.0, 7250.0, 0.240)
-    flange: Material = _material("ZG65Mn", 198.0, 7850.0, 0.230)
     bushing: Material = _material("GCr15", 219.0, 7830.0, 0.300)
 
 
@@ -80,7 +82,6 @@ class CycloidStage:
     pin_count: int = count(40, "pins zp (must be zc + 1)", minimum=4)
     disc_width: float = quantity(15.0 * _MM, "mm", "cycloid disc width (contact length)",
                                  positive=True)
-    pin_length: float = quantity(32.0 * _MM, "mm", "pin length", positive=True)
     pin_radius: float = quantity(3.0 * _MM, "mm", "pin radius r_rp", positive=True)
     pin_circle_radius: float = quantity(82.0 * _MM, "mm", "pin centre circle radius r_p",
                                         positive=True)
@@ -112,8 +113,6 @@ class Crankshaft:
                                      positive=True)
     arm_bushing_thickness: float = quantity(3.0 * _MM, "mm", "arm bushing ring wall",
                                             positive=True)
-    support_bushing_thickness: float = quantity(4.0 * _MM, "mm", "support bushing ring wall",
-                                                positive=True)
     support_bushing_width: float = quantity(10.0 * _MM, "mm", "support bushing length",
                                             positive=True)
     lower_support_z: float = quantity(0.0, "mm", "axial station of the lower (flange) support",
@@ -187,6 +186,9 @@ class Operating:
     load_fluctuation: bool = flag(False, "D: add fluctuation amplitude * sin(2 pi f t)")
     fluctuation_amplitude: float = quantity(41.2, "N*m", "fluctuation amplitude")
     fluctuation_frequency: float = quantity(20.0, "Hz", "fluctuation frequency")
+    load_inertia: float = quantity(0.3, "kg*m^2", "moment of inertia of the driven load "
+                                   "turning with the carrier (test rig: brake rotor, couplings, "
+                                   "torque sensor; docs/model.md)")
     duration: float = quantity(4.0, "s", "simulated time", positive=True)
     steady_start: float = quantity(1.5, "s", "start of the steady window for TE metrics")
 
@@ -207,6 +209,14 @@ class ContactModel:
 
 
 @dataclasses.dataclass(frozen=True)
+class Rating:
+    """Catalogue ratings of the reducer."""
+
+    rated_torque: float = quantity(412.0, "N*m", "rated output torque (RV-40E: 412 N*m; the "
+                                   "paper's 41.2 N*m fluctuation is 10 % of it)", positive=True)
+
+
+@dataclasses.dataclass(frozen=True)
 class Reducer:
     """A complete RV reducer: geometry, materials, errors and operating point."""
 
@@ -221,6 +231,7 @@ class Reducer:
     flexibility: Flexibility = dataclasses.field(default_factory=Flexibility)
     operating: Operating = dataclasses.field(default_factory=Operating)
     contact: ContactModel = dataclasses.field(default_factory=ContactModel)
+    rating: Rating = dataclasses.field(default_factory=Rating)
 
     @property
     def ratio(self) -> float:
