@@ -127,9 +127,12 @@ class Crankshaft:
 
 @dataclasses.dataclass(frozen=True)
 class Errors:
-    """Manufacturing errors and profile modifications (paper Table 2 F-J), all opening clearance.
+    """Manufacturing errors and profile modifications (paper Table 2 F-J).
 
-    Magnitudes are given; the direction is the one that opens clearance (paper Sec. 3.2).
+    Magnitudes are given in the direction the paper names (Sec. 3.2).  F, H, I and J open
+    clearance at every pin; G, the rotation modification, runout and pin position errors close
+    it somewhere, and the assembly check (geometry.assembly) rejects a reducer whose parts
+    overlap when assembled (docs/model.md section 2).
     """
 
     pin_radius: float = quantity(0.0, "mm", "F: pin radius made smaller by this")
