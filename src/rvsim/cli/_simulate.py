@@ -8,7 +8,8 @@ import sys
 from ..dynamics import DEFAULT_TIME_STEP, simulate
 from ..errors import ParameterError, SimulationError
 from ..parameters import paper_run_values
-from ._common import add_command, add_reducer_options, print_json, reducer_from_args
+from ._common import (add_command, add_reducer_options, check_output_file, print_json,
+                      reducer_from_args)
 
 __all__ = ["register"]
 
@@ -24,6 +25,9 @@ def _simulate(args: argparse.Namespace) -> int:
         raise ParameterError("--save", "histories are written as .npz (numpy.load reads them)")
     if args.report and not args.report.endswith(".html"):
         raise ParameterError("--report", "the report is an .html file")
+    for option, path in (("--save", args.save), ("--report", args.report)):
+        if path is not None:
+            check_output_file(path, option)     # before the run, not after it
     reducer = _reducer(args)
     try:
         result = simulate(reducer, duration=args.duration, time_step=args.time_step)

@@ -12,7 +12,8 @@ from ..analysis import analyze_table, range_analysis
 from ..analysis._table import read_table
 from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
 from ..errors import InputFileError
-from ._common import add_command, print_json
+from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
+                      probability)
 
 __all__ = ["register"]
 
@@ -27,6 +28,7 @@ def _response_column(table: pd.DataFrame, response: str | None) -> str:
 
 
 def _study(args: argparse.Namespace) -> int:
+    check_output_folder(args.out, "--out")   # before the study is read and run
     if args.study in BUILT_IN_STUDIES:
         study = BUILT_IN_STUDIES[args.study]()
     elif Path(args.study).suffix == ".toml":
@@ -92,8 +94,8 @@ def register(sub) -> None:
                     "Write DIR/report.html (self-contained: figures embedded, "
                     "no network requests) from a folder made by 'rvsim study'.",
                     ["rvsim report study"])
-    p.add_argument("folder", help="study folder")
-    p.add_argument("--alpha", type=float, help="significance level marked in the ANOVA "
+    p.add_argument("folder", type=path_text, help="study folder")
+    p.add_argument("--alpha", type=probability, help="significance level marked in the ANOVA "
                    "(default: the study's)")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_report)
@@ -108,10 +110,10 @@ def register(sub) -> None:
                     "rvsim study my_study.toml --out tol --workers 2",
                     "rvsim study paper-l36 --out study --scheduler tcp://127.0.0.1:8786"])
     p.add_argument("study", help="'paper-l36' or a study .toml file")
-    p.add_argument("--out", required=True, metavar="DIR", help="study folder")
-    p.add_argument("--workers", type=int, help="local worker processes (default: one per core)")
+    p.add_argument("--out", required=True, metavar="DIR", type=path_text, help="study folder")
+    p.add_argument("--workers", type=positive_int, help="local worker processes (default: one per core)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler")
-    p.add_argument("--alpha", type=float, default=0.1, help="significance level (default 0.1)")
+    p.add_argument("--alpha", type=probability, default=0.1, help="significance level (default 0.1)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-report", action="store_true", help="skip report.html")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
@@ -129,6 +131,6 @@ def register(sub) -> None:
     p.add_argument("--factors", help="comma-separated factor columns (default: single-letter "
                    "columns)")
     p.add_argument("--pool", help="comma-separated factors pooled into error")
-    p.add_argument("--alpha", type=float, default=0.1, help="significance level (default 0.1)")
+    p.add_argument("--alpha", type=probability, default=0.1, help="significance level (default 0.1)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_analyze)
