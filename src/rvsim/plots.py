@@ -105,7 +105,8 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 5
 
 
 def figure_to_png(fig, path=None) -> bytes:
-    """PNG bytes of ``fig`` (also written to ``path`` if given); closes the figure."""
+    """PNG bytes of ``fig`` (also written to ``path``, atomically, if given); closes the
+    figure."""
     import io
 
     plt = _pyplot()
@@ -114,6 +115,7 @@ def figure_to_png(fig, path=None) -> bytes:
     plt.close(fig)
     data = buffer.getvalue()
     if path is not None:
-        with open(path, "wb") as handle:
-            handle.write(data)
+        from ._files import atomic_write
+
+        atomic_write(path, lambda tmp: tmp.write_bytes(data))
     return data

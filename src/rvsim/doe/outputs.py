@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import pandas as pd
 
 from .._files import atomic_write_text
+from .._json import dumps
 from ..analysis import analyze_table, range_analysis
 from ..errors import InputFileError
 
@@ -26,7 +26,7 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
     except InputFileError as exc:
         analysis = {"error": f"analysis not possible: {exc}", "runs_ok": int(len(ok)),
                     "runs_total": int(len(results))}
-    atomic_write_text(folder / "analysis.json", json.dumps(analysis, indent=2, default=float))
+    atomic_write_text(folder / "analysis.json", dumps(analysis, indent=2))
     if "error" not in analysis:
         from ..plots import figure_to_png, main_effects_plot
 
