@@ -141,7 +141,9 @@ def read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
     Raises :class:`InputFileError` naming the file at fault; creates nothing.
     """
     if not folder.is_dir():
-        raise InputFileError(f"{folder}: not a folder (give the --out folder of 'rvsim study')")
+        what = "a file" if folder.exists() else "no such folder"
+        raise InputFileError(f"{folder}: not a study folder ({what}; give the --out folder of "
+                             "'rvsim study')")
     needed = [folder / n for n in ("results.csv", "analysis.json", "study.json")]
     missing = [p.name for p in needed if not p.is_file()]
     if missing:
