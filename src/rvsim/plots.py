@@ -38,10 +38,11 @@ def main_effects_plot(analysis, ax=None, *, factors=None, ylabel=None):
     label = ylabel or f"mean of {analysis.response}"
     for axis, factor in zip(axes, factors):
         k = analysis.level_means[factor]
-        axis.plot(range(1, len(k) + 1), k, "o-", color="C0")
+        levels = getattr(analysis, "levels", {}).get(factor) or list(range(1, len(k) + 1))
+        axis.plot(levels, k, "o-", color="C0")
         axis.axhline(analysis.grand_mean, color="0.6", lw=0.8, ls="--")
         axis.set_title(factor)
-        axis.set_xticks(range(1, len(k) + 1))
+        axis.set_xticks(levels)
         axis.set_xlabel("level")
     axes[0].set_ylabel(label)
     fig.tight_layout()

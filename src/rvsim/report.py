@@ -82,12 +82,17 @@ def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict) -
     table = results.set_index("run")[factors + ["te_mean_arcmin"]].copy()
     table = table.astype(object)
     table.index = table.index.astype(str)
-    width = max(len(analysis["range"][f]["k"]) for f in factors)
     order = analysis["order"].split(">")
+
+    def levels(f: str) -> list:   # analysis.json of older versions has no "levels"
+        k = analysis["range"][f]["k"]
+        return analysis["range"][f].get("levels") or list(range(1, len(k) + 1))
+
+    every = sorted({lv for f in factors for lv in levels(f)})
     extra = {}
-    for i in range(width):
-        extra[f"k{i + 1}"] = [analysis["range"][f]["k"][i] if i < len(analysis["range"][f]["k"])
-                              else float("nan") for f in factors] + [""]
+    for lv in every:
+        extra[f"k{lv}"] = [analysis["range"][f]["k"][levels(f).index(lv)] if lv in levels(f)
+                           else float("nan") for f in factors] + [""]
     extra["R"] = [analysis["range"][f]["R"] for f in factors] + [""]
     extra["rank"] = [order.index(f) + 1 for f in factors] + [""]
     extra["optimal level"] = [analysis["optimum"][f] for f in factors] + [""]

@@ -75,6 +75,8 @@ def _analyze(args: argparse.Namespace) -> int:
 
     print(anova(table, response, factors, pool=pool).to_df().round(4).to_string())
     print(f"\nsignificant at alpha = {args.alpha}: {', '.join(result['significant']) or 'none'}")
+    for note in result.get("notes", []):
+        print(f"note: {note}")
     return 0
 
 
