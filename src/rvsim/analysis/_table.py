@@ -11,8 +11,9 @@ __all__ = ["check_design_table", "factor_columns", "read_table", "is_balanced",
 
 #: note attached to analyses of tables whose levels do not occur equally often
 UNBALANCED_NOTE = ("unbalanced table (levels not equally often, e.g. a failed run): level "
-                   "means are plain averages and the ANOVA sums of squares are the regression "
-                   "fit's adjusted (Type III) ones")
+                   "means are plain averages and the ANOVA uses the regression fit's adjusted "
+                   "sums of squares (each factor after all others: Type II = Type III for "
+                   "main effects)")
 
 
 def read_table(path) -> pd.DataFrame:

@@ -8,6 +8,7 @@ from ..analytical import sensitivity_table
 from ..errors import ParameterError
 from ..geometry.export import export_profile
 from ..parameters import parameter_table
+from ..parameters._io import toml_string
 from ._common import (add_command, add_reducer_options, check_output_file, path_text,
                       print_json, reducer_from_args)
 
@@ -26,7 +27,7 @@ def _params(args: argparse.Namespace) -> int:
         return 0
     if args.toml:
         section = None
-        print(f'base = "RV-40E"\nname = "{reducer.name}"')
+        print(f'base = "RV-40E"\nname = {toml_string(reducer.name)}')
         for row in rows:
             head, _, leaf = row["name"].rpartition(".")
             if head != section:
