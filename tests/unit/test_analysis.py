@@ -175,3 +175,20 @@ def test_analysis_json_is_strict_json(tmp_path, table3):
     assert data["anova"]["Error"]["f"] is None       # NaN -> null
     assert sorted(p.name for p in tmp_path.iterdir()) == ["analysis.json", "main_effects.png",
                                                            "results.csv"]
+
+
+def test_analyze_cli_on_the_paper_table_minus_one_run(tmp_path, cli):
+    from tests.conftest import REFERENCE
+
+    lines = (REFERENCE / "table3_l36_results.csv").read_text().splitlines()
+    kept = [ln for ln in lines if not ln.startswith("18,")]
+    assert len(kept) == len(lines) - 1
+    path = tmp_path / "l35.csv"
+    path.write_text("\n".join(kept) + "\n")
+    res = cli("analyze", str(path), "--response", "te_arcmin", "--json")
+    assert res.code == 0, res.err
+    out = json.loads(res.out)
+    assert out["anova"]["Total"]["df"] == 34
+    assert any("unbalanced" in note for note in out["notes"])
+    text = cli("analyze", str(path), "--response", "te_arcmin")
+    assert text.code == 0 and "note: unbalanced table" in text.out
