@@ -83,6 +83,12 @@ CLI_ROWS = {
     "profile --out ''": (["profile", "--out", ""], "--out"),
     "profile --points 1e12": (["profile", "--out", "p.csv", "--points", "1000000000000"],
                               "--points"),
+    "--scheduler tcp://": (["study", "{study}", "--out", "out", "--scheduler", "tcp://"],
+                           "--scheduler"),
+    "--scheduler host:port99999": (["study", "{study}", "--out", "out", "--scheduler",
+                                    "host:99999"], "--scheduler"),
+    "--scheduler foo:bar": (["study", "{study}", "--out", "out", "--scheduler", "foo:bar"],
+                            "--scheduler"),
     "sun_teeth = 1e20": (["params", "--set", "gears.sun_teeth=1e20"], "gears.sun_teeth"),
 }
 if Path("/proc").is_dir():   # a folder nobody can write in, even root

@@ -15,7 +15,7 @@ from ..errors import InputFileError, RvsimError
 from ..parameters import RV40E, Reducer, load_toml, parse_assignment, with_values
 
 __all__ = ["Parser", "UsageError", "add_command", "add_reducer_options", "reducer_from_args",
-           "print_json", "EXAMPLES", "positive_int", "probability", "path_text",
+           "print_json", "EXAMPLES", "positive_int", "probability", "path_text", "scheduler_address",
            "check_output_file", "check_output_folder"]
 
 
@@ -91,6 +91,25 @@ def path_text(text: str) -> str:
     """argparse type: a non-empty path."""
     if not text.strip():
         raise argparse.ArgumentTypeError("empty path")
+    return text
+
+
+def scheduler_address(text: str) -> str:
+    """argparse type: a Dask scheduler address, ``[tcp|tls://]host[:port]``."""
+    from urllib.parse import urlparse
+
+    parsed = urlparse(text if "://" in text else f"tcp://{text}")
+    if parsed.scheme not in ("tcp", "tls") or not parsed.hostname or parsed.path \
+            or parsed.query:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a scheduler address "
+                                         "(expected tcp://host:port)")
+    try:
+        port = parsed.port
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}': the port must be a number from 1 to "
+                                         "65535") from None
+    if port == 0:
+        raise argparse.ArgumentTypeError(f"'{text}': the port must be a number from 1 to 65535")
     return text
 
 

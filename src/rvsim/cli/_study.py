@@ -13,7 +13,7 @@ from ..analysis._table import read_table
 from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
 from ..errors import InputFileError
 from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
-                      probability)
+                      probability, scheduler_address)
 
 __all__ = ["register"]
 
@@ -114,7 +114,7 @@ def register(sub) -> None:
     p.add_argument("study", help="'paper-l36' or a study .toml file")
     p.add_argument("--out", required=True, metavar="DIR", type=path_text, help="study folder")
     p.add_argument("--workers", type=positive_int, help="local worker processes (default: one per core)")
-    p.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler")
+    p.add_argument("--scheduler", metavar="ADDRESS", type=scheduler_address, help="run on this Dask scheduler")
     p.add_argument("--alpha", type=probability, default=0.1, help="significance level (default 0.1)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-report", action="store_true", help="skip report.html")
