@@ -17,8 +17,8 @@ def to_json_safe(value: Any) -> Any:
         return {k: to_json_safe(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [to_json_safe(v) for v in value]
-    if hasattr(value, "item") and callable(value.item):  # numpy scalar
-        return to_json_safe(value.item())
+    if hasattr(value, "tolist") and callable(value.tolist):  # numpy scalar or array
+        return to_json_safe(value.tolist())
     return value
 
 

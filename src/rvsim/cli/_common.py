@@ -61,7 +61,7 @@ def reducer_from_args(args: argparse.Namespace, preset: dict | None = None) -> R
 
 def print_json(payload: Any) -> None:
     """One JSON object on stdout (NaN/inf become null so any JSON reader accepts it)."""
-    json.dump(to_json_safe(payload), sys.stdout, indent=2)
+    json.dump(to_json_safe(payload), sys.stdout, indent=2, allow_nan=False)
     sys.stdout.write("\n")
 
 
