@@ -98,6 +98,15 @@ if Path("/proc").is_dir():   # a folder nobody can write in, even root
     CLI_ROWS["profile --out unwritable"] = (["profile", "--out", "/proc/x.csv"], "--out")
 
 
+PARAMS_ROWS = {
+    "base = []": ("base = []\n", "'base'"),
+    "name = []": ("name = []\n", "'name'"),
+    "value a list": ("[cycloid]\neccentricity = [1, 2]\n", "cycloid.eccentricity"),
+    "unknown table": ("[cycloid.eccentricity]\nx = 1\n", "cycloid.eccentricity.x"),
+    "yes/no": ('[operating]\nload_fluctuation = "maybe"\n', "operating.load_fluctuation"),
+}
+
+
 def listing(folder: Path) -> list[str]:
     return sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
 
@@ -139,6 +148,15 @@ def test_bad_command_line(workdir, cli, case):
         args = [a.replace(token, value) for a in args]
     before = listing(workdir)
     expect_one_line_error(cli(*args), words)
+    assert listing(workdir) == before
+
+
+@pytest.mark.parametrize("case", list(PARAMS_ROWS))
+def test_bad_reducer_file(workdir, cli, case):
+    text, words = PARAMS_ROWS[case]
+    (workdir / "reducer.toml").write_text(text)
+    before = listing(workdir)
+    expect_one_line_error(cli("profile", "--params", "reducer.toml", "--out", "p.csv"), words)
     assert listing(workdir) == before
 
 

@@ -150,6 +150,10 @@ def load_toml(path: str | Path, base: Reducer | None = None) -> Reducer:
     except tomllib.TOMLDecodeError as exc:
         raise InputFileError(f"{path}: not valid TOML ({exc})") from None
     base_name = data.pop("base", None)
+    for key, value in (("base", base_name), ("name", data.get("name"))):
+        if value is not None and not (isinstance(value, str) and value.strip()):
+            raise ParameterError(key, f"must be a non-empty text string in {path.name} "
+                                 f"(got {value!r})")
     if base is None:
         base_name = base_name or "RV-40E"
         if base_name not in BUILT_IN_SETS:
