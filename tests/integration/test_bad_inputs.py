@@ -168,11 +168,14 @@ def test_a_letter_alias_and_its_dotted_name_are_one_parameter(workdir, cli):
 
 # --- a damaged study folder given to 'rvsim report' ---------------------------------------
 
-def make_study_folder(folder: Path) -> Path:
+def make_study_folder(folder: Path, failed_runs=()) -> Path:
     """A study folder as 'rvsim study' leaves it (without the store), from the paper's table."""
     folder.mkdir()
     table = paper_l36_scheme().drop(columns=["note"]).rename(
         columns={"te_arcmin": "te_mean_arcmin"}).assign(status="ok", error="", key="k")
+    for run in failed_runs:
+        table.loc[table["run"] == run, ["status", "error", "te_mean_arcmin"]] = \
+            ["diverged", "simulation diverged at step 10", float("nan")]
     write_study_outputs(folder, table, list("ABCDEFGHIJKLMNO"))
     definition = {"name": "paper", "design": "L36", "samples": None, "seed": 0,
                   "time_step": 1e-5, "reducer": "RV-40E", "steady_start": 3.0,
@@ -220,6 +223,17 @@ def test_an_intact_study_folder_gets_its_report(tmp_path, cli, intact_study):
     res = cli("report", str(folder))
     assert res.code == 0, res.err
     assert (folder / "report.html").is_file()
+
+
+def test_a_study_with_a_failed_run_is_analysed_with_a_note(tmp_path, cli):
+    folder = make_study_folder(tmp_path / "s", failed_runs=(18,))
+    analysis = json.loads((folder / "analysis.json").read_text())
+    assert analysis["runs_ok"] == 35 and "error" not in analysis
+    assert any("unbalanced" in note for note in analysis["notes"])
+    res = cli("report", str(folder))
+    assert res.code == 0, res.err
+    page = (folder / "report.html").read_text()
+    assert "unbalanced table" in page and "Failed runs" in page
 
 
 @pytest.mark.parametrize("case", list(DAMAGE))

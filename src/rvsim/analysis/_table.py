@@ -90,6 +90,8 @@ def check_design_table(table: pd.DataFrame, response: str, factors: list[str]) -
                              f"{', '.join(map(str, table.columns))})")
     if isinstance(table[response], pd.DataFrame):
         raise InputFileError(f"response column '{response}' appears more than once")
+    if not len(table):
+        raise InputFileError("the table has no rows (no finished run to analyse)")
     out = table.copy()
     y = pd.to_numeric(out[response], errors="coerce")
     if y.isna().any():
