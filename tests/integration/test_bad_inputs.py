@@ -89,6 +89,11 @@ CLI_ROWS = {
                                     "host:99999"], "--scheduler"),
     "--scheduler foo:bar": (["study", "{study}", "--out", "out", "--scheduler", "foo:bar"],
                             "--scheduler"),
+    "--params ''": (["params", "--params", ""], "--params"),
+    "simulate --save ''": (["simulate", "--save", ""], "--save"),
+    "analyze ''": (["analyze", ""], "table"),
+    "analyze a folder": (["analyze", "{folder}"], "a_folder"),
+    "--params a folder": (["params", "--params", "{folder}"], "a_folder"),
     "sun_teeth = 1e20": (["params", "--set", "gears.sun_teeth=1e20"], "gears.sun_teeth"),
 }
 if Path("/proc").is_dir():   # a folder nobody can write in, even root

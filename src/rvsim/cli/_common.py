@@ -42,7 +42,7 @@ def add_command(sub, name: str, summary: str, description: str, examples: list[s
 
 def add_reducer_options(parser: argparse.ArgumentParser) -> None:
     """--params FILE and repeated --set NAME=VALUE."""
-    parser.add_argument("--params", metavar="FILE",
+    parser.add_argument("--params", metavar="FILE", type=path_text,
                         help="TOML file describing the reducer (user units, see 'rvsim params')")
     parser.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
                         dest="assignments",
@@ -53,7 +53,7 @@ def add_reducer_options(parser: argparse.ArgumentParser) -> None:
 def reducer_from_args(args: argparse.Namespace, preset: dict | None = None) -> Reducer:
     """The reducer of --params (built-in RV-40E by default) with ``preset`` values (e.g. a
     paper run) and then the --set values applied, validated."""
-    reducer = load_toml(args.params) if args.params else RV40E
+    reducer = load_toml(args.params) if args.params is not None else RV40E
     values = dict(preset or {})
     values.update(parse_assignment(a) for a in args.assignments)
     return with_values(reducer, values)

@@ -128,7 +128,7 @@ def register(sub) -> None:
                     "level numbers, one response column).",
                     ["rvsim analyze study/results.csv --json",
                     "rvsim analyze table3.csv --response te_arcmin --pool B,C"])
-    p.add_argument("table", help="CSV file")
+    p.add_argument("table", type=path_text, help="CSV file")
     p.add_argument("--response", help="response column (default te_mean_arcmin or te_arcmin)")
     p.add_argument("--factors", help="comma-separated factor columns (default: single-letter "
                    "columns)")
