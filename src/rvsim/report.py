@@ -115,7 +115,11 @@ def write_study_report(folder: str | Path, *, study=None, alpha: float | None = 
         # files that pass the structure checks but still disagree with each other
         raise InputFileError(f"{folder}: damaged study files ({type(exc).__name__}: {exc}); "
                              "run 'rvsim study' again") from None
-    return atomic_write_text(folder / "report.html", page)
+    try:
+        return atomic_write_text(folder / "report.html", page)
+    except OSError as exc:
+        raise InputFileError(f"{folder / 'report.html'}: cannot write ({exc.strerror or exc})"
+                             ) from None
 
 
 def _load_json(path: Path) -> dict:
