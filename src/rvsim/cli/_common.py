@@ -15,8 +15,8 @@ from ..errors import InputFileError, RvsimError
 from ..parameters import RV40E, Reducer, load_toml, parse_assignment, with_values
 
 __all__ = ["Parser", "UsageError", "add_command", "add_reducer_options", "reducer_from_args",
-           "print_json", "EXAMPLES", "positive_int", "probability", "path_text", "scheduler_address",
-           "check_output_file", "check_output_folder"]
+           "print_json", "EXAMPLES", "positive_int", "probability", "path_text",
+           "scheduler_address", "check_output_file", "check_output_folder"]
 
 
 class UsageError(RvsimError):

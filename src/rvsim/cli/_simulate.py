@@ -68,8 +68,10 @@ def register(sub) -> None:
     p.add_argument("--paper-run", type=int, metavar="N",
                    help="apply row N (1..36) of the paper's L36 scheme (Table 3 with Table 2 "
                         "levels); --set values override it")
-    p.add_argument("--save", metavar="FILE.npz", type=path_text, help="write the time histories (numpy .npz)")
-    p.add_argument("--report", metavar="FILE.html", type=path_text, help="write a self-contained HTML report")
+    p.add_argument("--save", metavar="FILE.npz", type=path_text,
+                   help="write the time histories (numpy .npz)")
+    p.add_argument("--report", metavar="FILE.html", type=path_text,
+                   help="write a self-contained HTML report")
     p.add_argument("--duration", type=float, help="simulated time [s] (default: "
                    "operating.duration, 4 s)")
     p.add_argument("--time-step", type=float, default=DEFAULT_TIME_STEP,

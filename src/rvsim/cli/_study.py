@@ -113,9 +113,12 @@ def register(sub) -> None:
                     "rvsim study paper-l36 --out study --scheduler tcp://127.0.0.1:8786"])
     p.add_argument("study", help="'paper-l36' or a study .toml file")
     p.add_argument("--out", required=True, metavar="DIR", type=path_text, help="study folder")
-    p.add_argument("--workers", type=positive_int, help="local worker processes (default: one per core)")
-    p.add_argument("--scheduler", metavar="ADDRESS", type=scheduler_address, help="run on this Dask scheduler")
-    p.add_argument("--alpha", type=probability, default=0.1, help="significance level (default 0.1)")
+    p.add_argument("--workers", type=positive_int,
+                   help="local worker processes (default: one per core)")
+    p.add_argument("--scheduler", metavar="ADDRESS", type=scheduler_address,
+                   help="run on this Dask scheduler")
+    p.add_argument("--alpha", type=probability, default=0.1,
+                   help="significance level (default 0.1)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-report", action="store_true", help="skip report.html")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
@@ -133,6 +136,7 @@ def register(sub) -> None:
     p.add_argument("--factors", help="comma-separated factor columns (default: single-letter "
                    "columns)")
     p.add_argument("--pool", help="comma-separated factors pooled into error")
-    p.add_argument("--alpha", type=probability, default=0.1, help="significance level (default 0.1)")
+    p.add_argument("--alpha", type=probability, default=0.1,
+                   help="significance level (default 0.1)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_analyze)
