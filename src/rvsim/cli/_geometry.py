@@ -4,10 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from ..analytical import sensitivity_table
-from ..errors import ParameterError
-from ..geometry.export import export_profile
 from ..parameters import parameter_table
+from ..errors import ParameterError
 from ..parameters._io import toml_string
 from ._common import (add_command, add_reducer_options, check_output_file, path_text,
                       print_json, reducer_from_args)
@@ -47,6 +45,8 @@ def _params(args: argparse.Namespace) -> int:
 
 
 def _profile(args: argparse.Namespace) -> int:
+    from ..geometry.export import export_profile
+
     if not 1 <= args.points <= MAX_PROFILE_POINTS:
         raise ParameterError("--points", f"must be between 1 and {MAX_PROFILE_POINTS:,} "
                              f"(got {args.points:,})")
@@ -62,6 +62,8 @@ def _profile(args: argparse.Namespace) -> int:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
+    from ..analytical import sensitivity_table
+
     table = sensitivity_table(reducer_from_args(args))
     if args.json:
         print_json(table.to_dict())

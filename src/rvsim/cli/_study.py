@@ -6,11 +6,6 @@ import argparse
 import sys
 from pathlib import Path
 
-import pandas as pd
-
-from ..analysis import analyze_table, range_analysis
-from ..analysis._table import read_table
-from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
 from ..errors import InputFileError
 from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
                       probability, scheduler_address)
@@ -18,7 +13,7 @@ from ._common import (add_command, check_output_folder, path_text, positive_int,
 __all__ = ["register"]
 
 
-def _response_column(table: pd.DataFrame, response: str | None) -> str:
+def _response_column(table, response: str | None) -> str:
     if response:
         return response
     for name in ("te_mean_arcmin", "te_arcmin"):
@@ -28,6 +23,8 @@ def _response_column(table: pd.DataFrame, response: str | None) -> str:
 
 
 def _study(args: argparse.Namespace) -> int:
+    from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
+
     check_output_folder(args.out, "--out")   # before the study is read and run
     if args.study in BUILT_IN_STUDIES:
         study = BUILT_IN_STUDIES[args.study]()
@@ -59,6 +56,9 @@ def _study(args: argparse.Namespace) -> int:
 
 
 def _analyze(args: argparse.Namespace) -> int:
+    from ..analysis import analyze_table, anova, range_analysis
+    from ..analysis._table import read_table
+
     table = read_table(args.table)
     factors = args.factors.split(",") if args.factors else None
     pool = tuple(p for p in args.pool.split(",") if p) if args.pool else ()
@@ -71,8 +71,6 @@ def _analyze(args: argparse.Namespace) -> int:
     print(ra.to_df().round(4).to_string())
     print(f"\norder: {result['order']}")
     print("\nANOVA (main effects)")
-    from ..analysis import anova
-
     print(anova(table, response, factors, pool=pool).to_df().round(4).to_string())
     print(f"\nsignificant at alpha = {args.alpha}: {', '.join(result['significant']) or 'none'}")
     for note in result.get("notes", []):
