@@ -47,11 +47,11 @@ def _params(args: argparse.Namespace) -> int:
 def _profile(args: argparse.Namespace) -> int:
     from ..geometry.export import export_profile
 
+    reducer = reducer_from_args(args)
     if not 1 <= args.points <= MAX_PROFILE_POINTS:
         raise ParameterError("--points", f"must be between 1 and {MAX_PROFILE_POINTS:,} "
                              f"(got {args.points:,})")
     check_output_file(args.out, "--out")
-    reducer = reducer_from_args(args)
     summary = export_profile(reducer, args.out, points=args.points)
     if args.json:
         print_json(summary)

@@ -25,7 +25,6 @@ def _response_column(table, response: str | None) -> str:
 def _study(args: argparse.Namespace) -> int:
     from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
 
-    check_output_folder(args.out, "--out")   # before the study is read and run
     if args.study in BUILT_IN_STUDIES:
         study = BUILT_IN_STUDIES[args.study]()
     elif Path(args.study).suffix == ".toml":
@@ -33,6 +32,7 @@ def _study(args: argparse.Namespace) -> int:
     else:
         raise InputFileError(f"unknown study '{args.study}' (built in: "
                              f"{', '.join(BUILT_IN_STUDIES)}; or a .toml file)")
+    check_output_folder(args.out, "--out")   # before the runs, not after them
     folder = Path(args.out)
     progress = not args.no_progress and sys.stderr.isatty()
     results = run(study, folder, workers=args.workers, scheduler=args.scheduler,
