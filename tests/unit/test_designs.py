@@ -77,3 +77,13 @@ def test_study_objects_refuse_contradictions_and_oversized_designs():
     with pytest.raises(ParameterError, match="samples"):
         Study("s", (StudyFactor("H", "errors.pin_circle_radius", low=0.0, high=0.02),),
               design="lhs", samples=MAX_RUNS + 1)
+
+
+def test_reserved_labels_cover_every_metric_column():
+    # a factor label must never overwrite a metric column of results.csv
+    from rvsim.doe.study import RESULT_COLUMNS
+    from rvsim.dynamics.result import te_metrics
+
+    t = np.linspace(0.0, 1.0, 11)
+    keys = te_metrics(t, 1e-4 * t, np.ones_like(t), np.ones_like(t), 0.5)
+    assert all(k in RESULT_COLUMNS or k.startswith("te_") for k in keys)
