@@ -72,6 +72,7 @@ def test_analyze_json_layout(table3):
     (lambda t: t.assign(te_arcmin=t["te_arcmin"].where(t.index != 5, float("inf"))),
      "row 6 is not finite"),
     (lambda t: t.assign(te_arcmin=0.0), "every value is zero"),
+    (lambda t: t.assign(te_arcmin=t["te_arcmin"] * 1e300), "row 1 .* is beyond"),
     (lambda t: t.assign(P=t["H"]), "'H' and 'P' vary together"),
     (lambda t: pd.concat([t, t[["H"]]], axis=1), "'H' appears more than once"),
 ])

@@ -9,6 +9,9 @@ from ..errors import InputFileError
 __all__ = ["check_design_table", "factor_columns", "read_table", "is_balanced",
            "UNBALANCED_NOTE"]
 
+#: largest response magnitude analysed: sums of squares of larger values overflow doubles
+_LARGEST_RESPONSE = 1e150
+
 #: note attached to analyses of tables whose levels do not occur equally often
 UNBALANCED_NOTE = ("unbalanced table (levels not equally often, e.g. a failed run): level "
                    "means are plain averages and the ANOVA uses the regression fit's adjusted "
@@ -102,6 +105,10 @@ def check_design_table(table: pd.DataFrame, response: str, factors: list[str]) -
         bad = int(np.flatnonzero(~np.isfinite(y.to_numpy(dtype=float)))[0])
         raise InputFileError(f"response column '{response}': row {bad + 1} is not finite "
                              f"({y.iloc[bad]})")
+    if (y.abs() > _LARGEST_RESPONSE).any():
+        bad = int(np.flatnonzero((y.abs() > _LARGEST_RESPONSE).to_numpy())[0])
+        raise InputFileError(f"response column '{response}': row {bad + 1} ({y.iloc[bad]:g}) "
+                             f"is beyond +-{_LARGEST_RESPONSE:g} (its square would overflow)")
     if (y == 0).all():
         raise InputFileError(f"response column '{response}': every value is zero (nothing to "
                              "analyse; the S/N ratio is undefined)")
