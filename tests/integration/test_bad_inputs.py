@@ -62,6 +62,7 @@ STUDY_ROWS = {
     "time_step = 'fast'": (study('time_step = "fast"'), "time_step"),
     "time_step = 0": (study("time_step = 0"), "time_step"),
     "full factorial 5^12": (study(body=TWELVE, design="full"), "design"),
+    "repeated level": (study(body=factors(H=("H", [0.0, 0.0]))), "factors.H.levels"),
     "unknown factor key": (study(body=H.replace("levels", "level")), "factors.H"),
 }
 

@@ -270,4 +270,7 @@ def _factor(label: str, spec, design: str, sampling: bool, path: Path) -> StudyF
         raise ParameterError(f"factors.{label}.levels", "needs a list of at least 2 levels")
     if any(isinstance(v, (dict, list)) for v in levels):
         raise ParameterError(f"factors.{label}.levels", "levels must be single values")
+    repeated = [v for i, v in enumerate(levels) if v in levels[:i]]
+    if repeated:
+        raise ParameterError(f"factors.{label}.levels", f"level {repeated[0]!r} is given twice")
     return StudyFactor(label, parameter, tuple(levels))
