@@ -20,7 +20,7 @@ import pandas as pd
 from ._files import atomic_write_text
 from .errors import InputFileError
 
-__all__ = ["write_study_report", "write_run_report", "read_study_folder"]
+__all__ = ["write_study_report", "write_run_report"]
 
 _CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Roboto,sans-serif;margin:2em auto;
@@ -105,7 +105,7 @@ def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict) -
 def write_study_report(folder: str | Path, *, study=None, alpha: float | None = None) -> Path:
     """Write ``folder/report.html`` from a finished study folder (nothing if it is damaged)."""
     folder = Path(folder)
-    results, analysis, definition = read_study_folder(folder)
+    results, analysis, definition = _read_study_folder(folder)
     factors = [f["label"] for f in definition["factors"]]
     if alpha is not None and not 0.0 < alpha < 1.0:
         raise InputFileError(f"alpha: must be between 0 and 1, exclusive (got {alpha})")
@@ -144,7 +144,7 @@ def _require(data: dict, path: Path, keys: dict[str, type | tuple]) -> None:
                                  "again")
 
 
-def read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
+def _read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
     """results.csv, analysis.json and study.json of a study folder, structure checked.
 
     Raises :class:`InputFileError` naming the file at fault; creates nothing.
