@@ -38,10 +38,11 @@ def main_effects_plot(analysis, ax=None, *, factors=None, ylabel=None):
     label = ylabel or f"mean of {analysis.response}"
     for axis, factor in zip(axes, factors):
         k = analysis.level_means[factor]
-        axis.plot(range(1, len(k) + 1), k, "o-", color="C0")
+        levels = getattr(analysis, "levels", {}).get(factor) or list(range(1, len(k) + 1))
+        axis.plot(levels, k, "o-", color="C0")
         axis.axhline(analysis.grand_mean, color="0.6", lw=0.8, ls="--")
         axis.set_title(factor)
-        axis.set_xticks(range(1, len(k) + 1))
+        axis.set_xticks(levels)
         axis.set_xlabel("level")
     axes[0].set_ylabel(label)
     fig.tight_layout()
@@ -111,7 +112,8 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 5
 
 
 def figure_to_png(fig, path=None) -> bytes:
-    """PNG bytes of ``fig`` (also written to ``path`` if given); closes the figure."""
+    """PNG bytes of ``fig`` (also written to ``path``, atomically, if given); closes the
+    figure."""
     import io
 
     plt = _pyplot()
@@ -120,6 +122,7 @@ def figure_to_png(fig, path=None) -> bytes:
     plt.close(fig)
     data = buffer.getvalue()
     if path is not None:
-        with open(path, "wb") as handle:
-            handle.write(data)
+        from ._files import atomic_write
+
+        atomic_write(path, lambda tmp: tmp.write_bytes(data))
     return data

@@ -66,6 +66,10 @@ def _page(title: str, body: list[str]) -> str:
             + "\n".join(body) + "</body></html>")
 
 
+def _arcmin(value) -> str:
+    return "not available" if value is None else f"{float(value):.4f} arcmin"
+
+
 def _history_object(history: dict):
     return types.SimpleNamespace(time=history["time"], omega_in=history["omega_in"],
                                  omega_out=history["omega_out"], te=history["te"],
@@ -78,12 +82,17 @@ def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict) -
     table = results.set_index("run")[factors + ["te_mean_arcmin"]].copy()
     table = table.astype(object)
     table.index = table.index.astype(str)
-    width = max(len(analysis["range"][f]["k"]) for f in factors)
     order = analysis["order"].split(">")
+
+    def levels(f: str) -> list:   # analysis.json of older versions has no "levels"
+        k = analysis["range"][f]["k"]
+        return analysis["range"][f].get("levels") or list(range(1, len(k) + 1))
+
+    every = sorted({lv for f in factors for lv in levels(f)})
     extra = {}
-    for i in range(width):
-        extra[f"k{i + 1}"] = [analysis["range"][f]["k"][i] if i < len(analysis["range"][f]["k"])
-                              else float("nan") for f in factors] + [""]
+    for lv in every:
+        extra[f"k{lv}"] = [analysis["range"][f]["k"][levels(f).index(lv)] if lv in levels(f)
+                           else float("nan") for f in factors] + [""]
     extra["R"] = [analysis["range"][f]["R"] for f in factors] + [""]
     extra["rank"] = [order.index(f) + 1 for f in factors] + [""]
     extra["optimal level"] = [analysis["optimum"][f] for f in factors] + [""]
@@ -94,22 +103,113 @@ def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict) -
 
 
 def write_study_report(folder: str | Path, *, study=None, alpha: float | None = None) -> Path:
-    """Write ``folder/report.html`` from a finished study folder."""
+    """Write ``folder/report.html`` from a finished study folder (nothing if it is damaged)."""
+    folder = Path(folder)
+    results, analysis, definition = _read_study_folder(folder)
+    factors = [f["label"] for f in definition["factors"]]
+    if alpha is not None and not 0.0 < alpha < 1.0:
+        raise InputFileError(f"alpha: must be between 0 and 1, exclusive (got {alpha})")
+    try:
+        page = _study_page(folder, results, analysis, definition, factors, alpha)
+    except (KeyError, TypeError, ValueError, IndexError, AttributeError) as exc:
+        # files that pass the structure checks but still disagree with each other
+        raise InputFileError(f"{folder}: damaged study files ({type(exc).__name__}: {exc}); "
+                             "run 'rvsim study' again") from None
+    try:
+        return atomic_write_text(folder / "report.html", page)
+    except OSError as exc:
+        raise InputFileError(f"{folder / 'report.html'}: cannot write ({exc.strerror or exc})"
+                             ) from None
+
+
+def _load_json(path: Path) -> dict:
+    def constant(name: str):  # files of older versions hold bare NaN: read it as null
+        return None
+
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"), parse_constant=constant)
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputFileError(f"{path}: cannot read ({exc})") from None
+    except json.JSONDecodeError as exc:
+        raise InputFileError(f"{path}: not valid JSON ({exc})") from None
+    if not isinstance(data, dict):
+        raise InputFileError(f"{path}: expected a JSON object")
+    return data
+
+
+def _require(data: dict, path: Path, keys: dict[str, type | tuple]) -> None:
+    for key, kind in keys.items():
+        if not isinstance(data.get(key), kind):
+            raise InputFileError(f"{path}: '{key}' missing or malformed; run 'rvsim study' "
+                                 "again")
+
+
+def _read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
+    """results.csv, analysis.json and study.json of a study folder, structure checked.
+
+    Raises :class:`InputFileError` naming the file at fault; creates nothing.
+    """
+    if not folder.is_dir():
+        what = "a file" if folder.exists() else "no such folder"
+        raise InputFileError(f"{folder}: not a study folder ({what}; give the --out folder of "
+                             "'rvsim study')")
+    needed = [folder / n for n in ("results.csv", "analysis.json", "study.json")]
+    missing = [p.name for p in needed if not p.is_file()]
+    if missing:
+        raise InputFileError(f"{folder}: not a study folder (missing {', '.join(missing)}; "
+                             "run 'rvsim study' first)")
+    definition = _load_json(folder / "study.json")
+    _require(definition, folder / "study.json", {"name": str, "design": str, "reducer": str,
+                                                  "steady_start": (int, float),
+                                                  "factors": list})
+    for f in definition["factors"]:
+        if not isinstance(f, dict) or not isinstance(f.get("label"), str) \
+                or not isinstance(f.get("parameter"), str) \
+                or not isinstance(f.get("levels"), list):
+            raise InputFileError(f"{folder / 'study.json'}: malformed factor entry {f!r}")
+    labels = [f["label"] for f in definition["factors"]]
+    if not labels:
+        raise InputFileError(f"{folder / 'study.json'}: no factors")
+    analysis = _load_json(folder / "analysis.json")
+    if "error" not in analysis:
+        _require(analysis, folder / "analysis.json", {"range": dict, "order": str,
+                                                      "optimum": dict, "anova": dict,
+                                                      "prediction": dict})
+        if set(analysis["range"]) != set(labels):
+            raise InputFileError(f"{folder / 'analysis.json'}: its factors "
+                                 f"({', '.join(analysis['range'])}) are not those of "
+                                 f"study.json ({', '.join(labels)})")
+    path = folder / "results.csv"
+    try:
+        results = pd.read_csv(path, keep_default_na=False, na_values=[""])
+    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError
+            ) as exc:
+        raise InputFileError(f"{path}: cannot read ({str(exc).strip()})") from None
+    columns = ["run", "status", "key", "te_mean_arcmin"] + labels
+    absent = [c for c in columns if c not in results.columns]
+    if absent:
+        raise InputFileError(f"{path}: missing column(s) {', '.join(absent)} (truncated or "
+                             "not written by 'rvsim study')")
+    runs = pd.to_numeric(results["run"], errors="coerce")
+    if runs.isna().any() or results["status"].isna().any() or not len(results):
+        raise InputFileError(f"{path}: incomplete rows (truncated?); run 'rvsim study' again")
+    total = analysis.get("runs_total")
+    if isinstance(total, int) and total != len(results):
+        raise InputFileError(f"{path}: {len(results)} rows, analysis.json counts {total} runs "
+                             "(truncated?); run 'rvsim study' again")
+    if (results["status"] == "ok").any():
+        ok = results[results["status"] == "ok"]
+        if pd.to_numeric(ok["te_mean_arcmin"], errors="coerce").isna().any():
+            raise InputFileError(f"{path}: a finished run has no te_mean_arcmin (truncated?)")
+    return results, analysis, definition
+
+
+def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition: dict,
+                factors: list[str], alpha: float | None) -> str:
     from .analysis import range_analysis, sn_response_table
     from .doe.store import ResultStore
     from .plots import main_effects_plot, spectrum_plot, speed_plot, te_plot
 
-    folder = Path(folder)
-    needed = [folder / n for n in ("results.csv", "analysis.json", "study.json")]
-    missing = [p.name for p in needed if not p.exists()]
-    if missing:
-        raise InputFileError(f"{folder}: not a study folder (missing {', '.join(missing)}; "
-                             "run 'rvsim study' first)")
-    results = pd.read_csv(folder / "results.csv", keep_default_na=False,
-                          na_values=[""])
-    analysis = json.loads((folder / "analysis.json").read_text())
-    definition = json.loads((folder / "study.json").read_text())
-    factors = [f["label"] for f in definition["factors"]]
     alpha = alpha if alpha is not None else analysis.get("alpha", 0.1)
     body = [f"<h1>RV reducer study: {html.escape(definition['name'])}</h1>",
             f"<p class='note'>Reducer: {html.escape(definition['reducer'])}. Design "
@@ -127,19 +227,20 @@ def write_study_report(folder: str | Path, *, study=None, alpha: float | None = 
         body.append("<p class='note'>Fixed for every run: " + html.escape(", ".join(
             f"{k} = {v}" for k, v in definition["fixed"])) + "</p>")
 
-    store = ResultStore(folder)
-    try:
-        histories = {}
-        keys = list(store.finished())
-        for _, row in results.head(10).iterrows():
-            if row["status"] != "ok":
-                continue
-            full = [k for k in keys if k.startswith(str(row["key"]))]
-            hist = store.history(full[0]) if full else None
-            if hist is not None:
-                histories[f"run {int(row['run'])}"] = _history_object(hist)
-    finally:
-        store.close()
+    histories = {}
+    if (folder / "results.sqlite").is_file():   # opening a missing store would create one
+        store = ResultStore(folder)
+        try:
+            keys = list(store.finished())
+            for _, row in results.head(10).iterrows():
+                if row["status"] != "ok":
+                    continue
+                full = [k for k in keys if k.startswith(str(row["key"]))]
+                hist = store.history(full[0]) if full else None
+                if hist is not None:
+                    histories[f"run {int(row['run'])}"] = _history_object(hist)
+        finally:
+            store.close()
     if histories:
         first = next(iter(histories.values()))
         body += ["<h2>Input and output speed (Fig. 4)</h2>",
@@ -160,7 +261,7 @@ def write_study_report(folder: str | Path, *, study=None, alpha: float | None = 
                  f"<p>Factor order by range: <b>{html.escape(analysis['order'])}</b>. "
                  "Optimum (smaller is better): " + html.escape(" ".join(
                      f"{f}{lvl}" for f, lvl in analysis["optimum"].items())) + "</p>"]
-        anova = pd.DataFrame(analysis["anova"]).T
+        anova = pd.DataFrame(analysis["anova"]).T.astype(float)   # null -> NaN
         anova.index.name = "source"
         anova = anova.rename(columns={"df": "DF", "adj_ss": "Adj SS", "adj_ms": "Adj MS",
                                       "f": "F-Value", "p": "P-Value"})
@@ -173,8 +274,9 @@ def write_study_report(folder: str | Path, *, study=None, alpha: float | None = 
                  f"{html.escape(', '.join(significant) or 'none')}. Predicted TE at the "
                  "optimum from the significant factors"
                  + (": " if significant else " (none: the grand mean): ")
-                 + f"{analysis['prediction']['predicted']:.4f} arcmin.</p>",
-                 "<h2>Main effects (Figs. 8-10)</h2>",
+                 + _arcmin(analysis["prediction"].get("predicted")) + ".</p>"]
+        body += [f"<p class='note'>{html.escape(note)}</p>" for note in analysis.get("notes", [])]
+        body += ["<h2>Main effects (Figs. 8-10)</h2>",
                  _png(main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
                                         ylabel="mean TE [arcmin]")),
                  "<h2>Signal-to-noise ratios (smaller is better)</h2>",
@@ -183,7 +285,7 @@ def write_study_report(folder: str | Path, *, study=None, alpha: float | None = 
     if len(failed):
         body += ["<h2>Failed runs</h2>",
                  _table(failed.set_index("run")[["status", "error"]])]
-    return atomic_write_text(folder / "report.html", _page(f"rvsim study {definition['name']}", body))
+    return _page(f"rvsim study {definition['name']}", body)
 
 
 def _speed_note(result, reducer) -> str:

@@ -1,5 +1,9 @@
 """Analysis: ANOVA identities, pooling, S/N, optimum prediction, malformed tables."""
 
+import json
+
+import numpy as np
+import pandas as pd
 import pytest
 
 from rvsim.analysis import (anova, analyze_table, predict_optimum, range_analysis,
@@ -65,7 +69,12 @@ def test_analyze_json_layout(table3):
     (lambda t: t.assign(A=t["A"].astype(str).replace("1", "x")), "factor column 'A'"),
     (lambda t: t.assign(te_arcmin=t["te_arcmin"].astype(object).where(t.index != 3, "n/a")),
      "row 4"),
-    (lambda t: t.iloc[:-1], "unbalanced"),
+    (lambda t: t.assign(te_arcmin=t["te_arcmin"].where(t.index != 5, float("inf"))),
+     "row 6 is not finite"),
+    (lambda t: t.assign(te_arcmin=0.0), "every value is zero"),
+    (lambda t: t.assign(te_arcmin=t["te_arcmin"] * 1e300), "row 1 .* is beyond"),
+    (lambda t: t.assign(P=t["H"]), "'H' and 'P' vary together"),
+    (lambda t: pd.concat([t, t[["H"]]], axis=1), "'H' appears more than once"),
 ])
 def test_malformed_tables(table3, mutate, words):
     with pytest.raises(InputFileError, match=words):
@@ -76,6 +85,9 @@ def test_malformed_tables(table3, mutate, words):
     ("run,A,B\n1,1,1\n2,2,2\n", "response column"),
     ("run,A,te_arcmin\n1,1,x\n2,2,1\n", "not a number"),
     ("", "empty"),
+    ("A,A,te_arcmin\n1,1,1\n2,2,2\n", "more than once"),
+    ("A,B,te_arcmin\n1,1,inf\n2,2,2\n1,2,1\n2,1,3\n", "not finite"),
+    ("A,B,te_arcmin\n1,1,0\n2,2,0\n1,2,0\n2,1,0\n", "every value is zero"),
 ])
 def test_analyze_cli_errors(tmp_path, cli, content, words):
     path = tmp_path / "t.csv"
@@ -87,3 +99,97 @@ def test_analyze_cli_errors(tmp_path, cli, content, words):
 def test_analyze_cli_missing_file(cli):
     res = cli("analyze", "/nonexistent/table.csv")
     assert res.code == 2 and "not found" in res.err
+
+
+def test_optimum_is_the_level_number_written_in_the_table():
+    # a design that uses only levels 1 and 3 of A: the optimum is level 3, not "position 2"
+    table = pd.DataFrame({"A": [1, 1, 3, 3] * 2, "B": [1, 2, 1, 2] * 2,
+                          "y": [5.0, 6.1, 1.1, 2.0, 5.1, 6.0, 1.0, 2.1]})
+    ra = range_analysis(table, "y", ["A", "B"])
+    assert ra.optimum == {"A": 3, "B": 1}
+    assert ra.levels["A"] == [1, 3] and ra.mean_at("A", 3) == pytest.approx(1.55)
+    assert list(ra.to_df().columns[:3]) == ["k1", "k2", "k3"]
+    assert np.isnan(ra.to_df().loc["A", "k2"]) and ra.to_df().loc["A", "optimal_level"] == 3
+    out = analyze_table(table, "y", ["A", "B"])
+    assert out["optimum"] == {"A": 3, "B": 1} and out["significant"] == ["A", "B"]
+    assert out["prediction"]["levels"] == {"A": 3, "B": 1}
+    expected = ra.mean_at("A", 3) + ra.mean_at("B", 1) - ra.grand_mean
+    assert out["prediction"]["predicted"] == pytest.approx(expected, rel=1e-12)
+
+
+def test_unbalanced_table_is_analysed_by_regression_with_a_note(table3):
+    one_failed = table3.drop(index=17)          # the paper's L36 with run 18 missing
+    out = analyze_table(one_failed, "te_arcmin")
+    assert any("unbalanced" in note for note in out["notes"])
+    assert out["anova"]["Error"]["df"] == 8 and out["anova"]["Total"]["df"] == 34
+    # the regression's adjusted SS no longer add up to the total (not orthogonal any more)
+    parts = sum(r["adj_ss"] for s, r in out["anova"].items() if s != "Total")
+    assert parts != pytest.approx(out["anova"]["Total"]["adj_ss"], rel=1e-6)
+    # each factor's adjusted SS is statsmodels' Type II SS of the main-effects model
+    import statsmodels.api as sm
+    import statsmodels.formula.api as smf
+
+    data = one_failed.rename(columns={f: f"f{f}" for f in "ABCDEFGHIJKLMNO"})
+    fit = smf.ols("te_arcmin ~ " + " + ".join(f"C(f{f})" for f in "ABCDEFGHIJKLMNO"),
+                  data=data).fit()
+    type2 = sm.stats.anova_lm(fit, typ=2)
+    for f in "ABCDEFGHIJKLMNO":
+        assert out["anova"][f]["adj_ss"] == pytest.approx(type2.loc[f"C(f{f})", "sum_sq"],
+                                                          rel=1e-9, abs=1e-12)
+    assert "H" in out["significant"]
+    assert "notes" not in analyze_table(table3, "te_arcmin")
+
+
+@pytest.mark.parametrize("scale", [0.0, 1e-15])
+def test_no_significance_from_round_off(table3, scale):
+    # a response constant, or varying at 1e-15 relative, has no significant factor
+    noise = np.random.default_rng(1).standard_normal(len(table3))
+    flat = table3.assign(te_arcmin=1.0 + scale * noise)
+    out = analyze_table(flat, "te_arcmin")
+    assert out["significant"] == []
+    assert any("round-off" in note for note in out["notes"])
+    assert all(np.isnan(out["anova"][f]["f"]) for f in "ABCDEFGHIJKLMNO")
+
+
+def test_a_factor_without_effect_is_not_significant_in_an_exact_fit():
+    # y depends on A only, exactly: B's SS is round-off and must not yield a huge F
+    rng = np.random.default_rng(0)
+    a = np.repeat([1, 2, 3], 12)
+    b = np.tile([1, 2, 3], 12)
+    c = rng.permutation(np.repeat([1, 2], 18))
+    table = pd.DataFrame({"A": a, "B": b, "C": c, "y": 0.3 + 0.1 * a})
+    out = analyze_table(table, "y", ["A", "B", "C"])
+    assert out["anova"]["B"]["adj_ss"] == 0.0 and out["anova"]["C"]["adj_ss"] == 0.0
+    assert "B" not in out["significant"] and "C" not in out["significant"]
+
+
+def test_analysis_json_is_strict_json(tmp_path, table3):
+    from rvsim.doe.outputs import write_study_outputs
+
+    results = table3.rename(columns={"te_arcmin": "te_mean_arcmin"}).assign(status="ok")
+    write_study_outputs(tmp_path, results, list("ABCDEFGHIJKLMNO"))
+
+    def refuse(name):
+        raise AssertionError(f"bare {name} in analysis.json")
+
+    data = json.loads((tmp_path / "analysis.json").read_text(), parse_constant=refuse)
+    assert data["anova"]["Error"]["f"] is None       # NaN -> null
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["analysis.json", "main_effects.png",
+                                                           "results.csv"]
+
+
+def test_analyze_cli_on_the_paper_table_minus_one_run(tmp_path, cli):
+    from tests.conftest import REFERENCE
+
+    lines = (REFERENCE / "table3_l36_results.csv").read_text().splitlines()
+    kept = [ln for ln in lines if not ln.startswith("18,")]
+    assert len(kept) == len(lines) - 1
+    path = tmp_path / "l35.csv"
+    path.write_text("\n".join(kept) + "\n")
+    res = cli("analyze", str(path), "--response", "te_arcmin", "--json")
+    assert res.code == 0, res.err
+    out = json.loads(res.out)
+    assert out["anova"]["Total"]["df"] == 34
+    assert any("unbalanced" in note for note in out["notes"])
+    text = cli("analyze", str(path), "--response", "te_arcmin")
+    assert text.code == 0 and "note: unbalanced table" in text.out

@@ -53,3 +53,37 @@ def test_full_factorial_and_samplers():
     assert sobol(16, 2).shape == (16, 2)
     with pytest.raises(ParameterError, match="power of two"):
         sobol(10, 2)
+
+
+def test_study_objects_refuse_contradictions_and_oversized_designs():
+    from rvsim.doe.study import MAX_RUNS, Study, StudyFactor
+
+    h = StudyFactor("H", "errors.pin_circle_radius", (0.0, 0.02))
+    with pytest.raises(ParameterError, match="time_step"):
+        Study("s", (h,), design="L4", time_step=0.0)      # was silently the default step
+    with pytest.raises(ParameterError, match="already varies"):
+        Study("s", (h, StudyFactor("X", "errors.pin_circle_radius", (0.0, 0.01))), "L4")
+    with pytest.raises(ParameterError, match="also varied"):
+        Study("s", (h,), "L4", fixed=(("errors.pin_circle_radius", 0.01),))
+    with pytest.raises(ParameterError, match="results.csv"):
+        Study("s", (StudyFactor("status", "errors.pin_circle_radius", (0.0, 0.02)),), "L4")
+    many = tuple(StudyFactor(f"F{i}", name, tuple(range(5))) for i, name in enumerate(
+        ["errors.pin_radius", "errors.eccentricity", "errors.pin_circle_radius",
+         "errors.equidistant_modification", "errors.radial_modification",
+         "errors.rotation_modification", "errors.disc_runout", "clearances.crank_arm_bushing"]))
+    assert 5 ** 8 > MAX_RUNS
+    with pytest.raises(ParameterError, match="full factorial"):
+        Study("s", many, design="full")
+    with pytest.raises(ParameterError, match="samples"):
+        Study("s", (StudyFactor("H", "errors.pin_circle_radius", low=0.0, high=0.02),),
+              design="lhs", samples=MAX_RUNS + 1)
+
+
+def test_reserved_labels_cover_every_metric_column():
+    # a factor label must never overwrite a metric column of results.csv
+    from rvsim.doe.study import RESULT_COLUMNS
+    from rvsim.dynamics.result import te_metrics
+
+    t = np.linspace(0.0, 1.0, 11)
+    keys = te_metrics(t, 1e-4 * t, np.ones_like(t), np.ones_like(t), 0.5)
+    assert all(k in RESULT_COLUMNS or k.startswith("te_") for k in keys)

@@ -110,3 +110,20 @@ def test_bad_toml(tmp_path, content, words):
 def test_missing_toml_file(tmp_path):
     with pytest.raises(InputFileError, match="not found"):
         load_toml(tmp_path / "absent.toml")
+
+
+@pytest.mark.parametrize("name", ['my "RV" \\ test', "tab\there", "new\nline", "bell\x07 del\x7f",
+                                  "unicode: \u00e9\u4e2d", "'single' \"\"\"triple\"\"\""])
+def test_toml_string_round_trips(name):
+    import tomllib
+
+    from rvsim.parameters._io import toml_string
+
+    assert tomllib.loads(f"name = {toml_string(name)}")["name"] == name
+
+
+def test_absurd_tooth_count_blames_the_tooth_count(rv40e):
+    for field in ("gears.sun_teeth", "gears.planet_teeth"):
+        with pytest.raises(ParameterError) as info:
+            with_values(rv40e, {field: "1e20"})
+        assert info.value.field == field

@@ -18,6 +18,9 @@ def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
     out["significant"] = table_anova.significant(alpha)
     out["alpha"] = alpha
     out["prediction"] = predict_optimum(table, table_anova, response, alpha=alpha)
+    notes = list(dict.fromkeys(list(ra.notes) + list(table_anova.notes)))
+    if notes:
+        out["notes"] = notes
     sn = sn_response_table(table, response, factors)
     out["sn_response"] = {f: {"levels": [v for v in row[:-2] if v == v], "delta": row["delta"],
                               "rank": int(row["rank"])} for f, row in sn.iterrows()}

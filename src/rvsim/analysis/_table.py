@@ -6,7 +6,17 @@ import pandas as pd
 
 from ..errors import InputFileError
 
-__all__ = ["check_design_table", "factor_columns", "read_table"]
+__all__ = ["check_design_table", "factor_columns", "read_table", "is_balanced",
+           "UNBALANCED_NOTE"]
+
+#: largest response magnitude analysed: sums of squares of larger values overflow doubles
+_LARGEST_RESPONSE = 1e150
+
+#: note attached to analyses of tables whose levels do not occur equally often
+UNBALANCED_NOTE = ("unbalanced table (levels not equally often, e.g. a failed run): level "
+                   "means are plain averages and the ANOVA uses the regression fit's adjusted "
+                   "sums of squares (each factor after all others: Type II = Type III for "
+                   "main effects)")
 
 
 def read_table(path) -> pd.DataFrame:
@@ -26,6 +36,9 @@ def read_table(path) -> pd.DataFrame:
     if not lines:
         raise InputFileError(f"{path}: empty table")
     header = next(csv.reader([lines[0]]))
+    repeated = sorted({h for h in header if header.count(h) > 1})
+    if repeated:
+        raise InputFileError(f"{path}: column(s) {', '.join(repeated)} appear more than once")
     rows = []
     for number, line in enumerate(lines[1:], start=2):
         fields = next(csv.reader([line]))
@@ -46,6 +59,11 @@ def read_table(path) -> pd.DataFrame:
 def factor_columns(table: pd.DataFrame, response: str, factors=None) -> list[str]:
     """The factor columns: given, or every single-letter column A-Z other than the response."""
     if factors is not None:
+        repeated = sorted({f for f in factors if list(factors).count(f) > 1})
+        if repeated:
+            raise InputFileError(f"factor column(s) {', '.join(repeated)} given twice")
+        if response in factors:
+            raise InputFileError(f"'{response}' is the response, not a factor column")
         missing = [f for f in factors if f not in table.columns]
         if missing:
             raise InputFileError(f"factor column(s) {', '.join(missing)} not in the table")
@@ -56,34 +74,62 @@ def factor_columns(table: pd.DataFrame, response: str, factors=None) -> list[str
     return cols
 
 
+def is_balanced(data: pd.DataFrame, factors: list[str]) -> bool:
+    """True when every factor's levels occur equally often."""
+    return all(data[f].value_counts().nunique() == 1 for f in factors)
+
+
 def check_design_table(table: pd.DataFrame, response: str, factors: list[str]) -> pd.DataFrame:
     """Validate levels and response; return a clean copy (integer levels, float response).
 
-    Errors name the column: a missing or non-numeric response, non-integer levels, fewer than
-    two levels, or an unbalanced factor (levels not equally often).
+    Errors name the column: a missing, non-numeric, infinite or all-zero response, non-integer
+    levels, fewer than two levels, or two factor columns that vary together (confounded).
+    Unbalanced tables pass (see :func:`is_balanced`).
     """
+    import numpy as np
+
     if response not in table.columns:
         raise InputFileError(f"response column '{response}' not in the table (columns: "
                              f"{', '.join(map(str, table.columns))})")
+    if isinstance(table[response], pd.DataFrame):
+        raise InputFileError(f"response column '{response}' appears more than once")
+    if not len(table):
+        raise InputFileError("the table has no rows (no finished run to analyse)")
     out = table.copy()
     y = pd.to_numeric(out[response], errors="coerce")
     if y.isna().any():
-        bad = int(y.isna().idxmax())
+        bad = int(np.flatnonzero(y.isna().to_numpy())[0])
         raise InputFileError(f"response column '{response}': row {bad + 1} is missing or "
                              f"not a number ('{table[response].iloc[bad]}')")
+    if not np.isfinite(y.to_numpy(dtype=float)).all():
+        bad = int(np.flatnonzero(~np.isfinite(y.to_numpy(dtype=float)))[0])
+        raise InputFileError(f"response column '{response}': row {bad + 1} is not finite "
+                             f"({y.iloc[bad]})")
+    if (y.abs() > _LARGEST_RESPONSE).any():
+        bad = int(np.flatnonzero((y.abs() > _LARGEST_RESPONSE).to_numpy())[0])
+        raise InputFileError(f"response column '{response}': row {bad + 1} ({y.iloc[bad]:g}) "
+                             f"is beyond +-{_LARGEST_RESPONSE:g} (its square would overflow)")
+    if (y == 0).all():
+        raise InputFileError(f"response column '{response}': every value is zero (nothing to "
+                             "analyse; the S/N ratio is undefined)")
     out[response] = y.astype(float)
     for f in factors:
+        if isinstance(out[f], pd.DataFrame):
+            raise InputFileError(f"factor column '{f}' appears more than once")
         levels = pd.to_numeric(out[f], errors="coerce")
         if levels.isna().any() or (levels != levels.round()).any():
             raise InputFileError(f"factor column '{f}': levels must be whole numbers 1, 2, 3, ...")
         levels = levels.astype(int)
-        counts = levels.value_counts()
-        if len(counts) < 2:
+        if levels.nunique() < 2:
             raise InputFileError(f"factor column '{f}': needs at least two levels")
-        if counts.nunique() != 1:
-            raise InputFileError(f"factor column '{f}': unbalanced design (level counts "
-                                 f"{dict(sorted(counts.items()))})")
         out[f] = levels
+    codes = {f: tuple(pd.factorize(out[f])[0]) for f in factors}
+    seen: dict[tuple, str] = {}
+    for f in factors:
+        if codes[f] in seen:
+            raise InputFileError(f"factor columns '{seen[codes[f]]}' and '{f}' vary together "
+                                 "(confounded: their effects cannot be separated)")
+        seen[codes[f]] = f
     if len(out) < sum(out[f].nunique() - 1 for f in factors) + 1:
         raise InputFileError("too few runs for a main-effects model of these factors")
     return out

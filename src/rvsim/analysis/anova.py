@@ -15,10 +15,16 @@ import numpy as np
 import pandas as pd
 
 from ..errors import InputFileError
-from ._table import check_design_table, factor_columns
+from ._table import UNBALANCED_NOTE, check_design_table, factor_columns, is_balanced
 
 __all__ = ["AnovaTable", "anova", "signal_to_noise_smaller", "sn_response_table",
-           "predict_optimum"]
+           "predict_optimum", "CONSTANT_NOTE"]
+
+#: note of an ANOVA whose response varies only at round-off level
+CONSTANT_NOTE = ("the response is constant to round-off: no factor can be significant "
+                 "(F and P left empty)")
+#: sums of squares are trusted above this many units of round-off (eps * max|y|, per run)
+_ROUND_OFF_UNITS = 1e4
 
 
 @dataclasses.dataclass(frozen=True)
@@ -28,6 +34,7 @@ class AnovaTable:
     rows: dict[str, dict[str, float]]
     pooled: tuple[str, ...]
     response: str
+    notes: tuple[str, ...] = ()
 
     def significant(self, alpha: float = 0.1) -> list[str]:
         return [s for s, r in self.rows.items()
@@ -49,7 +56,12 @@ def anova(table: pd.DataFrame, response: str = "te_arcmin", factors=None, *,
 
     Adj SS of a factor is SSR(model without it) - SSR(full model), both fitted by least
     squares (statsmodels OLS); for a main-effects model that is Minitab's adjusted (type III)
-    sum of squares, and it stays defined for saturated designs (error DF 0: F and P empty).
+    sum of squares, and it stays defined for saturated designs (error DF 0: F and P empty)
+    and for unbalanced tables (a failed run missing), which carry a note saying so.
+
+    Sums of squares within round-off of zero (``_ROUND_OFF_UNITS`` x machine epsilon x the
+    largest response, per run) count as zero, so a constant response, or an exact fit, never
+    yields an F value made of round-off.
     """
     import statsmodels.formula.api as smf
 
@@ -68,23 +80,35 @@ def anova(table: pd.DataFrame, response: str = "te_arcmin", factors=None, *,
         fit = smf.ols(f"y ~ {rhs}", data=frame).fit()
         return float(fit.ssr), float(fit.df_resid)
 
+    y = frame["y"].to_numpy()
+    total_ss = float(((y - y.mean()) ** 2).sum())
+    floor = len(y) * (_ROUND_OFF_UNITS * np.finfo(float).eps * float(np.abs(y).max())) ** 2
+    constant = total_ss <= floor
+    notes = [] if is_balanced(data, factors) else [UNBALANCED_NOTE]
+    if constant:
+        notes.append(CONSTANT_NOTE)
     error_ss, error_df = residual(kept)
-    error_ss = max(error_ss, 0.0) if error_df > 0 else 0.0
+    error_ss = error_ss if error_df > 0 and error_ss > floor else 0.0
     error_ms = error_ss / error_df if error_df > 0 else float("nan")
     rows: dict[str, dict[str, float]] = {}
     for f in kept:
         reduced_ss, reduced_df = residual([g for g in kept if g != f])
         ss, df = reduced_ss - error_ss, reduced_df - error_df
+        if df < 1:
+            raise InputFileError(f"factor column '{f}': its effect cannot be separated from "
+                                 "the other factors in this table (confounded)")
+        if ss <= floor + 1e-9 * reduced_ss:
+            ss = 0.0                    # round-off of two nearly equal residual sums
         ms = ss / df
-        f_value = ms / error_ms if error_df > 0 and error_ms > 0 else float("nan")
+        usable = error_df > 0 and error_ms > 0 and not constant
+        f_value = ms / error_ms if usable else float("nan")
         rows[f] = {"df": df, "adj_ss": ss, "adj_ms": ms, "f": f_value,
                    "p": _p_value(f_value, df, error_df)}
     rows["Error"] = {"df": error_df, "adj_ss": error_ss, "adj_ms": error_ms,
                      "f": float("nan"), "p": float("nan")}
-    y = frame["y"].to_numpy()
-    rows["Total"] = {"df": float(len(y) - 1), "adj_ss": float(((y - y.mean()) ** 2).sum()),
+    rows["Total"] = {"df": float(len(y) - 1), "adj_ss": total_ss,
                      "adj_ms": float("nan"), "f": float("nan"), "p": float("nan")}
-    return AnovaTable(rows, tuple(pool), response)
+    return AnovaTable(rows, tuple(pool), response, tuple(notes))
 
 
 def _p_value(f_value: float, df1: float, df2: float) -> float:
@@ -107,12 +131,12 @@ def sn_response_table(table: pd.DataFrame, response: str = "te_arcmin", factors=
     factors = factor_columns(table, response, factors)
     data = check_design_table(table, response, factors)
     data = data.assign(sn=[signal_to_noise_smaller([v]) for v in data[response]])
-    width = max(data[f].nunique() for f in factors)
+    every = sorted({int(lv) for f in factors for lv in data[f].unique()})
     out = {}
     for f in factors:
-        means = data.groupby(f)["sn"].mean().sort_index().tolist()
-        out[f] = means + [float("nan")] * (width - len(means))
-    frame = pd.DataFrame(out, index=[f"level {i + 1}" for i in range(width)]).T
+        means = data.groupby(f)["sn"].mean()
+        out[f] = [float(means.get(lv, float("nan"))) for lv in every]
+    frame = pd.DataFrame(out, index=[f"level {lv}" for lv in every]).T
     frame["delta"] = frame.max(axis=1) - frame.min(axis=1)
     frame["rank"] = frame["delta"].rank(ascending=False, method="first").astype(int)
     return frame
@@ -131,7 +155,6 @@ def predict_optimum(table: pd.DataFrame, anova_table: AnovaTable, response: str 
         anova_table.pooled))
     significant = anova_table.significant(alpha)
     best = ra.optimum
-    value = ra.grand_mean + sum(ra.level_means[f][best[f] - 1] - ra.grand_mean
-                                for f in significant)
+    value = ra.grand_mean + sum(ra.mean_at(f, best[f]) - ra.grand_mean for f in significant)
     return {"significant": significant, "levels": {f: best[f] for f in significant},
             "predicted": value, "alpha": alpha}

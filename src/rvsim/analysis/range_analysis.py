@@ -6,19 +6,25 @@ import dataclasses
 
 import pandas as pd
 
-from ._table import check_design_table, factor_columns
+from ._table import UNBALANCED_NOTE, check_design_table, factor_columns, is_balanced
 
 __all__ = ["RangeAnalysis", "range_analysis"]
 
 
 @dataclasses.dataclass(frozen=True)
 class RangeAnalysis:
-    """Level means k_i, range R, factor order and the smaller-is-better optimum."""
+    """Level means k_i, range R, factor order and the smaller-is-better optimum.
+
+    ``levels[f]`` holds the level numbers that occur in column ``f`` (ascending) and
+    ``level_means[f]`` the mean response at each of them, in the same order.
+    """
 
     response: str
     level_means: dict[str, list[float]]
     ranges: dict[str, float]
     grand_mean: float
+    levels: dict[str, list[int]]
+    notes: tuple[str, ...] = ()
 
     @property
     def order(self) -> list[str]:
@@ -27,18 +33,27 @@ class RangeAnalysis:
 
     @property
     def optimum(self) -> dict[str, int]:
-        """Level (1-based) with the smallest mean response, per factor."""
-        return {f: int(min(range(len(k)), key=k.__getitem__)) + 1
+        """The level number (as written in the table) with the smallest mean, per factor."""
+        return {f: self.levels[f][min(range(len(k)), key=k.__getitem__)]
                 for f, k in self.level_means.items()}
 
+    def mean_at(self, factor: str, level: int) -> float:
+        """Mean response of ``factor`` at level number ``level``."""
+        return self.level_means[factor][self.levels[factor].index(level)]
+
     def to_dict(self) -> dict:
-        return {"range": {f: {"k": k, "R": self.ranges[f]} for f, k in self.level_means.items()},
-                "order": ">".join(self.order), "optimum": self.optimum}
+        out = {"range": {f: {"k": k, "levels": self.levels[f], "R": self.ranges[f]}
+                         for f, k in self.level_means.items()},
+               "order": ">".join(self.order), "optimum": self.optimum}
+        if self.notes:
+            out["notes"] = list(self.notes)
+        return out
 
     def to_df(self) -> pd.DataFrame:
-        width = max(len(k) for k in self.level_means.values())
-        rows = {f"k{i + 1}": [k[i] if i < len(k) else float("nan")
-                              for k in self.level_means.values()] for i in range(width)}
+        """One row per factor: k<level> for every level number present, R, rank, optimum."""
+        every = sorted({lv for lvs in self.levels.values() for lv in lvs})
+        rows = {f"k{lv}": [self.mean_at(f, lv) if lv in self.levels[f] else float("nan")
+                           for f in self.level_means] for lv in every}
         frame = pd.DataFrame(rows, index=list(self.level_means))
         frame["R"] = [self.ranges[f] for f in self.level_means]
         frame["rank"] = [self.order.index(f) + 1 for f in self.level_means]
@@ -57,7 +72,9 @@ def range_analysis(table: pd.DataFrame, response: str = "te_arcmin", factors=Non
     """Level means and ranges of ``response`` for each factor column of ``table``."""
     factors = factor_columns(table, response, factors)
     data = check_design_table(table, response, factors)
-    means = {f: [float(v) for v in data.groupby(f)[response].mean().sort_index()]
-             for f in factors}
+    groups = {f: data.groupby(f)[response].mean().sort_index() for f in factors}
+    means = {f: [float(v) for v in g] for f, g in groups.items()}
+    levels = {f: [int(lv) for lv in g.index] for f, g in groups.items()}
     ranges = {f: max(k) - min(k) for f, k in means.items()}
-    return RangeAnalysis(response, means, ranges, float(data[response].mean()))
+    notes = () if is_balanced(data, factors) else (UNBALANCED_NOTE,)
+    return RangeAnalysis(response, means, ranges, float(data[response].mean()), levels, notes)

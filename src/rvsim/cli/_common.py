@@ -4,15 +4,19 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
+import os
 import sys
+import tempfile
+from pathlib import Path
 from typing import Any
 
-from ..errors import RvsimError
+from .._json import to_json_safe
+from ..errors import InputFileError, RvsimError
 from ..parameters import RV40E, Reducer, load_toml, parse_assignment, with_values
 
 __all__ = ["Parser", "UsageError", "add_command", "add_reducer_options", "reducer_from_args",
-           "print_json", "EXAMPLES"]
+           "print_json", "EXAMPLES", "positive_int", "probability", "path_text",
+           "scheduler_address", "check_output_file", "check_output_folder"]
 
 
 class UsageError(RvsimError):
@@ -38,7 +42,7 @@ def add_command(sub, name: str, summary: str, description: str, examples: list[s
 
 def add_reducer_options(parser: argparse.ArgumentParser) -> None:
     """--params FILE and repeated --set NAME=VALUE."""
-    parser.add_argument("--params", metavar="FILE",
+    parser.add_argument("--params", metavar="FILE", type=path_text,
                         help="TOML file describing the reducer (user units, see 'rvsim params')")
     parser.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
                         dest="assignments",
@@ -49,25 +53,99 @@ def add_reducer_options(parser: argparse.ArgumentParser) -> None:
 def reducer_from_args(args: argparse.Namespace, preset: dict | None = None) -> Reducer:
     """The reducer of --params (built-in RV-40E by default) with ``preset`` values (e.g. a
     paper run) and then the --set values applied, validated."""
-    reducer = load_toml(args.params) if args.params else RV40E
+    reducer = load_toml(args.params) if args.params is not None else RV40E
     values = dict(preset or {})
     values.update(parse_assignment(a) for a in args.assignments)
     return with_values(reducer, values)
 
 
-def _clean(value: Any) -> Any:
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    if isinstance(value, dict):
-        return {k: _clean(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_clean(v) for v in value]
-    if hasattr(value, "item") and callable(value.item):  # numpy scalar
-        return _clean(value.item())
+def print_json(payload: Any) -> None:
+    """One JSON object on stdout (NaN/inf become null so any JSON reader accepts it)."""
+    json.dump(to_json_safe(payload), sys.stdout, indent=2, allow_nan=False)
+    sys.stdout.write("\n")
+
+
+def positive_int(text: str) -> int:
+    """argparse type: a whole number >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1 (got {value})")
     return value
 
 
-def print_json(payload: Any) -> None:
-    """One JSON object on stdout (NaN/inf become null so any JSON reader accepts it)."""
-    json.dump(_clean(payload), sys.stdout, indent=2)
-    sys.stdout.write("\n")
+def probability(text: str) -> float:
+    """argparse type: a significance level strictly between 0 and 1."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+    if not 0.0 < value < 1.0:
+        raise argparse.ArgumentTypeError(f"must be between 0 and 1, exclusive (got {text})")
+    return value
+
+
+def path_text(text: str) -> str:
+    """argparse type: a non-empty path."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("empty path")
+    return text
+
+
+def scheduler_address(text: str) -> str:
+    """argparse type: a Dask scheduler address, ``[tcp|tls://]host[:port]``."""
+    from urllib.parse import urlparse
+
+    parsed = urlparse(text if "://" in text else f"tcp://{text}")
+    if parsed.scheme not in ("tcp", "tls") or not parsed.hostname or parsed.path \
+            or parsed.query:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a scheduler address "
+                                         "(expected tcp://host:port)")
+    try:
+        port = parsed.port
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}': the port must be a number from 1 to "
+                                         "65535") from None
+    if port == 0:
+        raise argparse.ArgumentTypeError(f"'{text}': the port must be a number from 1 to 65535")
+    return text
+
+
+def _check_writable_folder(folder: Path, option: str, target: Path) -> None:
+    try:
+        fd, probe = tempfile.mkstemp(dir=folder, prefix=".rvsim-write-check-")
+    except OSError as exc:
+        raise InputFileError(f"{option} {target}: cannot write in {folder} "
+                             f"({exc.strerror or exc})") from None
+    os.close(fd)
+    os.unlink(probe)
+
+
+def check_output_file(path: str, option: str) -> Path:
+    """Fail now, before any long computation, if ``path`` cannot be written as a file."""
+    target = Path(path)
+    if target.is_dir():
+        raise InputFileError(f"{option} {target}: is a folder (give a file name)")
+    folder = target.parent
+    if not folder.is_dir():
+        raise InputFileError(f"{option} {target}: folder {folder} does not exist")
+    _check_writable_folder(folder, option, target)
+    return target
+
+
+def check_output_folder(path: str, option: str) -> Path:
+    """Fail now if ``path`` cannot be (created and) written as a folder; creates nothing."""
+    target = Path(path)
+    if target.exists() and not target.is_dir():
+        raise InputFileError(f"{option} {target}: exists and is not a folder")
+    existing = target
+    while not existing.exists():       # the nearest existing ancestor must be writable
+        if existing.parent == existing:
+            break
+        existing = existing.parent
+    if not existing.is_dir():
+        raise InputFileError(f"{option} {target}: {existing} is not a folder")
+    _check_writable_folder(existing, option, target)
+    return target

@@ -7,7 +7,8 @@ import sys
 
 from ..errors import ParameterError, SimulationError
 from ..parameters import paper_run_values
-from ._common import add_command, add_reducer_options, print_json, reducer_from_args
+from ._common import (add_command, add_reducer_options, check_output_file, path_text,
+                      print_json, reducer_from_args)
 
 __all__ = ["register"]
 
@@ -25,6 +26,9 @@ def _simulate(args: argparse.Namespace) -> int:
         raise ParameterError("--save", "histories are written as .npz (numpy.load reads them)")
     if args.report and not args.report.endswith(".html"):
         raise ParameterError("--report", "the report is an .html file")
+    for option, path in (("--save", args.save), ("--report", args.report)):
+        if path is not None:
+            check_output_file(path, option)     # before the run, not after it
     reducer = _reducer(args)
     try:
         # a progress bar only for a person watching (stderr is a terminal)
@@ -68,8 +72,10 @@ def register(sub) -> None:
     p.add_argument("--paper-run", type=int, metavar="N",
                    help="apply row N (1..36) of the paper's L36 scheme (Table 3 with Table 2 "
                         "levels); --set values override it")
-    p.add_argument("--save", metavar="FILE.npz", help="write the time histories (numpy .npz)")
-    p.add_argument("--report", metavar="FILE.html", help="write a self-contained HTML report")
+    p.add_argument("--save", metavar="FILE.npz", type=path_text,
+                   help="write the time histories (numpy .npz)")
+    p.add_argument("--report", metavar="FILE.html", type=path_text,
+                   help="write a self-contained HTML report")
     p.add_argument("--duration", type=float, help="simulated time [s] (default: "
                    "operating.duration, 4 s)")
     p.add_argument("--time-step", type=float,

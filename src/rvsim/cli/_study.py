@@ -7,7 +7,8 @@ import sys
 from pathlib import Path
 
 from ..errors import InputFileError
-from ._common import add_command, print_json
+from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
+                      probability, scheduler_address)
 
 __all__ = ["register"]
 
@@ -31,6 +32,7 @@ def _study(args: argparse.Namespace) -> int:
     else:
         raise InputFileError(f"unknown study '{args.study}' (built in: "
                              f"{', '.join(BUILT_IN_STUDIES)}; or a .toml file)")
+    check_output_folder(args.out, "--out")   # before the runs, not after them
     folder = Path(args.out)
     progress = not args.no_progress and sys.stderr.isatty()
     results = run(study, folder, workers=args.workers, scheduler=args.scheduler,
@@ -71,6 +73,8 @@ def _analyze(args: argparse.Namespace) -> int:
     print("\nANOVA (main effects)")
     print(anova(table, response, factors, pool=pool).to_df().round(4).to_string())
     print(f"\nsignificant at alpha = {args.alpha}: {', '.join(result['significant']) or 'none'}")
+    for note in result.get("notes", []):
+        print(f"note: {note}")
     return 0
 
 
@@ -90,8 +94,8 @@ def register(sub) -> None:
                     "Write DIR/report.html (self-contained: figures embedded, "
                     "no network requests) from a folder made by 'rvsim study'.",
                     ["rvsim report study"])
-    p.add_argument("folder", help="study folder")
-    p.add_argument("--alpha", type=float, help="significance level marked in the ANOVA "
+    p.add_argument("folder", type=path_text, help="study folder")
+    p.add_argument("--alpha", type=probability, help="significance level marked in the ANOVA "
                    "(default: the study's)")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_report)
@@ -106,10 +110,13 @@ def register(sub) -> None:
                     "rvsim study my_study.toml --out tol --workers 2",
                     "rvsim study paper-l36 --out study --scheduler tcp://127.0.0.1:8786"])
     p.add_argument("study", help="'paper-l36' or a study .toml file")
-    p.add_argument("--out", required=True, metavar="DIR", help="study folder")
-    p.add_argument("--workers", type=int, help="local worker processes (default: one per core)")
-    p.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler")
-    p.add_argument("--alpha", type=float, default=0.1, help="significance level (default 0.1)")
+    p.add_argument("--out", required=True, metavar="DIR", type=path_text, help="study folder")
+    p.add_argument("--workers", type=positive_int,
+                   help="local worker processes (default: one per core)")
+    p.add_argument("--scheduler", metavar="ADDRESS", type=scheduler_address,
+                   help="run on this Dask scheduler")
+    p.add_argument("--alpha", type=probability, default=0.1,
+                   help="significance level (default 0.1)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-report", action="store_true", help="skip report.html")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
@@ -122,11 +129,12 @@ def register(sub) -> None:
                     "level numbers, one response column).",
                     ["rvsim analyze study/results.csv --json",
                     "rvsim analyze table3.csv --response te_arcmin --pool B,C"])
-    p.add_argument("table", help="CSV file")
+    p.add_argument("table", type=path_text, help="CSV file")
     p.add_argument("--response", help="response column (default te_mean_arcmin or te_arcmin)")
     p.add_argument("--factors", help="comma-separated factor columns (default: single-letter "
                    "columns)")
     p.add_argument("--pool", help="comma-separated factors pooled into error")
-    p.add_argument("--alpha", type=float, default=0.1, help="significance level (default 0.1)")
+    p.add_argument("--alpha", type=probability, default=0.1,
+                   help="significance level (default 0.1)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_analyze)

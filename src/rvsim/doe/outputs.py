@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import pandas as pd
 
 from .._files import atomic_write_text
+from .._json import dumps
 from ..analysis import analyze_table, range_analysis
 from ..errors import InputFileError
 
@@ -16,9 +16,13 @@ __all__ = ["write_study_outputs"]
 
 def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
                         *, alpha: float = 0.1) -> dict:
-    """results.csv, analysis.json and main_effects.png in ``folder``; returns the analysis."""
-    atomic_write_text(folder / "results.csv", results.to_csv(index=False))
+    """results.csv, analysis.json and main_effects.png in ``folder``; returns the analysis.
+
+    Everything is computed before the first file is written; each file is written atomically.
+    """
+    folder = Path(folder)
     ok = results[results["status"] == "ok"]
+    figure = None
     try:
         analysis = analyze_table(ok, "te_mean_arcmin", factors, alpha=alpha)
         analysis["runs_ok"] = int(len(ok))
@@ -26,13 +30,21 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
     except InputFileError as exc:
         analysis = {"error": f"analysis not possible: {exc}", "runs_ok": int(len(ok)),
                     "runs_total": int(len(results))}
-    atomic_write_text(folder / "analysis.json", json.dumps(analysis, indent=2, default=float))
-    if "error" not in analysis:
-        from ..plots import figure_to_png, main_effects_plot
+    else:
+        from ..plots import main_effects_plot
 
-        figure_to_png(main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
-                                        ylabel="mean TE [arcmin]"),
-                      folder / "main_effects.png")
+        figure = main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
+                                   ylabel="mean TE [arcmin]")
+    try:
+        atomic_write_text(folder / "results.csv", results.to_csv(index=False))
+        atomic_write_text(folder / "analysis.json", dumps(analysis, indent=2))
+        if figure is not None:
+            from ..plots import figure_to_png
+
+            figure_to_png(figure, folder / "main_effects.png")
+        else:  # a figure of an earlier analysis would contradict analysis.json
+            (folder / "main_effects.png").unlink(missing_ok=True)
+    except OSError as exc:
+        raise InputFileError(f"{folder}: cannot write the study outputs "
+                             f"({exc.strerror or exc})") from None
     return analysis
-
-

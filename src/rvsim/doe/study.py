@@ -24,6 +24,7 @@ parameter or a level outside the valid range stops the study at once with a clea
 from __future__ import annotations
 
 import dataclasses
+import math
 import tomllib
 from pathlib import Path
 
@@ -35,7 +36,18 @@ from ..parameters import (RV40E, TABLE2_FACTORS, Reducer, load_toml, resolve_nam
                           with_values)
 from . import designs
 
-__all__ = ["StudyFactor", "Study", "paper_l36", "load_study", "BUILT_IN_STUDIES"]
+__all__ = ["StudyFactor", "Study", "paper_l36", "load_study", "BUILT_IN_STUDIES", "MAX_RUNS",
+           "MAX_TIME_STEP", "RESULT_COLUMNS"]
+
+#: most runs a study may have: beyond this the design table alone strains memory and the runs
+#: would take weeks (docs/decisions.md)
+MAX_RUNS = 100_000
+#: largest integration step a study accepts [s], the same bound as :func:`rvsim.dynamics.simulate`
+MAX_TIME_STEP = 1e-3
+#: columns of results.csv besides the factors (a factor label must not be one of them); every
+#: metric column starts with ``te_`` or is listed here
+RESULT_COLUMNS = frozenset({"run", "status", "error", "key", "reducer", "steps", "wall_s",
+                            "sim_time_s", "speed_ratio"})
 
 
 @dataclasses.dataclass(frozen=True)
@@ -62,6 +74,48 @@ class Study:
     seed: int = 0
     time_step: float | None = None
 
+    def __post_init__(self) -> None:
+        seen_labels: set[str] = set()
+        by_parameter: dict[str, str] = {}
+        for f in self.factors:
+            if not f.label or f.label.lower() in RESULT_COLUMNS or \
+                    f.label.lower().startswith("te_"):
+                raise ParameterError(f"factors.{f.label}", "this label is a column of "
+                                     "results.csv (run, status, key, te_..., ...): choose "
+                                     "another label")
+            if f.label in seen_labels:
+                raise ParameterError(f"factors.{f.label}", "label used twice")
+            seen_labels.add(f.label)
+            if f.parameter in by_parameter:
+                raise ParameterError(f"factors.{f.label}", f"sets {f.parameter}, which factor "
+                                     f"{by_parameter[f.parameter]} already varies")
+            by_parameter[f.parameter] = f.label
+        fixed_names: set[str] = set()
+        for name, _ in self.fixed:
+            if name in by_parameter:
+                raise ParameterError(f"set.{name}", f"is also varied by factor "
+                                     f"{by_parameter[name]}: remove one of them")
+            if name in fixed_names:
+                raise ParameterError(f"set.{name}", "set twice (a letter alias and its "
+                                     "dotted name name the same parameter)")
+            fixed_names.add(name)
+        if self.time_step is not None and not (
+                isinstance(self.time_step, (int, float)) and not isinstance(self.time_step, bool)
+                and 0 < self.time_step <= MAX_TIME_STEP):
+            raise ParameterError("time_step", f"must be a number of seconds in "
+                                 f"(0, {MAX_TIME_STEP:g}] (got {self.time_step!r})")
+        if self.is_sampling:
+            if not (isinstance(self.samples, int) and 2 <= self.samples <= MAX_RUNS):
+                raise ParameterError("samples", f"the {self.design} design needs a whole "
+                                     f"number of samples from 2 to {MAX_RUNS} "
+                                     f"(got {self.samples!r})")
+        elif self.design == "full":
+            runs = math.prod(len(f.levels) for f in self.factors)
+            if runs > MAX_RUNS:
+                raise ParameterError("design", f"the full factorial has {runs:.4g} runs, more "
+                                     f"than the {MAX_RUNS} a study may have (use an orthogonal "
+                                     "array, lhs or sobol)")
+
     @property
     def is_sampling(self) -> bool:
         return self.design in ("lhs", "sobol")
@@ -70,9 +124,7 @@ class Study:
         """The runs: column ``run`` and one column per factor (level number or value)."""
         labels = [f.label for f in self.factors]
         if self.is_sampling:
-            n = self.samples or 0
-            if n < 2:
-                raise ParameterError("samples", f"the {self.design} design needs samples >= 2")
+            n = self.samples
             unit = (designs.latin_hypercube if self.design == "lhs" else designs.sobol)(
                 n, len(self.factors), self.seed)
             values = np.column_stack([f.low + unit[:, i] * (f.high - f.low)
@@ -121,47 +173,104 @@ BUILT_IN_STUDIES = {"paper-l36": paper_l36}
 
 
 def load_study(path: str | Path) -> Study:
-    """Read a study TOML file (see module docstring)."""
+    """Read a study TOML file (see module docstring); every error names the key at fault."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputFileError(f"{path}: file not found") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputFileError(f"{path}: not valid TOML ({exc})") from None
+    data = _read_toml(path)
     known = {"name", "design", "samples", "seed", "params", "set", "factors", "time_step"}
     extra = set(data) - known
     if extra:
         raise InputFileError(f"{path}: unknown key(s) {', '.join(sorted(extra))}")
     base = RV40E
     if "params" in data:
-        base = load_toml((path.parent / data["params"]).resolve())
-    design = str(data.get("design", "L36"))
+        base = load_toml((path.parent / _string(data, "params", path)).resolve())
+    design = _string(data, "design", path, "L36")
     sampling = design in ("lhs", "sobol")
     raw_factors = data.get("factors")
     if not isinstance(raw_factors, dict) or not raw_factors:
         raise InputFileError(f"{path}: needs at least one [factors.X] table")
-    factors = []
-    for label, spec in raw_factors.items():
-        if not isinstance(spec, dict) or "parameter" not in spec:
-            raise InputFileError(f"{path}: factor {label} needs a 'parameter'")
-        parameter = resolve_name(spec["parameter"])
-        if sampling:
-            bounds = spec.get("range")
-            if not (isinstance(bounds, list) and len(bounds) == 2):
-                raise ParameterError(f"factors.{label}.range", "needs [low, high] for "
-                                     f"the {design} design")
-            factors.append(StudyFactor(label, parameter, low=float(bounds[0]),
-                                       high=float(bounds[1])))
-        else:
-            levels = spec.get("levels")
-            if not (isinstance(levels, list) and len(levels) >= 2):
-                raise ParameterError(f"factors.{label}.levels", "needs a list of at least 2 "
-                                     "levels")
-            factors.append(StudyFactor(label, parameter, tuple(levels)))
-    fixed = tuple((resolve_name(k), v) for k, v in data.get("set", {}).items())
-    study = Study(name=str(data.get("name", path.stem)), factors=tuple(factors), design=design,
-                  base=base, fixed=fixed, samples=data.get("samples"),
-                  seed=int(data.get("seed", 0)), time_step=data.get("time_step"))
+    factors = [_factor(label, spec, design, sampling, path)
+               for label, spec in raw_factors.items()]
+    raw_set = data.get("set", {})
+    if not isinstance(raw_set, dict):
+        raise InputFileError(f"{path}: 'set' must be a table of parameter = value")
+    fixed = []
+    for key, value in raw_set.items():
+        if isinstance(value, (dict, list)):
+            raise ParameterError(f"set.{key}", "must be a single value")
+        fixed.append((resolve_name(key), value))
+    samples = data.get("samples")
+    if samples is not None and not _is_int(samples):
+        raise ParameterError("samples", f"must be a whole number (got {samples!r})")
+    seed = data.get("seed", 0)
+    if not _is_int(seed) or seed < 0:
+        raise ParameterError("seed", f"must be a whole number >= 0 (got {seed!r})")
+    time_step = data.get("time_step")
+    if time_step is not None and (isinstance(time_step, bool)
+                                  or not isinstance(time_step, (int, float))):
+        raise ParameterError("time_step", f"must be a number of seconds (got {time_step!r})")
+    study = Study(name=_string(data, "name", path, path.stem), factors=tuple(factors),
+                  design=design, base=base, fixed=tuple(fixed), samples=samples, seed=seed,
+                  time_step=None if time_step is None else float(time_step))
     study.reducers()  # validate every run now
     return study
+
+
+def _read_toml(path: Path) -> dict:
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputFileError(f"{path}: file not found") from None
+    except IsADirectoryError:
+        raise InputFileError(f"{path}: is a folder, not a study file") from None
+    except UnicodeDecodeError:
+        raise InputFileError(f"{path}: not a text file (expected a TOML study file)") from None
+    except OSError as exc:
+        raise InputFileError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InputFileError(f"{path}: not valid TOML ({exc})") from None
+
+
+def _is_int(value) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _string(data: dict, key: str, path: Path, default: str | None = None) -> str:
+    value = data.get(key, default)
+    if not isinstance(value, str) or not value.strip():
+        raise InputFileError(f"{path}: '{key}' must be a non-empty text string (got {value!r})")
+    return value
+
+
+def _factor(label: str, spec, design: str, sampling: bool, path: Path) -> StudyFactor:
+    if not isinstance(spec, dict):
+        raise InputFileError(f"{path}: factors.{label} must be a table with 'parameter' and "
+                             f"{'range' if sampling else 'levels'}")
+    if not isinstance(spec.get("parameter"), str):
+        raise ParameterError(f"factors.{label}.parameter", "needs a parameter name as text "
+                             f"(got {spec.get('parameter')!r}; see 'rvsim params')")
+    unknown = set(spec) - {"parameter", "levels", "range"}
+    if unknown:
+        raise ParameterError(f"factors.{label}", f"unknown key(s) {', '.join(sorted(unknown))}")
+    parameter = resolve_name(spec["parameter"])
+    if sampling:
+        bounds = spec.get("range")
+        if not (isinstance(bounds, list) and len(bounds) == 2 and all(map(_is_number, bounds))):
+            raise ParameterError(f"factors.{label}.range", "needs [low, high], two finite "
+                                 f"numbers, for the {design} design (got {bounds!r})")
+        if not bounds[0] < bounds[1]:
+            raise ParameterError(f"factors.{label}.range", f"low must be below high "
+                                 f"(got {bounds!r})")
+        return StudyFactor(label, parameter, low=float(bounds[0]), high=float(bounds[1]))
+    levels = spec.get("levels")
+    if not (isinstance(levels, list) and len(levels) >= 2):
+        raise ParameterError(f"factors.{label}.levels", "needs a list of at least 2 levels")
+    if any(isinstance(v, (dict, list)) for v in levels):
+        raise ParameterError(f"factors.{label}.levels", "levels must be single values")
+    repeated = [v for i, v in enumerate(levels) if v in levels[:i]]
+    if repeated:
+        raise ParameterError(f"factors.{label}.levels", f"level {repeated[0]!r} is given twice")
+    return StudyFactor(label, parameter, tuple(levels))

@@ -19,7 +19,12 @@ import math
 from ..errors import ParameterError
 from ..parameters import Reducer
 
-__all__ = ["GearGeometry", "gear_geometry", "check_gear_stage", "involute"]
+__all__ = ["GearGeometry", "gear_geometry", "check_gear_stage", "involute", "MAX_GEAR_TEETH"]
+
+#: most teeth a sun or planet gear may have: RV reducers use 10-100; above a few hundred the
+#: stage no longer fits any RV housing and the involute formulas lose precision (1e20 teeth
+#: gave a contact ratio of -1084).  docs/decisions.md
+MAX_GEAR_TEETH = 500
 
 _ISO6336_C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529,
               0.00182)
@@ -84,6 +89,10 @@ def gear_geometry(reducer: Reducer) -> GearGeometry:
 def check_gear_stage(reducer: Reducer) -> None:
     """Raise :class:`ParameterError` when the sun-planet stage cannot mesh."""
     g = reducer.gears
+    for name, z in (("sun", g.sun_teeth), ("planet", g.planet_teeth)):
+        if z > MAX_GEAR_TEETH:
+            raise ParameterError(f"gears.{name}_teeth", f"must not exceed {MAX_GEAR_TEETH} "
+                                 f"teeth (got {z:.6g})")
     for name, z, x in (("sun", g.sun_teeth, g.sun_profile_shift),
                        ("planet", g.planet_teeth, g.planet_profile_shift)):
         if 0.5 * z * math.sin(g.pressure_angle) ** 2 < 1.0 - x - 1e-12:

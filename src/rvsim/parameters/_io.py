@@ -22,7 +22,7 @@ from ._types import Reducer
 from .rv40e import RV40E, TABLE2_FACTORS
 
 __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assignment",
-           "load_toml", "validate", "resolve_name", "BUILT_IN_SETS"]
+           "load_toml", "validate", "resolve_name", "BUILT_IN_SETS", "toml_string"]
 
 #: every leaf parameter of :class:`Reducer`, by dotted name
 SPECS: dict[str, FieldSpec] = {s.name: s for s in field_specs(Reducer)}
@@ -109,6 +109,24 @@ def parse_assignment(text: str) -> tuple[str, str]:
     return resolve_name(name), value.strip()
 
 
+_TOML_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n",
+                 "\f": "\\f", "\r": "\\r"}
+
+
+def toml_string(text: str) -> str:
+    """``text`` as a TOML basic string (quoted; quotes, backslashes and control characters
+    escaped), which :mod:`tomllib` reads back unchanged."""
+    out = []
+    for ch in text:
+        if ch in _TOML_ESCAPES:
+            out.append(_TOML_ESCAPES[ch])
+        elif ord(ch) < 0x20 or ord(ch) == 0x7F:
+            out.append(f"\\u{ord(ch):04X}")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
+
+
 def _flatten(table: dict, prefix: str = "") -> dict[str, Any]:
     flat: dict[str, Any] = {}
     for key, value in table.items():
@@ -132,6 +150,10 @@ def load_toml(path: str | Path, base: Reducer | None = None) -> Reducer:
     except tomllib.TOMLDecodeError as exc:
         raise InputFileError(f"{path}: not valid TOML ({exc})") from None
     base_name = data.pop("base", None)
+    for key, value in (("base", base_name), ("name", data.get("name"))):
+        if value is not None and not (isinstance(value, str) and value.strip()):
+            raise ParameterError(key, f"must be a non-empty text string in {path.name} "
+                                 f"(got {value!r})")
     if base is None:
         base_name = base_name or "RV-40E"
         if base_name not in BUILT_IN_SETS:
