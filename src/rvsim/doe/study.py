@@ -37,13 +37,11 @@ from ..parameters import (RV40E, TABLE2_FACTORS, Reducer, load_toml, resolve_nam
 from . import designs
 
 __all__ = ["StudyFactor", "Study", "paper_l36", "load_study", "BUILT_IN_STUDIES", "MAX_RUNS",
-           "MAX_TIME_STEP", "RESULT_COLUMNS"]
+           "RESULT_COLUMNS"]
 
 #: most runs a study may have: beyond this the design table alone strains memory and the runs
 #: would take weeks (docs/decisions.md)
 MAX_RUNS = 100_000
-#: largest integration step a study accepts [s], the same bound as :func:`rvsim.dynamics.simulate`
-MAX_TIME_STEP = 1e-3
 #: columns of results.csv besides the factors (a factor label must not be one of them); every
 #: metric column starts with ``te_`` or is listed here
 RESULT_COLUMNS = frozenset({"run", "status", "error", "key", "reducer", "steps", "wall_s",
@@ -99,6 +97,8 @@ class Study:
                 raise ParameterError(f"set.{name}", "set twice (a letter alias and its "
                                      "dotted name name the same parameter)")
             fixed_names.add(name)
+        from ..dynamics.simulate import MAX_TIME_STEP
+
         if self.time_step is not None and not (
                 isinstance(self.time_step, (int, float)) and not isinstance(self.time_step, bool)
                 and 0 < self.time_step <= MAX_TIME_STEP):

@@ -15,6 +15,8 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
+from .._files import atomic_write_text
+
 __all__ = ["invalidate_stale_cache", "kernel_cache_folder", "DEPENDENCIES", "STAMP_NAME"]
 
 _HERE = Path(__file__).parent
@@ -60,6 +62,6 @@ def invalidate_stale_cache() -> None:
             for stale in cache.glob(pattern):
                 stale.unlink(missing_ok=True)
         cache.mkdir(parents=True, exist_ok=True)
-        stamp.write_text(current)
+        atomic_write_text(stamp, current)  # a concurrent reader never sees half a stamp
     except OSError:
         pass  # read-only cache folder: numba cannot write there either

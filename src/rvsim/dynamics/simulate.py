@@ -15,10 +15,13 @@ from .model import build_model
 from .result import Result
 
 __all__ = ["simulate", "decompose_te", "DEFAULT_TIME_STEP", "DEFAULT_SAMPLE_RATE",
-           "CHUNK_STEPS", "MAX_HISTORY_BYTES", "ENERGY_RESIDUAL_LIMIT", "SPEED_RATIO_LIMIT"]
+           "MAX_TIME_STEP", "CHUNK_STEPS", "MAX_HISTORY_BYTES", "ENERGY_RESIDUAL_LIMIT", "SPEED_RATIO_LIMIT"]
 
 #: integration step [s]; docs/model.md and the convergence test justify it
 DEFAULT_TIME_STEP = 1e-5
+#: largest accepted step [s]: far above the stability limit (about 2e-5 s), so a larger value
+#: can only be a typo
+MAX_TIME_STEP = 1e-3
 #: rate at which histories are stored [Hz]
 DEFAULT_SAMPLE_RATE = 2000.0
 #: steps per call of the compiled driver (0.05 s simulated at the default step, about 20 ms of
@@ -35,8 +38,9 @@ SPEED_RATIO_LIMIT = 0.05
 
 def _check_run_options(reducer: Reducer, duration: float, time_step: float,
                        sample_rate: float) -> None:
-    if not 0 < time_step <= 1e-3:
-        raise ParameterError("time_step", f"must be in (0, 1e-3] s (got {time_step:g})")
+    if not 0 < time_step <= MAX_TIME_STEP:
+        raise ParameterError("time_step", f"must be in (0, {MAX_TIME_STEP:g}] s (got "
+                             f"{time_step:g})")
     if not (math.isfinite(sample_rate) and sample_rate > 0):
         raise ParameterError("sample_rate", f"must be a positive number of Hz (got "
                              f"{sample_rate:g})")

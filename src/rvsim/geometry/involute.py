@@ -100,5 +100,6 @@ def check_gear_stage(reducer: Reducer) -> None:
                                  f"{name} teeth undercut (z sin^2(alpha)/2 < 1 - x)")
     geo = gear_geometry(reducer)
     if not geo.contact_ratio > 1.0:
-        raise ParameterError("gears.module",
-                             f"contact ratio {geo.contact_ratio:.3f} is not above 1")
+        # the module scales the gears and leaves the contact ratio unchanged: name the stage
+        raise ParameterError("gears", f"contact ratio {geo.contact_ratio:.3f} is not above 1 "
+                             "(set by the tooth counts, profile shifts and pressure angle)")
