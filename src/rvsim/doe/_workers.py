@@ -132,9 +132,9 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
             attempts[held] += 1
             if attempts[held] >= MAX_ATTEMPTS:
                 reason = _death(worker.process.exitcode)
+                times = "twice" if MAX_ATTEMPTS == 2 else f"{MAX_ATTEMPTS} times"
                 on_result(held, {"status": "worker_died", "metrics": {},
-                                 "error": f"worker process died {MAX_ATTEMPTS} times "
-                                          f"({reason})"})
+                                 "error": f"worker process died {times} ({reason})"})
             else:
                 queue.appendleft(held)
         if queue:
