@@ -24,7 +24,7 @@ def model_source_files(root: Path = _ROOT) -> list[Path]:
     files: list[Path] = []
     for name in MODEL_PACKAGES:
         path = root / name
-        files += sorted(path.rglob("*.py")) if path.is_dir() else [path]
+        files += sorted(path.rglob("*.py")) if path.is_dir() else [path] if path.exists() else []
     return [f for f in files if "__pycache__" not in f.parts]
 
 

@@ -216,3 +216,47 @@ def test_finished_runs_wait_out_a_lock_taken_mid_study(tmp_path):
     assert "is locked by another process; waiting" in notice
     assert proc.returncode == 0, err
     assert len(_rows(out)) == 4 and set(_rows(out).values()) == {"ok"}
+
+
+@pytest.fixture(scope="module")
+def dask_cluster(tmp_path_factory):
+    """Two Dask worker processes; a worker that starts the doomed run SIGKILLs itself."""
+    distributed = pytest.importorskip("distributed")
+    import dask
+
+    folder = tmp_path_factory.mktemp("dask")
+    study = load_study(write_study(folder))
+    doomed = run_key(study.reducers()[1], study.time_step or DEFAULT_TIME_STEP)[:16]
+    # as the local runner: a run may kill a worker once; one task per worker at a time, so a
+    # dying worker takes no other run with it
+    with pytest.MonkeyPatch.context() as patch, dask.config.set(
+            {"distributed.scheduler.allowed-failures": 1,
+             "distributed.scheduler.worker-saturation": 1.0}):
+        patch.setenv(TEST_KILL_ENV, doomed)     # inherited by the worker processes
+        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                      host="127.0.0.1", dashboard_address=None) as cluster:
+            yield cluster, study
+
+
+def test_dask_a_killed_worker_is_a_failed_run_with_the_reason(tmp_path, dask_cluster):
+    cluster, study = dask_cluster
+    results = run(study, tmp_path / "out", scheduler=cluster.scheduler_address,
+                  progress=False)
+    assert list(results["status"]) == ["ok", "worker_died", "ok", "ok"]
+    assert results.loc[1, "error"].startswith("Dask KilledWorker: ")
+
+
+def test_dask_ctrl_c_cancels_the_queued_runs(tmp_path, dask_cluster):
+    cluster, _ = dask_cluster
+    path = _study(tmp_path)
+    out = tmp_path / "out"
+    proc = _start(path, out, "--scheduler", cluster.scheduler_address)
+    _wait_rows(proc, out, 2)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=HANG)
+    assert proc.returncode == 130 and err.count("\n") == 1 and "interrupted" in err
+    assert 2 <= len(_rows(out)) < 9
+    deadline = time.time() + HANG
+    while cluster.scheduler.tasks and time.time() < deadline:
+        time.sleep(0.05)
+    assert not cluster.scheduler.tasks     # nothing left queued or running on the cluster
