@@ -68,7 +68,14 @@ def _wait_rows(proc, out, count):
 def _gone(processes):
     """Wait (bounded) for processes to end; return those still running."""
     _, alive = psutil.wait_procs(processes, timeout=10)
-    return [p for p in alive if p.status() != psutil.STATUS_ZOMBIE]
+    return [p for p in alive if _running(p)]
+
+
+def _running(process):
+    try:
+        return process.status() != psutil.STATUS_ZOMBIE
+    except psutil.NoSuchProcess:
+        return False
 
 
 @pytest.mark.parametrize("signum, code, word", [(signal.SIGINT, 130, "interrupted"),
@@ -107,12 +114,13 @@ def test_sigkill_of_the_study_ends_its_workers_and_the_store_file_alone_is_compl
     workers = _wait_rows(proc, out, 3)
     proc.kill()
     proc.communicate(timeout=HANG)
-    assert not _gone(workers)
+    assert not _gone(workers), workers
     copy = tmp_path / "copy"
     copy.mkdir()
     shutil.copy(out / "results.sqlite", copy / "results.sqlite")   # without -wal / -shm
     copied, original = _rows(copy), _rows(out)
-    assert len(original) >= 3 and copied == original
+    assert len(original) >= 3, original
+    assert copied == original
 
 
 def test_a_killed_worker_is_replaced_and_its_run_retried(tmp_path):

@@ -114,10 +114,22 @@ class ResultStore:
                           "finished runs", file=sys.stderr)
                     self._warned = True
                 time.sleep(0.2)
-        try:   # copy the WAL into the main file: results.sqlite alone is then complete
-            self._db.execute("PRAGMA wal_checkpoint(PASSIVE)")
-        except sqlite3.OperationalError:
-            pass  # a reader holds an old snapshot: the next commit checkpoints
+        self._checkpoint()
+
+    def _checkpoint(self, attempts: int = 20) -> None:
+        """Copy the WAL into results.sqlite, so that the file alone holds every commit.
+
+        A reader of an older snapshot holds part of the WAL back for a moment: retry briefly;
+        after that the next commit (or closing the store) completes the copy.
+        """
+        for _ in range(attempts):
+            try:
+                _, logged, copied = self._db.execute("PRAGMA wal_checkpoint(PASSIVE)").fetchone()
+            except sqlite3.OperationalError:
+                logged, copied = 1, 0
+            if copied >= logged:
+                return
+            time.sleep(0.01)
 
     def history(self, key: str):
         """Stored compact history of one run (dict of arrays) or None."""
