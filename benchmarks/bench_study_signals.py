@@ -36,17 +36,18 @@ def _rows(path: Path) -> int:
 def measure(signum: int, after: int, workers: int) -> dict:
     with tempfile.TemporaryDirectory() as folder:
         store = Path(folder) / "results.sqlite"
+        log = Path(folder) / "stderr.txt"      # not a pipe: orphaned workers would hold it
         proc = subprocess.Popen([sys.executable, "-m", "rvsim", "study", "paper-l36", "--out",
                                  folder, "--workers", str(workers), "--no-progress",
                                  "--no-report"], stdout=subprocess.DEVNULL,
-                                stderr=subprocess.PIPE, text=True)
+                                stderr=log.open("w"))
         while _rows(store) < after and proc.poll() is None:
             time.sleep(0.02)
         children = psutil.Process(proc.pid).children(recursive=True)
         rows_at_signal = _rows(store)
         start = time.perf_counter()
         proc.send_signal(signum)
-        _, err = proc.communicate()
+        proc.wait()
         exit_s = time.perf_counter() - start
         _, alive = psutil.wait_procs(children, timeout=2)
         survivors = []
@@ -60,7 +61,7 @@ def measure(signum: int, after: int, workers: int) -> dict:
         return {"signal": signal.Signals(signum).name, "exit_code": proc.returncode,
                 "seconds_to_exit": round(exit_s, 2), "rows_at_signal": rows_at_signal,
                 "rows_kept": _rows(store), "workers_alive_after_2s": len(survivors),
-                "stderr": err.strip().splitlines()[-1:] if err.strip() else []}
+                "stderr_last_line": (log.read_text().strip().splitlines() or [""])[-1]}
 
 
 def main() -> None:
@@ -68,8 +69,8 @@ def main() -> None:
     parser.add_argument("--after", type=int, default=4)
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args()
-    print(json.dumps([measure(s, args.after, args.workers)
-                      for s in (signal.SIGINT, signal.SIGTERM)], indent=2))
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        print(json.dumps(measure(signum, args.after, args.workers)), flush=True)
 
 
 if __name__ == "__main__":

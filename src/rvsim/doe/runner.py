@@ -121,7 +121,8 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
         raise InputFileError(f"{folder}: exists and is not a folder")
     table = study.table()
     reducers = study.reducers()              # validates every run before any simulation
-    address = _scheduler_address(scheduler) if scheduler else None
+    if scheduler:
+        _check_scheduler(scheduler)          # before anything is written
     time_step = study.time_step or DEFAULT_TIME_STEP
     definition = _definition(study, time_step, reducers[0])
     keys = [run_key(r, time_step) for r in reducers]
@@ -140,8 +141,8 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
                     store.put(key, outcome)
                     bar.update(1)
 
-                if address and todo:
-                    _run_dask(todo, time_step, scheduler, address, store_result)
+                if scheduler and todo:
+                    _run_dask(todo, time_step, scheduler, store_result)
                 elif todo:
                     _run_local(todo, time_step, workers, store_result)
             done = store.finished()
@@ -175,16 +176,19 @@ def _scheduler_address(scheduler: str) -> tuple[str, int]:
     return parts.hostname, port or 8786
 
 
-def _run_dask(todo: dict, time_step: float, scheduler: str, address: tuple[str, int],
-              store_result) -> None:
+def _check_scheduler(scheduler: str) -> None:
+    """InputFileError unless ``scheduler`` is an address that accepts connections."""
     import socket
 
-    from distributed import Client, as_completed as dask_completed
-
     try:  # fail fast with a clear message instead of the client's 20 s timeout
-        socket.create_connection(address, timeout=3).close()
+        socket.create_connection(_scheduler_address(scheduler), timeout=3).close()
     except (OSError, ValueError) as exc:
         raise InputFileError(f"cannot reach the Dask scheduler at {scheduler} ({exc})") from None
+
+
+def _run_dask(todo: dict, time_step: float, scheduler: str, store_result) -> None:
+    from distributed import Client, as_completed as dask_completed
+
     try:
         client = Client(scheduler, timeout="20s")
     except (OSError, ValueError, TypeError) as exc:
