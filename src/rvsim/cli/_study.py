@@ -39,7 +39,7 @@ def _study(args: argparse.Namespace) -> int:
     factors = [f.label for f in study.factors]
     summary = {}
 
-    def finish(results: pd.DataFrame) -> None:       # runs while the folder is locked
+    def finish(results) -> None:       # runs while the folder is locked
         summary["analysis"] = write_study_outputs(folder, results, factors, alpha=args.alpha)
         if not args.no_report:
             from ..report import write_study_report
