@@ -70,6 +70,8 @@ class ResultStore:
             if _is_locked(exc):
                 raise InputFileError(f"{self.path}: locked by another process (close the "
                                      "program that holds it and run again)") from None
+            if "readonly" in str(exc) or "read-only" in str(exc):
+                raise InputFileError(f"{self.path}: cannot be written ({exc})") from None
             raise InputFileError(f"{self.path}: damaged ({exc}); move it away to start the "
                                  "study afresh, or use a new folder") from None
         self._db.execute(f"PRAGMA busy_timeout = {int(_BUSY_TIMEOUT * 1000)}")
