@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import rvsim._fingerprint as fp
-from rvsim.doe import ResultStore, run_key
+from rvsim.doe import ResultStore, load_study, run, run_key
 from rvsim.doe.runner import evaluate
 from rvsim.dynamics import Result
 from rvsim.dynamics import _layout as L
@@ -61,10 +61,13 @@ def test_a_run_stopped_at_step_0_keeps_its_status(monkeypatch, samples):
 @pytest.mark.parametrize("address", ["tcp://", "tcp://host:notaport", "::::", "udp://h:1",
                                      "tcp://host:99999"])
 def test_a_malformed_scheduler_address_is_one_line(tmp_path, cli, address):
+    path = write_study(tmp_path)
     out = tmp_path / "out"
-    res = cli("study", str(write_study(tmp_path)), "--out", str(out), "--scheduler", address)
-    assert res.code == 2 and res.err.count("\n") == 1
-    assert "--scheduler" in res.err and "not a scheduler address" in res.err
+    res = cli("study", str(path), "--out", str(out), "--scheduler", address)
+    assert res.code == 2 and res.err.count("\n") == 1 and "--scheduler" in res.err
+    assert not out.exists()
+    with pytest.raises(InputFileError, match="--scheduler: .* is not a scheduler address"):
+        run(load_study(path), out, scheduler=address, progress=False)
     assert not out.exists()
 
 
