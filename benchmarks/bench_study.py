@@ -48,7 +48,9 @@ def main() -> None:
             start = time.perf_counter()
             results = run(study, folder, workers=args.workers, progress=False)
             walls.append(time.perf_counter() - start)
-            assert (results["status"] == "ok").all()
+            # the short runs are too short to settle (their status may say so): only the
+            # runner's cost is measured then
+            assert args.short or (results["status"] == "ok").all()
     print(json.dumps({
         "machine": f"{platform.machine()} {os.cpu_count()} cpu, Python "
                    f"{platform.python_version()}",
