@@ -81,3 +81,11 @@ def test_a_store_opened_read_only_writes_nothing(tmp_path):
     store = ResultStore(tmp_path, readonly=True)
     assert store.finished()["k"]["metrics"] == {"te": 1.0}
     store.close()
+
+
+@pytest.mark.parametrize("workers", [0, -1])
+def test_run_refuses_fewer_than_one_worker(tmp_path, workers):
+    study = load_study(write_study(tmp_path))
+    with pytest.raises(InputFileError, match="workers: must be at least 1"):
+        run(study, tmp_path / "out", workers=workers, progress=False)
+    assert not (tmp_path / "out").exists()

@@ -44,10 +44,12 @@ def lock_folder(folder: str | Path):
     try:
         if fcntl is not None:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError:
+    except BlockingIOError:
         os.close(fd)
         raise InputFileError(f"{folder}: another rvsim study is running in this folder (wait "
                              "for it to finish, or give another --out folder)") from None
+    except OSError:
+        pass  # a file system without flock (some network mounts): the study runs unlocked
     os.ftruncate(fd, 0)
     os.write(fd, f"{os.getpid()}\n".encode())
     _HELD[where] = [fd, 1]

@@ -117,6 +117,8 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
     StudyTerminated, is then raised).
     """
     folder = Path(folder)
+    if workers is not None and workers < 1:
+        raise InputFileError(f"workers: must be at least 1 (got {workers})")
     if folder.exists() and not folder.is_dir():
         raise InputFileError(f"{folder}: exists and is not a folder")
     table = study.table()
