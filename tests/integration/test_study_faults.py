@@ -50,11 +50,12 @@ def _study(tmp_path, design="L9"):
     return path
 
 
-def _start(path, out, *extra, env=None):
+def _start(path, out, *extra, env=None, session=False):
+    """``rvsim study`` as a subprocess (``session``: in its own process group)."""
     return subprocess.Popen([sys.executable, "-m", "rvsim", "study", str(path), "--out",
                              str(out), "--workers", "2", "--no-progress", "--no-report", *extra],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            env={**os.environ, **(env or {})})
+                            env={**os.environ, **(env or {})}, start_new_session=session)
 
 
 def _wait_rows(proc, out, count):
@@ -78,13 +79,15 @@ def _running(process):
         return False
 
 
-@pytest.mark.parametrize("signum, code, word", [(signal.SIGINT, 130, "interrupted"),
-                                                (signal.SIGTERM, 143, "terminated")])
-def test_signal_stops_the_study_keeps_rows_and_leaves_no_worker(tmp_path, cli, signum, code,
-                                                                 word):
+@pytest.mark.parametrize("signum, group, code, word", [
+    (signal.SIGINT, False, 130, "interrupted"),
+    (signal.SIGINT, True, 130, "interrupted"),    # Ctrl-C in a terminal: the whole group
+    (signal.SIGTERM, False, 143, "terminated")])
+def test_signal_stops_the_study_keeps_rows_and_leaves_no_worker(tmp_path, cli, signum, group,
+                                                                 code, word):
     path = _study(tmp_path)
     out = tmp_path / "out"
-    proc = _start(path, out)
+    proc = _start(path, out, session=group)
     workers = _wait_rows(proc, out, 2)
     assert len(workers) == 2
     # while it runs, the folder is locked against a second study
@@ -92,14 +95,17 @@ def test_signal_stops_the_study_keeps_rows_and_leaves_no_worker(tmp_path, cli, s
     assert res.code == 2 and "another rvsim study is running" in res.err
     assert res.err.count("\n") == 1
     before = _rows(out)
-    proc.send_signal(signum)
+    if group:
+        os.killpg(proc.pid, signum)
+    else:
+        proc.send_signal(signum)
     _, err = proc.communicate(timeout=HANG)
     assert proc.returncode == code
     assert err.count("\n") == 1 and word in err and "Traceback" not in err
     assert not _gone(workers)
     kept = _rows(out)
     assert 2 <= len(kept) < 9 and set(before) <= set(kept)
-    if signum == signal.SIGINT:   # a re-run completes the study (the lock is free)
+    if signum == signal.SIGINT and not group:   # a re-run completes the study (lock free)
         results = run(load_study(path), out, workers=2, progress=False)
         assert (results["status"] == "ok").all() and len(_rows(out)) == 9
     else:
