@@ -111,6 +111,7 @@ def test_unreachable_scheduler_is_a_clear_error(tmp_path, small_study, cli):
     res = cli("study", str(small_study), "--out", str(tmp_path / "o"), "--scheduler",
               "tcp://127.0.0.1:9")
     assert res.code == 2 and "Dask scheduler" in res.err
+    assert not (tmp_path / "o").exists()
 
 
 def test_paper_l36_definition_validates_all_runs():

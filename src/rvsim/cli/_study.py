@@ -35,14 +35,29 @@ def _study(args: argparse.Namespace) -> int:
     check_output_folder(args.out, "--out")   # before the runs, not after them
     folder = Path(args.out)
     progress = not args.no_progress and sys.stderr.isatty()
-    results = run(study, folder, workers=args.workers, scheduler=args.scheduler,
-                  progress=progress)
     factors = [f.label for f in study.factors]
-    analysis = write_study_outputs(folder, results, factors, alpha=args.alpha)
-    if not args.no_report:
-        from ..report import write_study_report
+    summary = {}
 
-        write_study_report(folder, study=study)
+    def finish(results) -> None:       # runs while the folder is locked
+        summary["analysis"] = write_study_outputs(folder, results, factors, alpha=args.alpha)
+        if not args.no_report:
+            from ..report import write_study_report
+
+            write_study_report(folder, study=study)
+
+    from ..doe.runner import StudyTerminated
+
+    try:
+        results = run(study, folder, workers=args.workers, scheduler=args.scheduler,
+                      progress=progress, finish=finish)
+    except StudyTerminated as exc:
+        print(f"rvsim: terminated ({exc}); finished runs are kept in {folder}",
+              file=sys.stderr)
+        return 143
+    except KeyboardInterrupt:
+        print(f"rvsim: interrupted; finished runs are kept in {folder}", file=sys.stderr)
+        return 130
+    analysis = summary["analysis"]
     failed = int((results["status"] != "ok").sum())
     if args.json:
         print_json({"folder": str(folder), "runs": int(len(results)), "failed": failed,

@@ -1,17 +1,23 @@
 """Evaluate every run of a study with the dynamic model, in parallel, resumably.
 
 ``run(study, folder)`` evaluates what the store does not hold yet, in worker processes on this
-machine (default: one per core) or on a Dask cluster (``scheduler="tcp://host:port"``), and
-stores each outcome as it arrives.  A run whose simulation fails is stored with its status and
-error; it does not stop the study.
+machine (default: one per core, see ``_workers``) or on a Dask cluster
+(``scheduler="tcp://host:port"``), and stores each outcome as it arrives.  A run whose
+simulation fails is stored with its status and error; it does not stop the study, nor does a
+worker process that dies (the run is retried once, then stored as failed).  The folder is
+locked while the study runs (``folder``); Ctrl-C or SIGTERM stop it at once, keeping every
+finished row.
 """
 
 from __future__ import annotations
 
+import contextlib
+import json
 import os
+import signal
 import traceback
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
+from typing import Callable
 
 import pandas as pd
 
@@ -19,24 +25,34 @@ from .._files import atomic_write_text
 from ..dynamics import DEFAULT_TIME_STEP
 from ..errors import InputFileError
 from ..parameters import Reducer
+from ._workers import evaluate_task, run_workers
+from .folder import check_same_study, held_lock_fds, lock_folder
 from .store import ResultStore, run_key
 from .study import Study
 
-__all__ = ["run", "evaluate", "compact_history"]
+__all__ = ["run", "evaluate", "compact_history", "StudyTerminated"]
 
 
 def evaluate(reducer: Reducer, time_step: float) -> dict:
-    """Simulate one run; never raises (the outcome carries status and error)."""
+    """Simulate one run; never raises (the outcome carries status and error).
+
+    A simulation that stops (even at step 0) keeps its own status; "error" is reserved for an
+    exception of the code itself.
+    """
     from ..dynamics import simulate
 
     try:
         result = simulate(reducer, time_step=time_step, raise_on_failure=False)
-        summary = result.summary()
-        outcome = {"status": result.status, "metrics": summary, "wall_s": result.wall_s,
-                   "history": compact_history(result)}
+        outcome = {"status": result.status, "wall_s": result.wall_s, "metrics": {}}
         if result.status != "ok":
             outcome["error"] = f"simulation {result.status.replace('_', ' ')} at step " \
                                f"{result.steps}"
+        try:
+            outcome["metrics"] = result.summary()
+            outcome["history"] = compact_history(result)
+        except Exception:  # noqa: BLE001 - a stopped run may have too few samples
+            if result.status == "ok":
+                raise
         return outcome
     except Exception as exc:  # noqa: BLE001 - a failed row must not stop the study
         return {"status": "error", "error": f"{type(exc).__name__}: {exc}",
@@ -49,7 +65,8 @@ def compact_history(result, rate: float = 1000.0) -> bytes:
 
     import numpy as np
 
-    step = max(1, int(round(1.0 / (rate * (result.time[1] - result.time[0])))))
+    sample = result.time[1] - result.time[0] if len(result.time) > 1 else 1.0 / rate
+    step = max(1, int(round(1.0 / (rate * sample))))
     buffer = io.BytesIO()
     np.savez_compressed(buffer, time=result.time[::step], omega_in=result.omega_in[::step],
                         omega_out=result.omega_out[::step], te=result.te[::step],
@@ -64,77 +81,145 @@ def _progress(total: int, initial: int, enabled: bool):
                 desc="study", dynamic_ncols=True)
 
 
+class StudyTerminated(KeyboardInterrupt):
+    """The study process received SIGTERM or SIGHUP (handled like Ctrl-C: finished rows kept)."""
+
+
+@contextlib.contextmanager
+def _termination_interrupts():
+    """Make SIGTERM and SIGHUP raise StudyTerminated (so workers are stopped, rows kept)."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminate(signum, frame):
+        raise StudyTerminated(signal.Signals(signum).name)
+
+    names = [n for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n)]
+    previous = {n: signal.signal(getattr(signal, n), terminate) for n in names}
+    try:
+        yield
+    finally:
+        for name, handler in previous.items():
+            signal.signal(getattr(signal, name), handler)
+
+
 def run(study: Study, folder: str | Path, *, workers: int | None = None,
-        scheduler: str | None = None, progress: bool = True) -> pd.DataFrame:
-    """Evaluate ``study`` into ``folder``; return the results table (one row per run)."""
+        scheduler: str | None = None, progress: bool = True,
+        finish: Callable[[pd.DataFrame], object] | None = None) -> pd.DataFrame:
+    """Evaluate ``study`` into ``folder``; return the results table (one row per run).
+
+    The folder is locked for the study's duration; ``finish(results)``, if given, runs while it
+    still is (the CLI writes the outputs and the report there).  Ctrl-C, SIGTERM and SIGHUP
+    stop the workers at once and keep every finished row (KeyboardInterrupt, or its subclass
+    StudyTerminated, is then raised).
+    """
     folder = Path(folder)
+    if workers is not None and workers < 1:
+        raise InputFileError(f"workers: must be at least 1 (got {workers})")
     if folder.exists() and not folder.is_dir():
         raise InputFileError(f"{folder}: exists and is not a folder")
     table = study.table()
     reducers = study.reducers()              # validates every run before any simulation
-    folder.mkdir(parents=True, exist_ok=True)
+    if scheduler:
+        _check_scheduler(scheduler)          # before anything is written
     time_step = study.time_step or DEFAULT_TIME_STEP
-    _write_definition(study, folder, time_step, reducers[0])
+    definition = _definition(study, time_step, reducers[0])
     keys = [run_key(r, time_step) for r in reducers]
-    store = ResultStore(folder)
-    try:
-        done = store.finished()
-        todo = {k: r for k, r in zip(keys, reducers) if k not in done}
-        bar = _progress(len(set(keys)), len(set(keys)) - len(todo), progress)
-        with bar:
-            if scheduler:
-                _run_dask(todo, time_step, scheduler, store, bar)
-            elif todo:
-                _run_local(todo, time_step, workers, store, bar)
-        done = store.finished()
-    finally:
-        store.close()
-    return _results_table(study, table, keys, done)
+    folder.mkdir(parents=True, exist_ok=True)
+    with lock_folder(folder), _termination_interrupts():
+        store = ResultStore(folder)
+        try:
+            done = store.finished()
+            check_same_study(folder, definition, bool(done))
+            atomic_write_text(folder / "study.json", json.dumps(definition, indent=2,
+                                                                default=str))
+            todo = {k: r for k, r in zip(keys, reducers) if k not in done}
+            bar = _progress(len(set(keys)), len(set(keys)) - len(todo), progress)
+            with bar:
+                def store_result(key: str, outcome: dict) -> None:
+                    store.put(key, outcome)
+                    bar.update(1)
+
+                if scheduler and todo:
+                    _run_dask(todo, time_step, scheduler, store_result)
+                elif todo:
+                    _run_local(todo, time_step, workers, store_result)
+            done = store.finished()
+        finally:
+            store.close()
+        results = _results_table(study, table, keys, done)
+        if finish is not None:
+            finish(results)
+    return results
 
 
-def _run_local(todo: dict, time_step: float, workers: int | None, store: ResultStore,
-               bar) -> None:
+def _run_local(todo: dict, time_step: float, workers: int | None, store_result) -> None:
     workers = workers or os.cpu_count() or 1
-    if workers == 1 or len(todo) == 1:
-        for key, reducer in todo.items():
-            store.put(key, evaluate(reducer, time_step))
-            bar.update(1)
-        return
-    with ProcessPoolExecutor(max_workers=min(workers, len(todo))) as pool:
-        futures = {pool.submit(evaluate, reducer, time_step): key
-                   for key, reducer in todo.items()}
-        for future in as_completed(futures):
-            store.put(futures[future], future.result())
-            bar.update(1)
+    run_workers({key: (reducer, time_step) for key, reducer in todo.items()},
+                min(workers, len(todo)), store_result, held_lock_fds())
 
 
-def _run_dask(todo: dict, time_step: float, scheduler: str, store: ResultStore, bar) -> None:
+def _scheduler_address(scheduler: str) -> tuple[str, int]:
+    """(host, port) of a Dask scheduler address; InputFileError if it is not one."""
+    from urllib.parse import urlsplit
+
+    bad = InputFileError(f"--scheduler: '{scheduler}' is not a scheduler address "
+                         "(e.g. tcp://host:8786)")
+    parts = urlsplit(scheduler if "://" in scheduler else f"tcp://{scheduler}")
+    try:
+        port = parts.port
+    except ValueError:
+        raise bad from None
+    if parts.scheme not in ("tcp", "tls") or not parts.hostname or parts.path not in ("", "/"):
+        raise bad
+    return parts.hostname, port or 8786
+
+
+def _check_scheduler(scheduler: str) -> None:
+    """InputFileError unless ``scheduler`` is an address that accepts connections."""
     import socket
-    from urllib.parse import urlparse
 
-    from distributed import Client, as_completed as dask_completed
-
-    address = urlparse(scheduler if "://" in scheduler else f"tcp://{scheduler}")
     try:  # fail fast with a clear message instead of the client's 20 s timeout
-        socket.create_connection((address.hostname, address.port or 8786), timeout=3).close()
+        socket.create_connection(_scheduler_address(scheduler), timeout=3).close()
     except (OSError, ValueError) as exc:
         raise InputFileError(f"cannot reach the Dask scheduler at {scheduler} ({exc})") from None
+
+
+def _run_dask(todo: dict, time_step: float, scheduler: str, store_result) -> None:
+    from distributed import Client, as_completed as dask_completed
+
     try:
         client = Client(scheduler, timeout="20s")
-    except OSError as exc:
+    except (OSError, ValueError, TypeError) as exc:
         raise InputFileError(f"cannot reach the Dask scheduler at {scheduler} ({exc})") from None
     with client:
-        futures = {client.submit(evaluate, reducer, time_step, key=f"rvsim-{key}", pure=False):
-                   key for key, reducer in todo.items()}
-        for future in dask_completed(futures):
-            store.put(futures[future], future.result())
-            bar.update(1)
+        futures = {client.submit(evaluate_task, key, reducer, time_step, key=f"rvsim-{key}",
+                                 pure=False): key for key, reducer in todo.items()}
+        try:
+            for future in dask_completed(futures):
+                store_result(*_dask_outcome(future, futures[future]))
+        except BaseException:
+            client.cancel(list(futures), force=True)
+            raise
 
 
-def _write_definition(study: Study, folder: Path, time_step: float, first: Reducer) -> None:
-    import json
+def _dask_outcome(future, key: str) -> tuple[str, dict]:
+    """A finished future's (key, outcome); a lost worker is a failed run with the reason."""
+    try:
+        return future.result()
+    except Exception as exc:  # noqa: BLE001 - evaluate never raises: this is the cluster
+        name = type(exc).__name__
+        status = "worker_died" if name == "KilledWorker" else "error"
+        reason = str(exc).splitlines()[0] if str(exc) else name
+        return key, {"status": status, "metrics": {},
+                     "error": f"Dask {name}: {reason}"[:500]}
 
-    definition = {
+
+def _definition(study: Study, time_step: float, first: Reducer) -> dict:
+    return {
         "name": study.name, "design": study.design, "samples": study.samples,
         "seed": study.seed, "time_step": time_step,
         "reducer": f"{study.base.name} ({study.base.citation})" if study.base.citation
@@ -144,7 +229,6 @@ def _write_definition(study: Study, folder: Path, time_step: float, first: Reduc
                      "low": f.low, "high": f.high} for f in study.factors],
         "fixed": [[k, v] for k, v in study.fixed],
     }
-    atomic_write_text(folder / "study.json", json.dumps(definition, indent=2, default=str))
 
 
 def _results_table(study: Study, table: pd.DataFrame, keys: list[str], done: dict

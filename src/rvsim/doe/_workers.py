@@ -1,0 +1,168 @@
+"""Local worker processes of a study, each with its own pipe, faults contained.
+
+The parent starts N long-lived workers (numba's kernel is loaded once per worker), sends each
+one run at a time and waits on the result pipes and the process sentinels together, so it
+knows which run a dead worker held.  A run whose worker dies is sent again to a fresh worker;
+a run that kills its worker twice is returned as failed with the reason.  Workers ignore
+SIGINT (the parent decides), die with the parent (PR_SET_PDEATHSIG on Linux; elsewhere when
+their pipe closes) and are terminated when the parent stops for any reason.
+"""
+
+from __future__ import annotations
+
+import collections
+import multiprocessing
+import os
+import signal
+import sys
+from multiprocessing.connection import wait
+from typing import Callable
+
+__all__ = ["run_workers", "evaluate_task", "TEST_KILL_ENV", "MAX_ATTEMPTS"]
+
+#: test-only hook: a worker given a run whose key starts with this value SIGKILLs itself
+TEST_KILL_ENV = "RVSIM_TEST_KILL_RUN"
+#: worker deaths a run may cause before it is stored as failed
+MAX_ATTEMPTS = 2
+
+
+def evaluate_task(key: str, reducer, time_step: float) -> tuple[str, dict]:
+    """Evaluate one run in a worker (the entry point of local and Dask workers)."""
+    from .runner import evaluate
+
+    doomed = os.environ.get(TEST_KILL_ENV)
+    if doomed and key.startswith(doomed):
+        os.kill(os.getpid(), signal.SIGKILL)
+    return key, evaluate(reducer, time_step)
+
+
+def _die_with_parent(parent_pid: int) -> None:
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, signal.SIGKILL)          # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != parent_pid:                 # the parent died before prctl
+        os._exit(1)
+
+
+def _worker_main(conn, parent_pid: int, inherited_fds: list[int]) -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in ("SIGTERM", "SIGHUP"):
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), signal.SIG_DFL)
+    _die_with_parent(parent_pid)
+    for fd in inherited_fds:       # the parent's folder lock must die with the parent
+        try:
+            os.close(fd)
+        except OSError:
+            pass
+    while True:
+        try:
+            task = conn.recv()
+        except (EOFError, OSError):
+            break
+        if task is None:
+            break
+        try:
+            conn.send(evaluate_task(*task))
+        except OSError:
+            break
+
+
+class _Worker:
+    def __init__(self, context, inherited_fds: list[int]):
+        self.conn, child = context.Pipe()
+        self.process = context.Process(target=_worker_main, daemon=True,
+                                       args=(child, os.getpid(), inherited_fds))
+        self.process.start()
+        child.close()
+        self.task: tuple | None = None
+
+    def stop(self) -> None:
+        if self.process.is_alive():
+            self.process.terminate()
+
+    def reap(self) -> None:
+        self.process.join(2.0)
+        if self.process.is_alive():
+            self.process.kill()
+            self.process.join()
+        self.conn.close()
+
+
+def _death(code: int | None) -> str:
+    if code is not None and code < 0:
+        return f"signal {-code}"
+    return f"exit code {code}"
+
+
+def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str, dict], None],
+                inherited_fds: list[int] = ()) -> None:
+    """Evaluate ``tasks`` (key -> (reducer, time_step)) in ``workers`` processes.
+
+    ``on_result(key, outcome)`` is called in this process as each run finishes.
+    """
+    context = multiprocessing.get_context()
+    fds = list(inherited_fds) if context.get_start_method() == "fork" else []
+    queue = collections.deque(tasks)
+    attempts: collections.Counter = collections.Counter()
+    pool: list[_Worker] = []
+
+    def dispatch(worker: _Worker) -> None:
+        while queue:
+            key = queue.popleft()
+            try:
+                worker.conn.send((key, *tasks[key]))
+            except OSError:             # died idle: not the run's fault
+                queue.appendleft(key)
+                replace(worker, None)
+                return
+            worker.task = key
+            return
+
+    def replace(worker: _Worker, held: str | None) -> None:
+        worker.stop()
+        worker.reap()
+        pool.remove(worker)
+        if held is not None:
+            attempts[held] += 1
+            if attempts[held] >= MAX_ATTEMPTS:
+                reason = _death(worker.process.exitcode)
+                times = "twice" if MAX_ATTEMPTS == 2 else f"{MAX_ATTEMPTS} times"
+                on_result(held, {"status": "worker_died", "metrics": {},
+                                 "error": f"worker process died {times} ({reason})"})
+            else:
+                queue.appendleft(held)
+        if queue:
+            fresh = _Worker(context, fds)
+            pool.append(fresh)
+            dispatch(fresh)
+
+    try:
+        for _ in range(min(workers, len(queue))):
+            pool.append(_Worker(context, fds))
+        for worker in list(pool):
+            dispatch(worker)
+        while busy := [w for w in pool if w.task is not None]:
+            ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy]))
+            for worker in busy:
+                if worker.conn in ready:
+                    try:
+                        key, outcome = worker.conn.recv()
+                    except (EOFError, OSError):
+                        replace(worker, worker.task)
+                        continue
+                    worker.task = None
+                    on_result(key, outcome)
+                    dispatch(worker)
+                elif worker.process.sentinel in ready:
+                    replace(worker, worker.task)
+    finally:
+        for worker in pool:
+            worker.stop()
+        for worker in pool:
+            worker.reap()

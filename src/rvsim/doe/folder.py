@@ -1,0 +1,83 @@
+"""The study folder: one study at a time, and only the study it was made for.
+
+A running study holds an exclusive ``flock`` on ``folder/study.lock``; the operating system
+releases it when the process ends in any way (SIGKILL included), so a stale lock cannot
+survive its study.  A folder whose ``study.json`` describes a different study, and whose store
+holds results, is refused rather than mixed.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+from pathlib import Path
+
+from ..errors import InputFileError
+
+try:
+    import fcntl
+except ImportError:  # pragma: no cover - not POSIX: studies run unlocked
+    fcntl = None
+
+__all__ = ["LOCK_NAME", "lock_folder", "held_lock_fds", "check_same_study"]
+
+LOCK_NAME = "study.lock"
+
+# folder -> [fd, depth]: the lock is re-entrant within one process
+_HELD: dict[Path, list[int]] = {}
+
+
+@contextlib.contextmanager
+def lock_folder(folder: str | Path):
+    """Hold ``folder``'s study lock (the folder must exist); InputFileError if another holds it."""
+    folder = Path(folder)
+    where = folder.resolve()
+    if where in _HELD:
+        _HELD[where][1] += 1
+        try:
+            yield
+        finally:
+            _HELD[where][1] -= 1
+        return
+    fd = os.open(where / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        if fcntl is not None:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        os.close(fd)
+        raise InputFileError(f"{folder}: another rvsim study is running in this folder (wait "
+                             "for it to finish, or give another --out folder)") from None
+    except OSError:
+        pass  # a file system without flock (some network mounts): the study runs unlocked
+    os.ftruncate(fd, 0)
+    os.write(fd, f"{os.getpid()}\n".encode())
+    _HELD[where] = [fd, 1]
+    try:
+        yield
+    finally:
+        del _HELD[where]
+        os.close(fd)          # closing the last descriptor releases the flock
+
+
+def held_lock_fds() -> list[int]:
+    """Descriptors of the locks this process holds (a forked worker closes its copies)."""
+    return [fd for fd, _ in _HELD.values()]
+
+
+def check_same_study(folder: Path, definition: dict, has_results: bool) -> None:
+    """Refuse a folder whose stored results belong to a study other than ``definition``."""
+    path = folder / "study.json"
+    if not has_results or not path.exists():
+        return
+    try:
+        stored = json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, ValueError):
+        stored = None
+    if stored != json.loads(json.dumps(definition, default=str)):
+        name = stored.get("name") if isinstance(stored, dict) else None
+        which = (f"a different definition of study '{name}' (study.json differs)"
+                 if name == definition["name"] else
+                 f"study '{name}'" if name else "another study")
+        raise InputFileError(f"{folder}: holds the results of {which}, not of this "
+                             f"'{definition['name']}'; give a new --out folder")

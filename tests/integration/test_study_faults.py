@@ -1,0 +1,276 @@
+"""Study faults with real signals and real processes: Ctrl-C, SIGTERM, SIGKILL of the study or
+of one worker, a run that kills its worker, a second study into a locked folder, a folder of
+another study, a damaged or locked store, a copied store, and the same on a Dask cluster."""
+
+import os
+import shutil
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
+
+import psutil
+import pytest
+
+from rvsim.doe import load_study, run, run_key
+from rvsim.doe._workers import TEST_KILL_ENV
+from rvsim.doe.folder import lock_folder
+from rvsim.doe.store import ResultStore
+from rvsim.dynamics import DEFAULT_TIME_STEP
+from tests.integration.conftest import factors, write_study
+
+HANG = 60  # s: a guard against a hung study, not a performance figure
+
+
+def _rows(folder):
+    """{key: status} committed in folder/results.sqlite (read without disturbing the study)."""
+    path = folder / "results.sqlite"
+    if not path.exists():
+        return {}
+    try:
+        with sqlite3.connect(f"{path.as_uri()}?mode=ro", uri=True, timeout=5) as db:
+            return dict(db.execute("SELECT key, status FROM runs").fetchall())
+    except sqlite3.OperationalError:
+        return {}
+
+
+def _study(tmp_path, design="L9"):
+    """An L9 (or L4) study of 0.8 s runs (0.3 s each on an idle core): long enough to
+    interrupt part-way."""
+    folder = tmp_path / "definition"
+    folder.mkdir()
+    levels = {"L9": ([0.0, 0.01, 0.02], [0.0, 0.016, 0.032], [100, 200, 300]),
+              "L4": ([0.0, 0.02], [0.0, 0.032], [100, 300])}[design]
+    path = write_study(folder, design=design, factors=factors(
+        H=("H", levels[0]), I=("I", levels[1]), E=("E", levels[2])))
+    text = path.read_text().replace('"operating.duration" = 0.4', '"operating.duration" = 0.8')
+    path.write_text(text.replace('"operating.steady_start" = 0.3',
+                                 '"operating.steady_start" = 0.5'))
+    return path
+
+
+def _start(path, out, *extra, env=None, session=False):
+    """``rvsim study`` as a subprocess (``session``: in its own process group)."""
+    return subprocess.Popen([sys.executable, "-m", "rvsim", "study", str(path), "--out",
+                             str(out), "--workers", "2", "--no-progress", "--no-report", *extra],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**os.environ, **(env or {})}, start_new_session=session)
+
+
+def _wait_rows(proc, out, count):
+    deadline = time.time() + HANG
+    while len(_rows(out)) < count and proc.poll() is None and time.time() < deadline:
+        time.sleep(0.02)
+    assert proc.poll() is None, "the study ended before it could be interrupted"
+    return psutil.Process(proc.pid).children(recursive=True)
+
+
+def _gone(processes):
+    """Wait (bounded) for processes to end; return those still running."""
+    _, alive = psutil.wait_procs(processes, timeout=10)
+    return [p for p in alive if _running(p)]
+
+
+def _running(process):
+    try:
+        return process.status() != psutil.STATUS_ZOMBIE
+    except psutil.NoSuchProcess:
+        return False
+
+
+@pytest.mark.parametrize("signum, group, code, word", [
+    (signal.SIGINT, False, 130, "interrupted"),
+    (signal.SIGINT, True, 130, "interrupted"),    # Ctrl-C in a terminal: the whole group
+    (signal.SIGTERM, False, 143, "terminated")])
+def test_signal_stops_the_study_keeps_rows_and_leaves_no_worker(tmp_path, cli, signum, group,
+                                                                 code, word):
+    path = _study(tmp_path)
+    out = tmp_path / "out"
+    proc = _start(path, out, session=group)
+    workers = _wait_rows(proc, out, 2)
+    assert len(workers) == 2
+    # while it runs, the folder is locked against a second study
+    res = cli("study", str(path), "--out", str(out))
+    assert res.code == 2 and "another rvsim study is running" in res.err
+    assert res.err.count("\n") == 1
+    before = _rows(out)
+    if group:
+        os.killpg(proc.pid, signum)
+    else:
+        proc.send_signal(signum)
+    _, err = proc.communicate(timeout=HANG)
+    assert proc.returncode == code
+    assert err.count("\n") == 1 and word in err and "Traceback" not in err
+    assert not _gone(workers)
+    kept = _rows(out)
+    assert 2 <= len(kept) < 9 and set(before) <= set(kept)
+    if signum == signal.SIGINT and not group:   # a re-run completes the study (lock free)
+        results = run(load_study(path), out, workers=2, progress=False)
+        assert (results["status"] == "ok").all() and len(_rows(out)) == 9
+    else:
+        with lock_folder(out):
+            pass
+
+
+def test_sigkill_of_the_study_ends_its_workers_and_the_store_file_alone_is_complete(tmp_path):
+    path = _study(tmp_path)
+    out = tmp_path / "out"
+    proc = _start(path, out)
+    workers = _wait_rows(proc, out, 3)
+    proc.kill()
+    proc.communicate(timeout=HANG)
+    assert not _gone(workers), workers
+    copy = tmp_path / "copy"
+    copy.mkdir()
+    shutil.copy(out / "results.sqlite", copy / "results.sqlite")   # without -wal / -shm
+    copied, original = _rows(copy), _rows(out)
+    assert len(original) >= 3, original
+    assert copied == original
+
+
+def test_a_killed_worker_is_replaced_and_its_run_retried(tmp_path):
+    path = _study(tmp_path, "L4")
+    out = tmp_path / "out"
+    proc = _start(path, out)
+    workers = _wait_rows(proc, out, 1)
+    workers[0].kill()
+    _, err = proc.communicate(timeout=HANG)
+    assert proc.returncode == 0, err
+    rows = _rows(out)
+    assert len(rows) == 4 and set(rows.values()) == {"ok"}
+
+
+def test_a_run_that_kills_its_worker_twice_is_stored_as_failed(tmp_path, monkeypatch):
+    study = load_study(write_study(tmp_path))
+    doomed = run_key(study.reducers()[1], study.time_step or DEFAULT_TIME_STEP)
+    monkeypatch.setenv(TEST_KILL_ENV, doomed[:16])
+    results = run(study, tmp_path / "out", workers=2, progress=False)
+    assert list(results["status"]) == ["ok", "worker_died", "ok", "ok"]
+    assert results.loc[1, "error"] == "worker process died twice (signal 9)"
+
+
+def test_a_folder_of_another_study_is_refused(tmp_path, small_study, cli):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "study.json").write_text('{"name": "other"}')
+    store = ResultStore(out)
+    store.put("k", {"status": "ok", "metrics": {}})
+    store.close()
+    res = cli("study", str(small_study), "--out", str(out))
+    assert res.code == 2 and res.err.count("\n") == 1
+    assert "holds the results of study 'other'" in res.err and "new --out folder" in res.err
+
+
+def _valid_store(folder):
+    store = ResultStore(folder)
+    for i in range(50):
+        store.put(f"k{i}", {"status": "ok", "metrics": {"x": i}, "history": os.urandom(3000)})
+    store.close()
+
+
+@pytest.mark.parametrize("damage", ["junk", "truncated"])
+def test_a_damaged_store_is_one_line(tmp_path, small_study, cli, damage):
+    out = tmp_path / "out"
+    out.mkdir()
+    path = out / "results.sqlite"
+    if damage == "junk":
+        path.write_bytes(b"this is not a database" * 100)
+    else:
+        _valid_store(out)
+        path.write_bytes(path.read_bytes()[:path.stat().st_size // 2])
+    res = cli("study", str(small_study), "--out", str(out))
+    assert res.code == 2 and res.err.count("\n") == 1
+    assert "results.sqlite: damaged" in res.err
+
+
+_HOLD_LOCK = """
+import sqlite3, sys, time
+db = sqlite3.connect(sys.argv[1], isolation_level=None)
+db.execute("BEGIN EXCLUSIVE")
+print("locked", flush=True)
+sys.stdin.readline()
+db.execute("COMMIT")
+"""
+
+
+def _hold_lock(path):
+    """A process holding an exclusive lock on the store until a line is written to its stdin."""
+    holder = subprocess.Popen([sys.executable, "-c", _HOLD_LOCK, str(path)],
+                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    assert holder.stdout.readline().strip() == "locked"
+    return holder
+
+
+def test_a_store_locked_by_another_process_is_one_line(tmp_path, small_study, cli,
+                                                        monkeypatch):
+    out = tmp_path / "out"
+    out.mkdir()
+    ResultStore(out).close()
+    holder = _hold_lock(out / "results.sqlite")
+    try:
+        monkeypatch.setattr("rvsim.doe.store._OPEN_TIMEOUT", 0.2)
+        res = cli("study", str(small_study), "--out", str(out))
+    finally:
+        holder.kill()
+        holder.wait()
+    assert res.code == 2 and res.err.count("\n") == 1
+    assert "locked by another process" in res.err
+
+
+def test_finished_runs_wait_out_a_lock_taken_mid_study(tmp_path):
+    path = _study(tmp_path, "L4")
+    out = tmp_path / "out"
+    proc = _start(path, out)
+    _wait_rows(proc, out, 1)
+    holder = _hold_lock(out / "results.sqlite")
+    notice = proc.stderr.readline()           # the next finished run waits for the lock
+    holder.communicate("release\n", timeout=HANG)
+    _, err = proc.communicate(timeout=HANG)
+    assert "is locked by another process; waiting" in notice
+    assert proc.returncode == 0, err
+    assert len(_rows(out)) == 4 and set(_rows(out).values()) == {"ok"}
+
+
+@pytest.fixture(scope="module")
+def dask_cluster(tmp_path_factory):
+    """Two Dask worker processes; a worker that starts the doomed run SIGKILLs itself."""
+    distributed = pytest.importorskip("distributed")
+    import dask
+
+    folder = tmp_path_factory.mktemp("dask")
+    study = load_study(write_study(folder))
+    doomed = run_key(study.reducers()[1], study.time_step or DEFAULT_TIME_STEP)[:16]
+    # as the local runner: a run may kill a worker once; one task per worker at a time, so a
+    # dying worker takes no other run with it
+    with pytest.MonkeyPatch.context() as patch, dask.config.set(
+            {"distributed.scheduler.allowed-failures": 1,
+             "distributed.scheduler.worker-saturation": 1.0}):
+        patch.setenv(TEST_KILL_ENV, doomed)     # inherited by the worker processes
+        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                      host="127.0.0.1", dashboard_address=None) as cluster:
+            yield cluster, study
+
+
+def test_dask_a_killed_worker_is_a_failed_run_with_the_reason(tmp_path, dask_cluster):
+    cluster, study = dask_cluster
+    results = run(study, tmp_path / "out", scheduler=cluster.scheduler_address,
+                  progress=False)
+    assert list(results["status"]) == ["ok", "worker_died", "ok", "ok"]
+    assert results.loc[1, "error"].startswith("Dask KilledWorker: ")
+
+
+def test_dask_ctrl_c_cancels_the_queued_runs(tmp_path, dask_cluster):
+    cluster, _ = dask_cluster
+    path = _study(tmp_path)
+    out = tmp_path / "out"
+    proc = _start(path, out, "--scheduler", cluster.scheduler_address)
+    _wait_rows(proc, out, 2)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=HANG)
+    assert proc.returncode == 130 and err.count("\n") == 1 and "interrupted" in err
+    assert 2 <= len(_rows(out)) < 9
+    deadline = time.time() + HANG
+    while cluster.scheduler.tasks and time.time() < deadline:
+        time.sleep(0.05)
+    assert not cluster.scheduler.tasks     # nothing left queued or running on the cluster
