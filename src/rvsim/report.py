@@ -229,7 +229,7 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
 
     histories = {}
     if (folder / "results.sqlite").is_file():   # opening a missing store would create one
-        store = ResultStore(folder)
+        store = ResultStore(folder, readonly=True)  # a report never writes the store
         try:
             keys = list(store.finished())
             for _, row in results.head(10).iterrows():
