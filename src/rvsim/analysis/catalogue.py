@@ -26,8 +26,9 @@ import numpy as np
 
 from ..errors import RvsimError
 
-__all__ = ["CurveError", "torsional_rigidity", "lost_motion", "backlash", "hysteresis_loss",
-           "transmission_error_pp", "order_spectrum", "reducer_orders", "LOST_MOTION_FRACTION"]
+__all__ = ["CurveError", "loop_branches", "torsional_rigidity", "lost_motion", "backlash",
+           "hysteresis_loss", "transmission_error_pp", "order_spectrum", "reducer_orders",
+           "LOST_MOTION_FRACTION"]
 
 #: lost motion is read at +- this fraction of rated torque (GB/T 35089-2018, catalogues)
 LOST_MOTION_FRACTION = 0.03
@@ -61,9 +62,10 @@ def _rated(rated: float) -> float:
     return float(rated)
 
 
-def _loop(torque, angle, branch) -> tuple[tuple[np.ndarray, np.ndarray],
-                                          tuple[np.ndarray, np.ndarray]]:
-    """The loop's increasing and decreasing branches (each in sweep order)."""
+def loop_branches(torque, angle, branch) -> tuple[tuple[np.ndarray, np.ndarray],
+                                                 tuple[np.ndarray, np.ndarray]]:
+    """The loop's increasing and decreasing branches, each (torque, angle) in sweep order:
+    the last run of increasing and the last run of decreasing torque."""
     torque = _vector("torque", torque)
     angle = _vector("angle", angle, torque.size)
     branch = _vector("branch", branch, torque.size)
@@ -158,7 +160,7 @@ def torsional_rigidity(torque, angle, rated: float, low: float = 0.5, high: floa
     if branch is None:
         up = down = _single(torque, angle)
     else:
-        up, down = _loop(torque, angle, branch)
+        up, down = loop_branches(torque, angle, branch)
     what = f"torsional rigidity ({low:.0%} to {high:.0%} of rated)"
     secants = []
     if direction in ("both", "positive"):
@@ -184,7 +186,7 @@ def lost_motion(torque, angle, branch, rated: float,
     """Lost motion [rad]: the angle between the mid-points of the hysteresis width at
     +``fraction`` and -``fraction`` of rated torque (3 %)."""
     rated = _rated(rated)
-    up, down = _loop(torque, angle, branch)
+    up, down = loop_branches(torque, angle, branch)
     what = f"lost motion (+-{fraction:.0%} of rated)"
     mids = []
     for sign in (1.0, -1.0):
@@ -204,7 +206,7 @@ def backlash(torque, angle, branch) -> float:
     """Backlash [rad]: the free play crossed at 0 N*m, i.e. the angle between the two parts
     of the curve that meet at zero torque, averaged over the increasing and decreasing
     branches (each side extrapolated to 0 N*m from its own samples)."""
-    up, down = _loop(torque, angle, branch)
+    up, down = loop_branches(torque, angle, branch)
     jumps = []
     for (t, a), name in ((up, "increasing"), (down, "decreasing")):
         came, goes = _zero_limits(t, a, name, "backlash")
@@ -216,7 +218,7 @@ def hysteresis_loss(torque, angle, branch) -> float:
     """Hysteresis loss [rad]: the width of the loop at 0 N*m after loading to rated torque and
     unloading, i.e. between the decreasing branch coming from +rated and the increasing branch
     coming from -rated (equals the backlash when there is no friction)."""
-    up, down = _loop(torque, angle, branch)
+    up, down = loop_branches(torque, angle, branch)
     from_negative, _ = _zero_limits(*up, "increasing", "hysteresis loss")
     from_positive, _ = _zero_limits(*down, "decreasing", "hysteresis loss")
     return float(from_positive - from_negative)
