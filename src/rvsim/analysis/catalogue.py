@@ -26,9 +26,9 @@ import numpy as np
 
 from ..errors import RvsimError
 
-__all__ = ["CurveError", "loop_branches", "torsional_rigidity", "lost_motion", "backlash",
-           "hysteresis_loss", "transmission_error_pp", "order_spectrum", "reducer_orders",
-           "LOST_MOTION_FRACTION"]
+__all__ = ["CurveError", "loop_branches", "angle_at", "torsional_rigidity", "lost_motion",
+           "backlash", "hysteresis_loss", "transmission_error_pp", "order_spectrum",
+           "reducer_orders", "LOST_MOTION_FRACTION"]
 
 #: lost motion is read at +- this fraction of rated torque (GB/T 35089-2018, catalogues)
 LOST_MOTION_FRACTION = 0.03
@@ -117,8 +117,11 @@ def _side(torque: np.ndarray, angle: np.ndarray, sign: float):
     return t[order], a[order]
 
 
-def _at(torque: np.ndarray, angle: np.ndarray, sign: float, value: float, what: str) -> float:
-    """Angle of a branch at ``value`` (same sign as ``sign`` or 0), from that side only."""
+def angle_at(torque: np.ndarray, angle: np.ndarray, sign: float, value: float,
+             what: str = "curve") -> float:
+    """Angle of one branch (``torque``, ``angle`` in sweep order) at torque ``value``, read
+    from the branch's samples on the ``sign`` side of zero only (``value`` has that sign or
+    is 0); between zero and the first sample the first segment is extended."""
     t, a = _side(torque, angle, sign)
     direction = "positive" if sign > 0 else "negative"
     if t.size < 2:
@@ -164,12 +167,12 @@ def torsional_rigidity(torque, angle, rated: float, low: float = 0.5, high: floa
     what = f"torsional rigidity ({low:.0%} to {high:.0%} of rated)"
     secants = []
     if direction in ("both", "positive"):
-        a_low = _at(*up, 1.0, low * rated, what)
-        a_high = _at(*up, 1.0, high * rated, what)
+        a_low = angle_at(*up, 1.0, low * rated, what)
+        a_high = angle_at(*up, 1.0, high * rated, what)
         secants.append((high - low) * rated / (a_high - a_low))
     if direction in ("both", "negative"):
-        a_low = _at(*down, -1.0, -low * rated, what)
-        a_high = _at(*down, -1.0, -high * rated, what)
+        a_low = angle_at(*down, -1.0, -low * rated, what)
+        a_high = angle_at(*down, -1.0, -high * rated, what)
         secants.append((high - low) * rated / (a_low - a_high))
     if not secants:
         raise CurveError("direction", f"must be 'both', 'positive' or 'negative' "
@@ -191,7 +194,8 @@ def lost_motion(torque, angle, branch, rated: float,
     mids = []
     for sign in (1.0, -1.0):
         value = sign * fraction * rated
-        mids.append(0.5 * (_at(*up, sign, value, what) + _at(*down, sign, value, what)))
+        mids.append(0.5 * (angle_at(*up, sign, value, what)
+                           + angle_at(*down, sign, value, what)))
     return float(mids[0] - mids[1])
 
 
@@ -199,7 +203,8 @@ def _zero_limits(torque: np.ndarray, angle: np.ndarray, name: str, what: str):
     """(angle at 0 N*m from the side the branch comes from, from the side it goes to)."""
     _crosses_zero(torque, name)
     start = -1.0 if name == "increasing" else 1.0
-    return (_at(torque, angle, start, 0.0, what), _at(torque, angle, -start, 0.0, what))
+    return (angle_at(torque, angle, start, 0.0, what),
+            angle_at(torque, angle, -start, 0.0, what))
 
 
 def backlash(torque, angle, branch) -> float:
