@@ -171,12 +171,13 @@ def order_spectrum_plot(orders, amplitude_arcmin, marks: dict, ax=None):
     grouped: dict[float, list[str]] = {}
     for name, order in marks.items():
         grouped.setdefault(float(order), []).append(name)
-    for i, (order, names) in enumerate(sorted(grouped.items())):
-        if order > limit:
-            continue
+    placed = sorted(o for o in grouped if o <= limit)
+    for order in placed:
         ax.axvline(order, color="C3", lw=0.7, ls="--")
-        ax.text(order, 1.32 * top * (1 - 0.09 * (i % 4)), " " + ", ".join(names), color="C3",
-                fontsize=7, va="top")
+        # vertical labels right of their line, left of it when a close neighbour follows
+        crowded = any(0 < other - order <= 0.04 * limit for other in placed)
+        ax.text(order, 1.33 * top, ", ".join(grouped[order]), color="C3", fontsize=7,
+                rotation=90, va="top", ha="right" if crowded else "left")
     ax.set_xlabel("order of the output revolution [-]")
     ax.set_ylabel("TE amplitude [arcmin]")
     ax.grid(alpha=0.3)
@@ -184,45 +185,70 @@ def order_spectrum_plot(orders, amplitude_arcmin, marks: dict, ax=None):
     return fig
 
 
-def hysteresis_plot(result, rated: float, ax=None):
+def hysteresis_plot(result, rated: float, fig=None):
     """Output angle [arcmin] against output torque [N*m] of the torque-reversal test, with
     the catalogue quantities marked: rigidity interval (50-100 % of rated, secants), the
-    +-3 % lost-motion mid-points and the loop width at 0 N*m."""
+    +-3 % lost-motion mid-points and the loop width at 0 N*m.  Left the whole loop, right a
+    zoom on +-10 % of rated where lost motion and backlash live."""
     plt = _pyplot()
     import numpy as np
 
     from .analysis import catalogue as cat
 
-    fig, ax = (plt.subplots(figsize=(8, 5)) if ax is None else (ax.figure, ax))
+    if fig is None:
+        fig = plt.figure(figsize=(10, 4.8))
+    whole, zoom = fig.subplots(1, 2, gridspec_kw={"width_ratios": [3, 2]})
     t, a, b = (np.asarray(v, dtype=float) for v in (result.torque, result.angle, result.branch))
     (tu, au), (td, ad) = cat.loop_branches(t, a, b)
-    ax.plot(t, a / _ARCMIN, color="0.8", lw=0.8, label="first loading (not in the loop)")
-    ax.plot(tu, au / _ARCMIN, ".-", color="C0", lw=1.0, ms=3, label="torque increasing")
-    ax.plot(td, ad / _ARCMIN, ".-", color="C1", lw=1.0, ms=3, label="torque decreasing")
+    mids = [0.5 * (cat.angle_at(tu, au, sign, sign * cat.LOST_MOTION_FRACTION * rated, "plot")
+                   + cat.angle_at(td, ad, sign, sign * cat.LOST_MOTION_FRACTION * rated,
+                                  "plot")) for sign in (1.0, -1.0)]
+    loss = (cat.angle_at(tu, au, -1.0, 0.0, "plot"), cat.angle_at(td, ad, 1.0, 0.0, "plot"))
+    changes = np.flatnonzero(np.diff(b) != 0)
+    first = slice(0, changes[0] + 1) if changes.size >= 2 else slice(0, 0)
+    for ax in (whole, zoom):
+        ax.plot(t[first], a[first] / _ARCMIN, color="0.6", lw=0.8,
+                label="first loading (not in the loop)")
+        for (bt, ba), colour, name in (((tu, au), "C0", "torque increasing"),
+                                       ((td, ad), "C1", "torque decreasing")):
+            # each side of zero on its own, ended at its 0 N*m limit; the free play crossed
+            # at 0 N*m dotted (a torque-controlled test jumps there)
+            limits = []
+            for sign in (-1.0, 1.0):
+                st, sa = cat.branch_side(bt, ba, sign)
+                if st.size >= 2:
+                    zero = cat.angle_at(bt, ba, sign, 0.0, "plot")
+                    limits.append(zero)
+                    ax.plot(np.r_[0.0, st], np.r_[zero, sa] / _ARCMIN, ".-", color=colour,
+                            lw=1.0, ms=3, label=name if sign > 0 else None)
+            if len(limits) == 2:
+                ax.plot([0.0, 0.0], np.array(limits) / _ARCMIN, ":", color=colour, lw=1.2)
+        for sign, mid in zip((1.0, -1.0), mids):
+            ax.plot([sign * cat.LOST_MOTION_FRACTION * rated], [mid / _ARCMIN], "D",
+                    color="C3", ms=6, label="lost motion mid-points (+-3 %)" if sign > 0
+                    else None)
+        ax.annotate("", xy=(0.0, loss[1] / _ARCMIN), xytext=(0.0, loss[0] / _ARCMIN),
+                    arrowprops=dict(arrowstyle="<->", color="C4", lw=1.2))
+        ax.axhline(0.0, color="0.6", lw=0.5)
+        ax.axvline(0.0, color="0.6", lw=0.5)
+        ax.set_xlabel("output torque [N*m]")
+        ax.grid(alpha=0.3)
     for sign, (bt, ba) in ((1.0, (tu, au)), (-1.0, (td, ad))):
-        ax.axvspan(sign * 0.5 * rated, sign * rated, color="C2", alpha=0.08)
+        whole.axvspan(sign * 0.5 * rated, sign * rated, color="C2", alpha=0.08)
         ends = [cat.angle_at(bt, ba, sign, sign * f * rated, "plot") for f in (0.5, 1.0)]
-        ax.plot([sign * 0.5 * rated, sign * rated], np.array(ends) / _ARCMIN, color="C2",
-                lw=2.0, label="rigidity secant 50-100 % of rated" if sign > 0 else None)
-    mids = []
-    for sign in (1.0, -1.0):
-        value = sign * cat.LOST_MOTION_FRACTION * rated
-        mids.append(0.5 * (cat.angle_at(tu, au, sign, value, "plot")
-                           + cat.angle_at(td, ad, sign, value, "plot")))
-        ax.plot([value], [mids[-1] / _ARCMIN], "D", color="C3", ms=6,
-                label="lost motion mid-points (+-3 %)" if sign > 0 else None)
-    loss_low = cat.angle_at(tu, au, -1.0, 0.0, "plot")
-    loss_high = cat.angle_at(td, ad, 1.0, 0.0, "plot")
-    ax.annotate("", xy=(0.0, loss_high / _ARCMIN), xytext=(0.0, loss_low / _ARCMIN),
-                arrowprops=dict(arrowstyle="<->", color="C4", lw=1.2))
-    ax.text(0.02 * rated, 0.5 * (loss_low + loss_high) / _ARCMIN,
-            " hysteresis loss / backlash\n at 0 N*m", color="C4", fontsize=8, va="center")
-    ax.axhline(0.0, color="0.6", lw=0.5)
-    ax.axvline(0.0, color="0.6", lw=0.5)
-    ax.set_xlabel("output torque [N*m]")
-    ax.set_ylabel("output angle, input locked [arcmin]")
-    ax.legend(fontsize="small", loc="upper left")
-    ax.grid(alpha=0.3)
+        whole.plot([sign * 0.5 * rated, sign * rated], np.array(ends) / _ARCMIN, color="C2",
+                   lw=2.0, label="rigidity secant 50-100 % of rated" if sign > 0 else None)
+    whole.set_ylabel("output angle, input locked [arcmin]")
+    whole.legend(fontsize="x-small", loc="upper left")
+    near = np.abs(t) <= 0.1 * rated
+    span = a[near] / _ARCMIN if near.any() else a / _ARCMIN
+    pad = 0.1 * max(float(np.ptp(span)), 1e-6)
+    zoom.set_xlim(-0.1 * rated, 0.1 * rated)
+    zoom.set_ylim(span.min() - pad, span.max() + pad)
+    zoom.text(0.01 * rated, 0.5 * (loss[0] + loss[1]) / _ARCMIN,
+              " loop width at 0 N*m\n (hysteresis loss;\n backlash: free play)", color="C4",
+              fontsize=8, va="center")
+    zoom.set_title("zoom: +-10 % of rated", fontsize=9)
     fig.tight_layout()
     return fig
 

@@ -258,7 +258,9 @@ def write_ltca_report(result, reducer, path: str | Path) -> Path:
     orders, amplitude = order_spectrum(np.asarray(result.input_angle) / result.ratio, result.te)
     marks = reducer_orders(reducer)
     lines = pd.DataFrame({"order": orders, "amplitude [arcmin]": amplitude / ARCMIN})
-    lines = lines[lines["order"] > 0].nlargest(10, "amplitude [arcmin]").set_index("order")
+    floor = 1e-9 * max(float(lines["amplitude [arcmin]"].max()), 1e-300)  # round-off lines
+    lines = lines[(lines["order"] > 0) & (lines["amplitude [arcmin]"] > floor)]
+    lines = lines.nlargest(10, "amplitude [arcmin]").set_index("order")
     names = {}
     for name, order in marks.items():
         names.setdefault(order, []).append(name)

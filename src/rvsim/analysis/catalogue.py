@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import RvsimError
 
-__all__ = ["CurveError", "loop_branches", "angle_at", "torsional_rigidity", "lost_motion",
+__all__ = ["CurveError", "loop_branches", "branch_side", "angle_at", "torsional_rigidity", "lost_motion",
            "backlash", "hysteresis_loss", "transmission_error_pp", "order_spectrum",
            "reducer_orders", "LOST_MOTION_FRACTION"]
 
@@ -97,8 +97,9 @@ def _single(torque, angle) -> tuple[np.ndarray, np.ndarray]:
     return torque, angle
 
 
-def _side(torque: np.ndarray, angle: np.ndarray, sign: float):
-    """Samples of one branch on one side of zero torque, ordered away from zero."""
+def branch_side(torque: np.ndarray, angle: np.ndarray, sign: float):
+    """(torque, angle) samples of one branch on the ``sign`` side of zero torque, ordered
+    away from zero; a sample at 0 N*m belongs to the side the sweep reached it from."""
     signs = np.sign(torque)
     # a sample at exactly 0 N*m belongs to the side the sweep reached it from
     owner = signs.copy()
@@ -122,7 +123,7 @@ def angle_at(torque: np.ndarray, angle: np.ndarray, sign: float, value: float,
     """Angle of one branch (``torque``, ``angle`` in sweep order) at torque ``value``, read
     from the branch's samples on the ``sign`` side of zero only (``value`` has that sign or
     is 0); between zero and the first sample the first segment is extended."""
-    t, a = _side(torque, angle, sign)
+    t, a = branch_side(torque, angle, sign)
     direction = "positive" if sign > 0 else "negative"
     if t.size < 2:
         raise CurveError("torque", f"too few points on the {direction} side of the curve "
