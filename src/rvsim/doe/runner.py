@@ -25,8 +25,13 @@ from .study import Study
 __all__ = ["run", "evaluate", "compact_history"]
 
 
-def evaluate(reducer: Reducer, time_step: float) -> dict:
+def evaluate(reducer: Reducer, time_step: float, engine: str = "dynamic",
+             hysteresis: bool = False) -> dict:
     """Simulate one run; never raises (the outcome carries status and error)."""
+    if engine == "quasi-static":  # issue 9: the quasi-static engine (rvsim.doe.engines)
+        from .engines import evaluate_quasi_static
+
+        return evaluate_quasi_static(reducer, hysteresis=hysteresis)
     from ..dynamics import simulate
 
     try:
@@ -75,7 +80,12 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
     folder.mkdir(parents=True, exist_ok=True)
     time_step = study.time_step or DEFAULT_TIME_STEP
     _write_definition(study, folder, time_step, reducers[0])
-    keys = [run_key(r, time_step) for r in reducers]
+    # issue 9: the engine is part of a run's identity (a dynamic and a quasi-static result
+    # of the same reducer are different rows)
+    options = {"engine": study.engine, "hysteresis": study.hysteresis}
+    tag = time_step if study.engine == "dynamic" else \
+        f"{study.engine}{'+hysteresis' if study.hysteresis else ''}"
+    keys = [run_key(r, tag) for r in reducers]
     store = ResultStore(folder)
     try:
         done = store.finished()
@@ -83,9 +93,9 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
         bar = _progress(len(set(keys)), len(set(keys)) - len(todo), progress)
         with bar:
             if scheduler:
-                _run_dask(todo, time_step, scheduler, store, bar)
+                _run_dask(todo, time_step, scheduler, store, bar, options)
             elif todo:
-                _run_local(todo, time_step, workers, store, bar)
+                _run_local(todo, time_step, workers, store, bar, options)
         done = store.finished()
     finally:
         store.close()
@@ -93,22 +103,23 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
 
 
 def _run_local(todo: dict, time_step: float, workers: int | None, store: ResultStore,
-               bar) -> None:
+               bar, options: dict) -> None:
     workers = workers or os.cpu_count() or 1
     if workers == 1 or len(todo) == 1:
         for key, reducer in todo.items():
-            store.put(key, evaluate(reducer, time_step))
+            store.put(key, evaluate(reducer, time_step, **options))
             bar.update(1)
         return
     with ProcessPoolExecutor(max_workers=min(workers, len(todo))) as pool:
-        futures = {pool.submit(evaluate, reducer, time_step): key
+        futures = {pool.submit(evaluate, reducer, time_step, **options): key
                    for key, reducer in todo.items()}
         for future in as_completed(futures):
             store.put(futures[future], future.result())
             bar.update(1)
 
 
-def _run_dask(todo: dict, time_step: float, scheduler: str, store: ResultStore, bar) -> None:
+def _run_dask(todo: dict, time_step: float, scheduler: str, store: ResultStore, bar,
+              options: dict) -> None:
     import socket
     from urllib.parse import urlparse
 
@@ -124,7 +135,8 @@ def _run_dask(todo: dict, time_step: float, scheduler: str, store: ResultStore, 
     except OSError as exc:
         raise InputFileError(f"cannot reach the Dask scheduler at {scheduler} ({exc})") from None
     with client:
-        futures = {client.submit(evaluate, reducer, time_step, key=f"rvsim-{key}", pure=False):
+        futures = {client.submit(evaluate, reducer, time_step, **options, key=f"rvsim-{key}",
+                                 pure=False):
                    key for key, reducer in todo.items()}
         for future in dask_completed(futures):
             store.put(futures[future], future.result())
@@ -137,6 +149,7 @@ def _write_definition(study: Study, folder: Path, time_step: float, first: Reduc
     definition = {
         "name": study.name, "design": study.design, "samples": study.samples,
         "seed": study.seed, "time_step": time_step,
+        "engine": study.engine, "hysteresis": study.hysteresis,  # issue 9
         "reducer": f"{study.base.name} ({study.base.citation})" if study.base.citation
         else study.base.name,
         "steady_start": first.operating.steady_start,   # fixed settings included

@@ -8,6 +8,8 @@ A study is a frozen dataclass; :func:`paper_l36` is the paper's Table 2 / Table 
     samples = 32              # lhs / sobol only
     seed = 1
     params = "my_reducer.toml"   # optional; default: the built-in RV-40E
+    engine = "quasi-static"   # optional; default "dynamic" (rvsim.doe.engines)
+    hysteresis = true         # quasi-static only: add the torque-reversal test
     [set]                     # fixed values for every run (user units)
     "operating.load_torque" = 300
     [factors.H]
@@ -61,6 +63,9 @@ class Study:
     samples: int | None = None
     seed: int = 0
     time_step: float | None = None
+    # issue 9: the model that evaluates each run (rvsim.doe.engines)
+    engine: str = "dynamic"
+    hysteresis: bool = False
 
     @property
     def is_sampling(self) -> bool:
@@ -129,7 +134,8 @@ def load_study(path: str | Path) -> Study:
         raise InputFileError(f"{path}: file not found") from None
     except tomllib.TOMLDecodeError as exc:
         raise InputFileError(f"{path}: not valid TOML ({exc})") from None
-    known = {"name", "design", "samples", "seed", "params", "set", "factors", "time_step"}
+    known = {"name", "design", "samples", "seed", "params", "set", "factors", "time_step",
+             "engine", "hysteresis"}  # issue 9: engine, hysteresis
     extra = set(data) - known
     if extra:
         raise InputFileError(f"{path}: unknown key(s) {', '.join(sorted(extra))}")
@@ -160,8 +166,12 @@ def load_study(path: str | Path) -> Study:
                                      "levels")
             factors.append(StudyFactor(label, parameter, tuple(levels)))
     fixed = tuple((resolve_name(k), v) for k, v in data.get("set", {}).items())
+    from .engines import engine_options  # issue 9: quasi-static engine
+
+    engine, hysteresis = engine_options(data, path)
     study = Study(name=str(data.get("name", path.stem)), factors=tuple(factors), design=design,
                   base=base, fixed=fixed, samples=data.get("samples"),
-                  seed=int(data.get("seed", 0)), time_step=data.get("time_step"))
+                  seed=int(data.get("seed", 0)), time_step=data.get("time_step"),
+                  engine=engine, hysteresis=hysteresis)
     study.reducers()  # validate every run now
     return study
