@@ -65,7 +65,8 @@ def _rated(rated: float) -> float:
 def loop_branches(torque, angle, branch) -> tuple[tuple[np.ndarray, np.ndarray],
                                                  tuple[np.ndarray, np.ndarray]]:
     """The loop's increasing and decreasing branches, each (torque, angle) in sweep order:
-    the last run of increasing and the last run of decreasing torque."""
+    the last run of increasing and the last run of decreasing torque, each starting at the
+    reversal point that precedes it."""
     torque = _vector("torque", torque)
     angle = _vector("angle", angle, torque.size)
     branch = _vector("branch", branch, torque.size)
@@ -79,6 +80,9 @@ def loop_branches(torque, angle, branch) -> tuple[tuple[np.ndarray, np.ndarray],
         # the last contiguous run of this branch
         breaks = np.flatnonzero(np.diff(idx) != 1)
         run = idx[breaks[-1] + 1:] if breaks.size else idx
+        # the reversal point that ends the previous run starts this one as well
+        if run[0] > 0 and sign * (torque[run[0]] - torque[run[0] - 1]) > 0:
+            run = np.r_[run[0] - 1, run]
         t = torque[run]
         if run.size > 1 and not np.all(sign * np.diff(t) > 0):
             raise CurveError("torque", f"the {name} branch is not strictly {name}")
