@@ -125,7 +125,9 @@ def ltca(reducer, *, torque=None, positions=360, revolutions=1.0) -> LtcaResult:
 
 
 def hysteresis(reducer, *, rated_torque=None, points_per_branch=41) -> HysteresisResult:
-    rated = RATED if rated_torque is None else float(rated_torque)
+    # main's parameter (issue 8: reducer.rating.rated_torque) where present
+    default = getattr(getattr(reducer, "rating", None), "rated_torque", RATED)
+    rated = default if rated_torque is None else float(rated_torque)
     clear = _free_play(reducer)
     grid = np.linspace(-rated, rated, points_per_branch)
 

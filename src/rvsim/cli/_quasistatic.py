@@ -186,7 +186,8 @@ def register(sub) -> None:
                      "rvsim hysteresis --export joint.json"])
     _common(p)
     p.add_argument("--rated-torque", type=float, metavar="NM",
-                   help="rated torque [N*m] (default: the reducer's, 412 N*m for the RV-40E)")
+                   help="rated torque [N*m] (default: the reducer's rating.rated_torque, "
+                        "412 N*m for the RV-40E)")
     p.add_argument("--export", metavar="FILE.json",
                    help="write the joint model for robot simulators (docs/joint_model.md)")
     p.set_defaults(func=_hysteresis)
