@@ -90,3 +90,17 @@ def test_failed_solve_exits_1_with_status(cli, standin, tmp_path):
     assert "not_converged" in res.err and not page.exists()
     res = cli("hysteresis", "--rated-torque", "2e5")
     assert res.code == 1 and "status not_converged" in res.err
+
+
+def test_engine_curve_without_catalogue_quantities_exits_1(cli, standin, monkeypatch):
+    real = standin.hysteresis
+
+    def short(reducer, **kwargs):   # a loop that never reaches rated torque
+        loop = real(reducer, **kwargs)
+        loop.torque = loop.torque * (300.0 / 412.0)
+        return loop
+
+    monkeypatch.setattr(standin, "hysteresis", short)
+    res = cli("hysteresis", "--json")
+    assert res.code == 1 and json.loads(res.out)["status"] == "invalid_curve"
+    assert "never reaches 412 N*m" in res.err

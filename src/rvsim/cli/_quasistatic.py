@@ -126,7 +126,15 @@ def _hysteresis(args: argparse.Namespace) -> int:
                           "hysteresis")
     if result is None:
         return code
-    summary = result.summary()
+    from ..analysis.catalogue import CurveError
+
+    try:
+        summary = result.summary()
+    except CurveError as exc:   # the engine's curve cannot give a catalogue quantity
+        print(f"rvsim: hysteresis failed: status invalid_curve ({exc})", file=sys.stderr)
+        if args.json:
+            print_json({"status": "invalid_curve", "error": str(exc)})
+        return 1
     if export:
         from ..joint_model import joint_model, write_joint_model
 
