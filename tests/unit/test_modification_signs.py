@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from rvsim.errors import ParameterError
-from rvsim.geometry.cycloid import pin_gaps, profile_of
+from rvsim.geometry.cycloid import pin_centres, pin_gaps, profile_of
 from rvsim.parameters import RV40E, with_values
 
 UM = 1e-6
@@ -28,6 +28,8 @@ def test_negative_values_reach_the_geometry():
     assert prof.generating_radius == pytest.approx(82e-3 - 15 * UM, abs=1e-15)
     r = with_values(RV40E, {"J": -0.01, "I": 0.02})
     assert profile_of(r).generating_radius == pytest.approx(82e-3 + 10 * UM, abs=1e-15)
+    r = with_values(RV40E, {"H": -0.01, "I": 0.02})
+    assert np.hypot(*pin_centres(r).T) == pytest.approx(82e-3 - 10 * UM, abs=1e-15)
     # a pin 10 um bigger with a 10 um larger pin circle: the gap at the pin on the
     # eccentric's side changes by -F + H = 0 (both along the normal there)
     r = with_values(RV40E, {"F": -0.01, "I": 0.01})
