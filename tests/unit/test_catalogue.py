@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from rvsim.analysis.catalogue import (CurveError, backlash, hysteresis_loss, lost_motion,
-                                      order_spectrum, reducer_orders, torsional_rigidity,
-                                      transmission_error_pp)
+from rvsim.analysis.catalogue import (CurveError, backlash, hysteresis_loss, loop_branches,
+                                      lost_motion, order_spectrum, reducer_orders,
+                                      torsional_rigidity, transmission_error_pp)
 from rvsim.errors import RvsimError
 from rvsim.parameters import RV40E
 
@@ -152,3 +152,15 @@ def test_te_pp_and_orders_of_the_rv40e():
     assert orders["disc teeth zc"] == 39 and orders["pins zp"] == 40
     assert orders["input shaft i"] == 121 and orders["sun-planet mesh"] == 120 * 18
     assert math.isclose(orders["2 zc"], 78)
+
+
+def test_reversal_point_starts_the_next_branch():
+    # an engine may label the turning point -rated with the run that ends there
+    t, a, b = _loop(virgin=True)
+    up = np.flatnonzero(b > 0)
+    t2, a2, b2 = np.delete(t, up[0]), np.delete(a, up[0]), np.delete(b, up[0])
+    assert t2[up[0] - 1] == -RATED and b2[up[0] - 1] == -1      # turning point kept, as -1
+    (tu, _), _ = loop_branches(t2, a2, b2)
+    assert tu[0] == -RATED
+    assert lost_motion(t2, a2, b2, RATED) == pytest.approx(lost_motion(t, a, b, RATED),
+                                                          rel=1e-12)
