@@ -5,7 +5,8 @@ Its physics is a closed-form toy (a two-slope spring with the reducer's clearanc
 errors as free play, a TE made of known harmonics); it lets the commands, reports, joint export
 and study engine be tested before the real solver is merged.  The ``standin`` fixture puts it
 in ``sys.modules["rvsim.quasistatic"]`` for one test.  A torque above 1e5 N*m "fails to
-converge" so the failure paths can be tested.
+converge" (raising SimulationError unless raise_on_failure=False, as the engine does) so the
+failure paths can be tested.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import pandas as pd
 import pytest
 
 from rvsim.analysis import catalogue
+from rvsim.errors import SimulationError
 from rvsim.units import ARCMIN
 
 RATED = 412.0
@@ -87,12 +89,16 @@ class HysteresisResult:
     rated_torque: float
     status: str
     wall_s: float
+    converged: np.ndarray
+    torsional_stiffness: np.ndarray
 
     def summary(self) -> dict:
-        t, a, b, r = self.torque, self.angle, self.branch, self.rated_torque
+        # as the engine (h-engine f692b5d): converged points, rigidity without 'branch'
+        ok = self.converged
+        t, a, b, r = self.torque[ok], self.angle[ok], self.branch[ok], self.rated_torque
         return {"rated_torque_nm": r,
                 "torsional_rigidity_nm_per_arcmin":
-                    catalogue.torsional_rigidity(t, a, r, branch=b) * ARCMIN,
+                    catalogue.torsional_rigidity(t, a, r) * ARCMIN,
                 "lost_motion_arcmin": catalogue.lost_motion(t, a, b, r) / ARCMIN,
                 "backlash_arcmin": catalogue.backlash(t, a, b) / ARCMIN,
                 "hysteresis_loss_arcmin": catalogue.hysteresis_loss(t, a, b) / ARCMIN,
@@ -103,7 +109,14 @@ class HysteresisResult:
                              "branch": self.branch})
 
 
-def ltca(reducer, *, torque=None, positions=360, revolutions=1.0) -> LtcaResult:
+def _failed(result, raise_on_failure: bool, what: str):
+    if result.status != "ok" and raise_on_failure:
+        raise SimulationError(result.status, f"{what} stopped: not converged")
+    return result
+
+
+def ltca(reducer, *, torque=None, positions=360, revolutions=1.0,
+         raise_on_failure=True) -> LtcaResult:
     torque = reducer.operating.load_torque if torque is None else torque
     ratio, zp, zc = reducer.ratio, reducer.cycloid.pin_count, reducer.cycloid.disc_teeth
     n = int(positions)
@@ -117,14 +130,16 @@ def ltca(reducer, *, torque=None, positions=360, revolutions=1.0) -> LtcaResult:
     share = np.clip(np.sin(phase), 0.0, None)
     forces = abs(torque) / (0.0015 * zc) * share / share.sum(axis=2, keepdims=True) / 2
     ok = abs(torque) <= FAIL_ABOVE
-    return LtcaResult(input_angle, out - te, te, float(torque), ratio, zp, zc, forces,
-                      8e8 * np.sqrt(forces / (forces.max() + 1e-30)), np.zeros((n, 2, 2)),
-                      np.zeros((n, 2, 2)), np.zeros((n, 2)), np.full((n, 2), 1e8),
-                      np.full(n, STIFFNESS), "ok" if ok else "not_converged", 0.01,
-                      np.full(n, ok))
+    return _failed(LtcaResult(input_angle, out - te, te, float(torque), ratio, zp, zc, forces,
+                              8e8 * np.sqrt(forces / (forces.max() + 1e-30)),
+                              np.zeros((n, 2, 2)), np.zeros((n, 2, 2)), np.zeros((n, 2)),
+                              np.full((n, 2), 1e8), np.full(n, STIFFNESS),
+                              "ok" if ok else "not_converged", 0.01, np.full(n, ok)),
+                   raise_on_failure, "ltca")
 
 
-def hysteresis(reducer, *, rated_torque=None, points_per_branch=41) -> HysteresisResult:
+def hysteresis(reducer, *, rated_torque=None, points_per_branch=41,
+               raise_on_failure=True) -> HysteresisResult:
     # main's parameter (issue 8: reducer.rating.rated_torque) where present
     default = getattr(getattr(reducer, "rating", None), "rated_torque", RATED)
     rated = default if rated_torque is None else float(rated_torque)
@@ -140,8 +155,11 @@ def hysteresis(reducer, *, rated_torque=None, points_per_branch=41) -> Hysteresi
     ang = np.concatenate([angle(first, -1.0), angle(grid[1:], -1.0), angle(grid[::-1][1:], 1.0)])
     branch = np.concatenate([-np.ones(first.size), np.ones(grid.size - 1),
                              -np.ones(grid.size - 1)])
-    status = "ok" if rated <= FAIL_ABOVE else "not_converged"
-    return HysteresisResult(torque, ang, branch, rated, status, 0.02)
+    ok = rated <= FAIL_ABOVE
+    return _failed(HysteresisResult(torque, ang, branch, rated, "ok" if ok else "not_converged",
+                                    0.02, np.full(torque.size, ok),
+                                    np.full(torque.size, STIFFNESS)),
+                   raise_on_failure, "hysteresis")
 
 
 def module() -> types.ModuleType:

@@ -58,7 +58,8 @@ JOINT_MODEL_SCHEMA = {
                                                         "maxItems": 2},
                 "local": {"type": "object", "required": ["torque_nm", "stiffness_nm_per_rad"],
                           "properties": {"torque_nm": _NUMBERS,
-                                         "stiffness_nm_per_rad": _NUMBERS}}}},
+                                         "stiffness_nm_per_rad": _NUMBERS,
+                                         "method": {"type": "string"}}}}},
         "backlash_rad": _NUMBER,
         "lost_motion_rad": _NUMBER,
         "lost_motion_fraction_of_rated": _NUMBER,
@@ -88,19 +89,23 @@ _CONVENTIONS = {
 }
 
 
-def local_stiffness(torque: np.ndarray, angle: np.ndarray, branch: np.ndarray):
+def local_stiffness(torque: np.ndarray, angle: np.ndarray, branch: np.ndarray,
+                    stiffness: np.ndarray | None = None):
     """dT/dtheta along the loading parts of the loop [N*m/rad]: the increasing branch above
-    zero torque and the decreasing branch below it (centred differences).  Returns
-    (torque, stiffness) sorted by torque."""
+    zero torque and the decreasing branch below it.  ``stiffness`` (one value per sample,
+    e.g. the engine's local stiffness) is used where given, else centred differences of the
+    curve.  Returns (torque, stiffness) sorted by torque."""
     from .analysis.catalogue import loop_branches
 
     (t_up, a_up), (t_down, a_down) = loop_branches(torque, angle, branch)
+    if stiffness is not None:
+        (_, a_up), (_, a_down) = loop_branches(torque, stiffness, branch)
     parts_t, parts_k = [], []
     for t, a, sign in ((t_up, a_up, 1.0), (t_down, a_down, -1.0)):
         keep = sign * t > 0
         if keep.sum() >= 2:
             parts_t.append(t[keep])
-            parts_k.append(np.gradient(t[keep], a[keep]))
+            parts_k.append(a[keep] if stiffness is not None else np.gradient(t[keep], a[keep]))
     if not parts_t:
         return np.zeros(0), np.zeros(0)
     t, k = np.concatenate(parts_t), np.concatenate(parts_k)
@@ -122,10 +127,10 @@ def joint_model(hysteresis, ltca, reducer, *, harmonics: int = 24) -> dict:
     from . import __version__
     from .analysis import catalogue as cat
 
-    t, a, b, rated = hysteresis.torque, hysteresis.angle, hysteresis.branch, \
-        hysteresis.rated_torque
+    t, a, b, stiffness = cat.loop_arrays(hysteresis)
+    rated = hysteresis.rated_torque
     (t_up, a_up), (t_down, a_down) = cat.loop_branches(t, a, b)
-    k_torque, k_local = local_stiffness(t, a, b)
+    k_torque, k_local = local_stiffness(t, a, b, stiffness)
     orders, amplitude, phase = cat.order_spectrum(ltca.input_angle / ltca.ratio, ltca.te,
                                                   with_phase=True)
     chosen = np.argsort(amplitude[1:])[::-1][:harmonics] + 1
@@ -144,7 +149,9 @@ def joint_model(hysteresis, ltca, reducer, *, harmonics: int = 24) -> dict:
                                                                               branch=b),
                       "rigidity_interval_fraction_of_rated": [0.5, 1.0],
                       "local": {"torque_nm": _floats(k_torque),
-                                "stiffness_nm_per_rad": _floats(k_local)}},
+                                "stiffness_nm_per_rad": _floats(k_local),
+                                "method": "finite differences of the curve" if stiffness is None
+                                else "engine (dT/dtheta at each equilibrium)"}},
         "backlash_rad": cat.backlash(t, a, b),
         "lost_motion_rad": cat.lost_motion(t, a, b, rated),
         "lost_motion_fraction_of_rated": cat.LOST_MOTION_FRACTION,

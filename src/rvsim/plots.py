@@ -198,7 +198,7 @@ def hysteresis_plot(result, rated: float, fig=None):
     if fig is None:
         fig = plt.figure(figsize=(10, 4.8))
     whole, zoom = fig.subplots(1, 2, gridspec_kw={"width_ratios": [3, 2]})
-    t, a, b = (np.asarray(v, dtype=float) for v in (result.torque, result.angle, result.branch))
+    t, a, b, _ = cat.loop_arrays(result)              # converged points
     (tu, au), (td, ad) = cat.loop_branches(t, a, b)
     mids = [0.5 * (cat.angle_at(tu, au, sign, sign * cat.LOST_MOTION_FRACTION * rated, "plot")
                    + cat.angle_at(td, ad, sign, sign * cat.LOST_MOTION_FRACTION * rated,

@@ -61,7 +61,7 @@ def test_outcome_shape_and_failures(standin, monkeypatch):
     assert outcome["status"] == "ok" and "error" not in outcome and outcome["wall_s"] >= 0
     assert outcome["metrics"]["positions"] == 360 and "status" not in outcome["metrics"]
     failed = evaluate_quasi_static(with_values(RV40E, {"E": 2e5}))
-    assert failed["status"] == "not_converged" and failed["error"] == "ltca not converged"
+    assert failed["status"] == "not_converged" and "not converged" in failed["error"]
 
     def broken(*args, **kwargs):
         raise RuntimeError("solver exploded")

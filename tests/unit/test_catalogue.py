@@ -7,7 +7,8 @@ import pytest
 
 from rvsim.analysis.catalogue import (CurveError, backlash, hysteresis_loss, loop_branches,
                                       lost_motion, order_spectrum, reducer_orders,
-                                      torsional_rigidity, transmission_error_pp)
+                                      sweep_branches, torsional_rigidity,
+                                      transmission_error_pp)
 from rvsim.errors import RvsimError
 from rvsim.parameters import RV40E
 
@@ -100,8 +101,20 @@ def test_no_zero_crossing_and_too_few_points():
     t = np.array([-RATED, RATED, -RATED])
     with pytest.raises(CurveError, match="too few points"):
         lost_motion(t, t / K1, np.array([1, 1, -1]), RATED)
-    with pytest.raises(CurveError, match="monotone"):
+    with pytest.raises(CurveError, match="too few points on the negative side"):
         torsional_rigidity([0.0, 300.0, 200.0, 412.0], [0, 1, 2, 3], RATED)
+    with pytest.raises(CurveError, match="repeats a value"):
+        torsional_rigidity([0.0, 300.0, 300.0, 412.0], [0, 1, 2, 3], RATED)
+
+
+def test_branches_from_the_sweep_direction():
+    # the engine's sequence 0 -> -rated -> 0 -> +rated -> 0 -> -rated, no branch given
+    t, a, b = _loop(virgin=True)
+    keep = np.r_[True, np.diff(t) != 0]          # drop the repeated turning point
+    t, a, b = t[keep], a[keep], b[keep]
+    assert np.array_equal(sweep_branches(t)[1:], b[1:])
+    assert torsional_rigidity(t, a, RATED) == pytest.approx(K2, rel=1e-12)
+    assert torsional_rigidity(t, a, RATED) == torsional_rigidity(t, a, RATED, branch=b)
 
 
 def _te(theta):

@@ -26,9 +26,10 @@ import numpy as np
 
 from ..errors import RvsimError
 
-__all__ = ["CurveError", "loop_branches", "branch_side", "angle_at", "torsional_rigidity", "lost_motion",
-           "backlash", "hysteresis_loss", "transmission_error_pp", "order_spectrum",
-           "reducer_orders", "LOST_MOTION_FRACTION"]
+__all__ = ["CurveError", "loop_branches", "sweep_branches", "branch_side", "angle_at",
+           "torsional_rigidity", "lost_motion", "backlash", "hysteresis_loss",
+           "transmission_error_pp", "order_spectrum", "reducer_orders", "loop_arrays",
+           "LOST_MOTION_FRACTION"]
 
 #: lost motion is read at +- this fraction of rated torque (GB/T 35089-2018, catalogues)
 LOST_MOTION_FRACTION = 0.03
@@ -90,15 +91,17 @@ def loop_branches(torque, angle, branch) -> tuple[tuple[np.ndarray, np.ndarray],
     return out[0], out[1]
 
 
-def _single(torque, angle) -> tuple[np.ndarray, np.ndarray]:
-    """One monotone sweep (in either direction)."""
+def sweep_branches(torque) -> np.ndarray:
+    """The branch of every sample from the sweep itself: +1 where the torque rose to it, -1
+    where it fell to it (the first sample takes the direction of the first step)."""
     torque = _vector("torque", torque)
-    angle = _vector("angle", angle, torque.size)
-    step = np.diff(torque)
-    if not (np.all(step > 0) or np.all(step < 0)):
-        raise CurveError("torque", "without 'branch', the curve must be one strictly "
-                         "monotone sweep")
-    return torque, angle
+    if torque.size < 2:
+        raise CurveError("torque", f"too few points ({torque.size}, at least 2 needed)")
+    step = np.sign(np.diff(torque))
+    if np.any(step == 0):
+        raise CurveError("torque", "repeats a value in consecutive samples (no sweep "
+                         "direction); give 'branch'")
+    return np.r_[step[0], step]
 
 
 def branch_side(torque: np.ndarray, angle: np.ndarray, sign: float):
@@ -150,6 +153,22 @@ def _crosses_zero(t: np.ndarray, name: str) -> None:
                          f"(range {t.min():g} .. {t.max():g} N*m)")
 
 
+def loop_arrays(hysteresis):
+    """(torque, angle, branch, local stiffness or None) of a torque-reversal result object
+    (attributes ``torque``, ``angle``, ``branch``, optional ``converged`` and
+    ``torsional_stiffness``), its converged points only."""
+    n = len(hysteresis.torque)
+    ok = np.asarray(getattr(hysteresis, "converged", np.ones(n, dtype=bool)), dtype=bool)
+    stiffness = getattr(hysteresis, "torsional_stiffness", None)
+    arrays = [np.asarray(v, dtype=float)[ok] for v in (hysteresis.torque, hysteresis.angle,
+                                                        hysteresis.branch)]
+    if stiffness is not None:
+        stiffness = np.asarray(stiffness, dtype=float)[ok]
+        if not np.all(np.isfinite(stiffness)):
+            stiffness = None
+    return (*arrays, stiffness)
+
+
 # --- torque-reversal quantities -------------------------------------------------------------
 
 def torsional_rigidity(torque, angle, rated: float, low: float = 0.5, high: float = 1.0, *,
@@ -160,14 +179,19 @@ def torsional_rigidity(torque, angle, rated: float, low: float = 0.5, high: floa
     Positive direction: the increasing branch between +low*rated and +high*rated; negative
     direction: the decreasing branch between -low*rated and -high*rated.  ``direction`` "both"
     (default) averages the two secants; "positive" or "negative" gives one.  Without
-    ``branch`` the curve is one monotone loading sweep.
+    ``branch`` a monotone curve is one loading sweep, any other curve is split into branches
+    by its sweep direction (:func:`sweep_branches`).
     """
     rated = _rated(rated)
     if not (0.0 <= low < high):
         raise CurveError("low", f"needs 0 <= low < high (got {low:g}, {high:g})")
     if branch is None:
-        up = down = _single(torque, angle)
-    else:
+        steps = np.diff(_vector("torque", torque))
+        if steps.size and (np.all(steps > 0) or np.all(steps < 0)):
+            up = down = (_vector("torque", torque), _vector("angle", angle, steps.size + 1))
+        else:
+            branch = sweep_branches(torque)
+    if branch is not None:
         up, down = loop_branches(torque, angle, branch)
     what = f"torsional rigidity ({low:.0%} to {high:.0%} of rated)"
     secants = []

@@ -14,7 +14,7 @@ from __future__ import annotations
 import time
 import traceback
 
-from ..errors import InputFileError
+from ..errors import InputFileError, SimulationError
 
 __all__ = ["ENGINES", "DEFAULT_ENGINE", "evaluate_quasi_static", "engine_options"]
 
@@ -64,6 +64,9 @@ def evaluate_quasi_static(reducer, *, hysteresis: bool = False, positions: int =
         if error:
             outcome["error"] = error
         return outcome
+    except SimulationError as exc:   # the engine stopped: its status, not "error"
+        return {"status": exc.status, "error": str(exc), "metrics": {},
+                "wall_s": time.perf_counter() - start}
     except Exception as exc:  # noqa: BLE001 - a failed row must not stop the study
         return {"status": "error", "error": f"{type(exc).__name__}: {exc}", "metrics": {},
                 "wall_s": time.perf_counter() - start, "detail": traceback.format_exc(limit=3)}
