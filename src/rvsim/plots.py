@@ -246,7 +246,7 @@ def hysteresis_plot(result, rated: float, fig=None):
     zoom.set_xlim(-0.1 * rated, 0.1 * rated)
     zoom.set_ylim(span.min() - pad, span.max() + pad)
     zoom.text(0.01 * rated, 0.5 * (loss[0] + loss[1]) / _ARCMIN,
-              " loop width at 0 N*m\n (hysteresis loss;\n backlash: free play)", color="C4",
+              " loop width at 0 N*m:\n backlash, hysteresis loss", color="C4",
               fontsize=8, va="center")
     zoom.set_title("zoom: +-10 % of rated", fontsize=9)
     fig.tight_layout()

@@ -55,8 +55,9 @@ def _loop(n=41, with_zero=True, virgin=True):
 def test_loop_quantities_exact(with_zero):
     t, a, b = _loop(with_zero=with_zero)
     assert torsional_rigidity(t, a, RATED, branch=b) == pytest.approx(K2, rel=1e-12)
-    assert backlash(t, a, b) == pytest.approx(CLEAR, rel=1e-12)
-    assert hysteresis_loss(t, a, b) == pytest.approx(CLEAR + 2 * SHIFT, rel=1e-12)
+    # the loop width at 0 N*m: free play plus both friction shifts
+    assert backlash(t, a, b) == pytest.approx(CLEAR + 2 * SHIFT, rel=1e-12)
+    assert hysteresis_loss(t, a, b, RATED) == pytest.approx(CLEAR + 2 * SHIFT, rel=1e-12)
     # mid-points of the width at +-3 %: elastic wind-up at 3 % plus half the free play each
     expected = CLEAR + 2 * 0.03 * RATED / K1
     assert lost_motion(t, a, b, RATED) == pytest.approx(expected, rel=1e-12)
@@ -91,6 +92,17 @@ def test_bad_loops(call, words):
     t, a, b = _loop()
     with pytest.raises(RvsimError, match=words):
         call(t, a, b)
+
+
+def test_small_reversal_gives_backlash_not_hysteresis_loss():
+    # a reversal at +-5 % of rated: the catalogue reads backlash from such a loop
+    grid = np.linspace(-0.05 * RATED, 0.05 * RATED, 11)
+    t = np.concatenate([grid, grid[::-1][1:]])
+    b = np.concatenate([np.ones(11), -np.ones(10)])
+    a = np.concatenate([_branch(grid, 1.0, -1.0), _branch(grid[::-1][1:], -1.0, 1.0)])
+    assert backlash(t, a, b) == pytest.approx(CLEAR + 2 * SHIFT, rel=1e-12)
+    with pytest.raises(CurveError, match="reaches only"):
+        hysteresis_loss(t, a, b, RATED)
 
 
 def test_no_zero_crossing_and_too_few_points():

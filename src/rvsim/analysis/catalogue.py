@@ -14,8 +14,8 @@ unloaded state is not part of it.
 Near zero torque a curve with clearance jumps (the output crosses its free play at 0 N*m), so a
 branch is never interpolated across zero: each side of zero is read from its own samples, and
 the value *at* zero from a side is the linear extrapolation of that side's two samples nearest
-zero (exact when a sample lies at 0 N*m).  A sample at exactly 0 N*m belongs to the side the
-sweep reached it from.
+zero (exact when a sample lies at 0 N*m, as the quasi-static engine provides).  A sample at
+exactly 0 N*m belongs to the side the sweep reached it from.
 """
 
 from __future__ import annotations
@@ -228,34 +228,38 @@ def lost_motion(torque, angle, branch, rated: float,
     return float(mids[0] - mids[1])
 
 
-def _zero_limits(torque: np.ndarray, angle: np.ndarray, name: str, what: str):
-    """(angle at 0 N*m from the side the branch comes from, from the side it goes to)."""
-    _crosses_zero(torque, name)
-    start = -1.0 if name == "increasing" else 1.0
-    return (angle_at(torque, angle, start, 0.0, what),
-            angle_at(torque, angle, -start, 0.0, what))
+def _zero_width(torque, angle, branch, what: str) -> float:
+    """The angle between the two branches where they cross 0 N*m, each read at zero from the
+    side the sweep reaches it from: the decreasing branch (coming from positive torque) minus
+    the increasing branch (coming from negative torque)."""
+    up, down = loop_branches(torque, angle, branch)
+    _crosses_zero(up[0], "increasing")
+    _crosses_zero(down[0], "decreasing")
+    return float(angle_at(*down, 1.0, 0.0, what) - angle_at(*up, -1.0, 0.0, what))
 
 
 def backlash(torque, angle, branch) -> float:
-    """Backlash [rad]: the free play crossed at 0 N*m, i.e. the angle between the two parts
-    of the curve that meet at zero torque, averaged over the increasing and decreasing
-    branches (each side extrapolated to 0 N*m from its own samples)."""
-    up, down = loop_branches(torque, angle, branch)
-    jumps = []
-    for (t, a), name in ((up, "increasing"), (down, "decreasing")):
-        came, goes = _zero_limits(t, a, name, "backlash")
-        jumps.append(abs(goes - came))
-    return float(np.mean(jumps))
+    """Backlash [rad]: the angle between the two branches where they cross 0 N*m.
+
+    On a loop loaded to rated torque this is the hysteresis loss; the catalogue's backlash
+    comes from a reversal at small torque, whose loop then contains little friction
+    hysteresis.  Without friction both are the free play of the clearances."""
+    return _zero_width(torque, angle, branch, "backlash")
 
 
-def hysteresis_loss(torque, angle, branch) -> float:
+def hysteresis_loss(torque, angle, branch, rated: float | None = None) -> float:
     """Hysteresis loss [rad]: the width of the loop at 0 N*m after loading to rated torque and
-    unloading, i.e. between the decreasing branch coming from +rated and the increasing branch
-    coming from -rated (equals the backlash when there is no friction)."""
-    up, down = loop_branches(torque, angle, branch)
-    from_negative, _ = _zero_limits(*up, "increasing", "hysteresis loss")
-    from_positive, _ = _zero_limits(*down, "decreasing", "hysteresis loss")
-    return float(from_positive - from_negative)
+    unloading: the decreasing branch coming from +rated minus the increasing branch coming
+    from -rated (equals the backlash when there is no friction).  With ``rated`` the loop
+    must reach +-rated."""
+    if rated is not None:
+        rated = _rated(rated)
+        up, down = loop_branches(torque, angle, branch)
+        reach = min(up[0].max(), down[0].max(), -up[0].min(), -down[0].min())
+        if reach < rated * (1 - 1e-9):
+            raise CurveError("torque", f"the loop reaches only +-{reach:g} N*m, not the rated "
+                             f"{rated:g} N*m")
+    return _zero_width(torque, angle, branch, "hysteresis loss")
 
 
 # --- transmission error ---------------------------------------------------------------------
