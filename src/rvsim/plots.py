@@ -209,26 +209,14 @@ def hysteresis_plot(result, rated: float, fig=None):
     for ax in (whole, zoom):
         ax.plot(t[first], a[first] / _ARCMIN, color="0.6", lw=0.8,
                 label="first loading (not in the loop)")
-        for (bt, ba), colour, name in (((tu, au), "C0", "torque increasing"),
-                                       ((td, ad), "C1", "torque decreasing")):
-            # each side of zero on its own, ended at its 0 N*m limit; the free play crossed
-            # at 0 N*m dotted (a torque-controlled test jumps there)
-            limits = []
-            for sign in (-1.0, 1.0):
-                st, sa = cat.branch_side(bt, ba, sign)
-                if st.size >= 2:
-                    zero = cat.angle_at(bt, ba, sign, 0.0, "plot")
-                    limits.append(zero)
-                    ax.plot(np.r_[0.0, st], np.r_[zero, sa] / _ARCMIN, ".-", color=colour,
-                            lw=1.0, ms=3, label=name if sign > 0 else None)
-            if len(limits) == 2:
-                ax.plot([0.0, 0.0], np.array(limits) / _ARCMIN, ":", color=colour, lw=1.2)
+        # each branch as sampled, in sweep order (a torque-controlled test crosses its free
+        # play between the sample at 0 N*m and the next one)
+        ax.plot(tu, au / _ARCMIN, ".-", color="C0", lw=1.0, ms=3, label="torque increasing")
+        ax.plot(td, ad / _ARCMIN, ".-", color="C1", lw=1.0, ms=3, label="torque decreasing")
         for sign, mid in zip((1.0, -1.0), mids):
             ax.plot([sign * cat.LOST_MOTION_FRACTION * rated], [mid / _ARCMIN], "D",
                     color="C3", ms=6, label="lost motion mid-points (+-3 %)" if sign > 0
                     else None)
-        ax.annotate("", xy=(0.0, loss[1] / _ARCMIN), xytext=(0.0, loss[0] / _ARCMIN),
-                    arrowprops=dict(arrowstyle="<->", color="C4", lw=1.2))
         ax.axhline(0.0, color="0.6", lw=0.5)
         ax.axvline(0.0, color="0.6", lw=0.5)
         ax.set_xlabel("output torque [N*m]")
@@ -245,9 +233,15 @@ def hysteresis_plot(result, rated: float, fig=None):
     pad = 0.1 * max(float(np.ptp(span)), 1e-6)
     zoom.set_xlim(-0.1 * rated, 0.1 * rated)
     zoom.set_ylim(span.min() - pad, span.max() + pad)
-    zoom.text(0.01 * rated, 0.5 * (loss[0] + loss[1]) / _ARCMIN,
-              " loop width at 0 N*m:\n backlash, hysteresis loss", color="C4",
-              fontsize=8, va="center")
+    width = (loss[1] - loss[0]) / _ARCMIN
+    if abs(width) > 0.03 * (zoom.get_ylim()[1] - zoom.get_ylim()[0]):   # visible: an arrow
+        for ax in (whole, zoom):
+            ax.annotate("", xy=(0.0, loss[1] / _ARCMIN), xytext=(0.0, loss[0] / _ARCMIN),
+                        arrowprops=dict(arrowstyle="<->", color="C4", lw=1.2))
+    zoom.text(0.03, 0.97, f"loop width at 0 N*m: {width:.3g} arcmin\n(backlash, hysteresis "
+              f"loss)\nlost motion (+-3 %): {(mids[0] - mids[1]) / _ARCMIN:.3g} arcmin",
+              transform=zoom.transAxes, color="C4", fontsize=8, va="top",
+              bbox=dict(facecolor="white", edgecolor="none", alpha=0.85))
     zoom.set_title("zoom: +-10 % of rated", fontsize=9)
     fig.tight_layout()
     return fig
