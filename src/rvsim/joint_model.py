@@ -121,8 +121,8 @@ def joint_model(hysteresis, ltca, reducer, *, harmonics: int = 24) -> dict:
     """The joint model of ``reducer`` from a torque-reversal result and an LTCA result (at
     rated torque): a JSON-ready dict following :data:`JOINT_MODEL_SCHEMA`.
 
-    ``harmonics``: how many TE orders to keep, the largest amplitudes (order 0, the mean,
-    is stored separately).
+    ``harmonics``: how many TE orders to keep, the largest amplitudes above 1e-9 of the
+    largest (round-off); order 0, the mean, is stored separately.
     """
     from . import __version__
     from .analysis import catalogue as cat
@@ -134,7 +134,8 @@ def joint_model(hysteresis, ltca, reducer, *, harmonics: int = 24) -> dict:
     orders, amplitude, phase = cat.order_spectrum(ltca.input_angle / ltca.ratio, ltca.te,
                                                   with_phase=True)
     chosen = np.argsort(amplitude[1:])[::-1][:harmonics] + 1
-    chosen = np.sort(chosen[amplitude[chosen] > 0])
+    floor = 1e-9 * float(amplitude[1:].max(initial=0.0))      # round-off lines left out
+    chosen = np.sort(chosen[amplitude[chosen] > floor])
     return {
         "schema": SCHEMA_NAME,
         "schema_version": SCHEMA_VERSION,
