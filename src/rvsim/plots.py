@@ -8,7 +8,10 @@ from __future__ import annotations
 import math
 
 
-__all__ = ["main_effects_plot", "speed_plot", "te_plot", "spectrum_plot", "figure_to_png"]
+__all__ = ["main_effects_plot", "speed_plot", "te_plot", "spectrum_plot", "figure_to_png",
+           "pin_load_map", "te_revolution_plot", "order_spectrum_plot", "hysteresis_plot"]
+
+_ARCMIN = math.pi / 10800.0
 
 
 def _pyplot():
@@ -107,6 +110,146 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 5
     ax.set_xlabel("order of crank rotation relative to the carrier [-]")
     ax.set_ylabel("TE amplitude [arcmin]")
     ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def pin_load_map(result, fig=None):
+    """Pin force [N] over one output revolution, one heat map per disc: pin number against
+    the output angle (an LTCA result: ``pin_forces`` (n, 2, zp), ``input_angle``, ``ratio``)."""
+    plt = _pyplot()
+    import numpy as np
+
+    forces = np.asarray(result.pin_forces)
+    if fig is None:
+        fig = plt.figure(figsize=(8, 5.6))
+    axes = fig.subplots(2, 1, sharex=True)
+    out_deg = np.degrees(np.asarray(result.input_angle) / result.ratio)
+    step = out_deg[1] - out_deg[0] if out_deg.size > 1 else 1.0
+    extent = (out_deg[0], out_deg[-1] + step, 0.5, forces.shape[2] + 0.5)
+    top = max(float(forces.max()), 1e-12)
+    for disc, ax in enumerate(axes):
+        image = ax.imshow(forces[:, disc, :].T, aspect="auto", origin="lower", extent=extent,
+                          cmap="viridis", vmin=0.0, vmax=top, interpolation="nearest")
+        ax.set_ylabel(f"disc {disc + 1}: pin [-]")
+    axes[-1].set_xlabel("output angle [deg]")
+    fig.colorbar(image, ax=list(axes), label="pin contact force [N]")
+    return fig
+
+
+def te_revolution_plot(result, fig=None):
+    """TE over the output revolution: from the nominal assembly (top) and relative to the
+    loaded, clearance-taken-up state, i.e. minus its mean (bottom) [arcmin]."""
+    plt = _pyplot()
+    import numpy as np
+
+    if fig is None:
+        fig = plt.figure(figsize=(8, 4.6))
+    top, bottom = fig.subplots(2, 1, sharex=True)
+    out_deg = np.degrees(np.asarray(result.input_angle) / result.ratio)
+    te = np.asarray(result.te) / _ARCMIN
+    top.plot(out_deg, te, lw=0.9)
+    top.axhline(te.mean(), color="0.5", lw=0.8, ls="--", label=f"mean {te.mean():.4g}")
+    top.set_ylabel("TE [arcmin]")
+    top.legend(fontsize="small", loc="upper right")
+    bottom.plot(out_deg, te - te.mean(), lw=0.9, color="C1")
+    bottom.set_ylabel("TE - mean [arcmin]")
+    bottom.set_xlabel("output angle [deg]")
+    for ax in (top, bottom):
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def order_spectrum_plot(orders, amplitude_arcmin, marks: dict, ax=None):
+    """TE amplitude [arcmin] against orders of the output revolution, ``marks`` (name ->
+    order) drawn as dashed lines (orders that coincide share one line)."""
+    plt = _pyplot()
+    import numpy as np
+
+    fig, ax = (plt.subplots(figsize=(8, 3.4)) if ax is None else (ax.figure, ax))
+    orders = np.asarray(orders)
+    amplitude = np.asarray(amplitude_arcmin)
+    ax.vlines(orders[1:], 0.0, amplitude[1:], lw=1.0)
+    limit = min(float(orders[-1]), 1.15 * max(marks.values()))
+    ax.set_xlim(0, limit)
+    top = float(amplitude[1:][orders[1:] <= limit].max(initial=0.0)) or 1.0
+    ax.set_ylim(0, 1.35 * top)
+    grouped: dict[float, list[str]] = {}
+    for name, order in marks.items():
+        grouped.setdefault(float(order), []).append(name)
+    placed = sorted(o for o in grouped if o <= limit)
+    for order in placed:
+        ax.axvline(order, color="C3", lw=0.7, ls="--")
+        # vertical labels right of their line, left of it when a close neighbour follows
+        crowded = any(0 < other - order <= 0.04 * limit for other in placed)
+        ax.text(order, 1.33 * top, ", ".join(grouped[order]), color="C3", fontsize=7,
+                rotation=90, va="top", ha="right" if crowded else "left")
+    ax.set_xlabel("order of the output revolution [-]")
+    ax.set_ylabel("TE amplitude [arcmin]")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def hysteresis_plot(result, rated: float, fig=None):
+    """Output angle [arcmin] against output torque [N*m] of the torque-reversal test, with
+    the catalogue quantities marked: rigidity interval (50-100 % of rated, secants), the
+    +-3 % lost-motion mid-points and the loop width at 0 N*m.  Left the whole loop, right a
+    zoom on +-10 % of rated where lost motion and backlash live."""
+    plt = _pyplot()
+    import numpy as np
+
+    from .analysis import catalogue as cat
+
+    if fig is None:
+        fig = plt.figure(figsize=(10, 4.8))
+    whole, zoom = fig.subplots(1, 2, gridspec_kw={"width_ratios": [3, 2]})
+    t, a, b, _ = cat.loop_arrays(result)              # converged points
+    (tu, au), (td, ad) = cat.loop_branches(t, a, b)
+    mids = [0.5 * (cat.angle_at(tu, au, sign, sign * cat.LOST_MOTION_FRACTION * rated, "plot")
+                   + cat.angle_at(td, ad, sign, sign * cat.LOST_MOTION_FRACTION * rated,
+                                  "plot")) for sign in (1.0, -1.0)]
+    loss = (cat.angle_at(tu, au, -1.0, 0.0, "plot"), cat.angle_at(td, ad, 1.0, 0.0, "plot"))
+    changes = np.flatnonzero(np.diff(b) != 0)
+    first = slice(0, changes[0] + 1) if changes.size >= 2 else slice(0, 0)
+    for ax in (whole, zoom):
+        ax.plot(t[first], a[first] / _ARCMIN, color="0.6", lw=0.8,
+                label="first loading (not in the loop)")
+        # each branch as sampled, in sweep order (a torque-controlled test crosses its free
+        # play between the sample at 0 N*m and the next one)
+        ax.plot(tu, au / _ARCMIN, ".-", color="C0", lw=1.0, ms=3, label="torque increasing")
+        ax.plot(td, ad / _ARCMIN, ".-", color="C1", lw=1.0, ms=3, label="torque decreasing")
+        for sign, mid in zip((1.0, -1.0), mids):
+            ax.plot([sign * cat.LOST_MOTION_FRACTION * rated], [mid / _ARCMIN], "D",
+                    color="C3", ms=6, label="lost motion mid-points (+-3 %)" if sign > 0
+                    else None)
+        ax.axhline(0.0, color="0.6", lw=0.5)
+        ax.axvline(0.0, color="0.6", lw=0.5)
+        ax.set_xlabel("output torque [N*m]")
+        ax.grid(alpha=0.3)
+    for sign, (bt, ba) in ((1.0, (tu, au)), (-1.0, (td, ad))):
+        whole.axvspan(sign * 0.5 * rated, sign * rated, color="C2", alpha=0.08)
+        ends = [cat.angle_at(bt, ba, sign, sign * f * rated, "plot") for f in (0.5, 1.0)]
+        whole.plot([sign * 0.5 * rated, sign * rated], np.array(ends) / _ARCMIN, color="C2",
+                   lw=2.0, label="rigidity secant 50-100 % of rated" if sign > 0 else None)
+    whole.set_ylabel("output angle, input locked [arcmin]")
+    whole.legend(fontsize="x-small", loc="upper left")
+    near = np.abs(t) <= 0.1 * rated
+    span = a[near] / _ARCMIN if near.any() else a / _ARCMIN
+    pad = 0.1 * max(float(np.ptp(span)), 1e-6)
+    zoom.set_xlim(-0.1 * rated, 0.1 * rated)
+    zoom.set_ylim(span.min() - pad, span.max() + pad)
+    width = (loss[1] - loss[0]) / _ARCMIN
+    if abs(width) > 0.03 * (zoom.get_ylim()[1] - zoom.get_ylim()[0]):   # visible: an arrow
+        for ax in (whole, zoom):
+            ax.annotate("", xy=(0.0, loss[1] / _ARCMIN), xytext=(0.0, loss[0] / _ARCMIN),
+                        arrowprops=dict(arrowstyle="<->", color="C4", lw=1.2))
+    zoom.text(0.03, 0.97, f"loop width at 0 N*m: {width:.3g} arcmin\n(backlash, hysteresis "
+              f"loss)\nlost motion (+-3 %): {(mids[0] - mids[1]) / _ARCMIN:.3g} arcmin",
+              transform=zoom.transAxes, color="C4", fontsize=8, va="top",
+              bbox=dict(facecolor="white", edgecolor="none", alpha=0.85))
+    zoom.set_title("zoom: +-10 % of rated", fontsize=9)
     fig.tight_layout()
     return fig
 

@@ -20,7 +20,8 @@ import pandas as pd
 from ._files import atomic_write_text
 from .errors import InputFileError
 
-__all__ = ["write_study_report", "write_run_report"]
+__all__ = ["write_study_report", "write_run_report", "write_ltca_report",
+           "write_hysteresis_report"]
 
 _CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Roboto,sans-serif;margin:2em auto;
@@ -211,12 +212,15 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
     from .plots import main_effects_plot, spectrum_plot, speed_plot, te_plot
 
     alpha = alpha if alpha is not None else analysis.get("alpha", 0.1)
+    # issue 9: a study on the quasi-static engine has no time window
+    index = ("mean TE over one output revolution, quasi-static engine"
+             if definition.get("engine") == "quasi-static" else
+             f"mean TE for t &ge; {definition['steady_start']:g} s")
     body = [f"<h1>RV reducer study: {html.escape(definition['name'])}</h1>",
             f"<p class='note'>Reducer: {html.escape(definition['reducer'])}. Design "
             f"{html.escape(definition['design'])}, {len(results)} runs, "
             f"{int((results['status'] == 'ok').sum())} finished. Transmission error TE = "
-            "theta_in/i - theta_out (paper Eq. 22); index: mean TE for t &ge; "
-            f"{definition['steady_start']:g} s.</p>"]
+            f"theta_in/i - theta_out (paper Eq. 22); index: {index}.</p>"]
     body.append("<h2>Study definition</h2>")
     fdef = pd.DataFrame([{"factor": f["label"], "parameter": f["parameter"],
                           "levels / range": ", ".join(map(str, f["levels"])) if f["levels"]
@@ -394,3 +398,86 @@ def write_run_report(result, reducer, path: str | Path) -> Path:
             "<h2>Pin contact forces (steady window mean)</h2>", _png(fig),
             "<h2>Parameters</h2>", _table(changed)]
     return atomic_write_text(path, _page(f"rvsim {reducer.name}", body))
+
+
+def _summary_table(summary: dict) -> str:
+    return _table(pd.DataFrame([{"metric": k, "value": v} for k, v in summary.items()]
+                               ).set_index("metric"))
+
+
+def _parameters_table(reducer) -> str:
+    from .parameters import parameter_table
+
+    params = pd.DataFrame(parameter_table(reducer)).set_index("name")
+    return _table(params[[not name.startswith(("materials", "operating"))
+                          for name in params.index]])
+
+
+def _target(path: str | Path) -> Path:
+    path = Path(path)
+    if not path.parent.exists():
+        raise InputFileError(f"{path}: folder {path.parent} does not exist")
+    return path
+
+
+def write_ltca_report(result, reducer, path: str | Path) -> Path:
+    """Write an HTML page for one quasi-static LTCA ``result`` (TE over one output
+    revolution) of ``reducer``: pin loads, TE, its order spectrum."""
+    from .analysis.catalogue import order_spectrum, reducer_orders
+    from .plots import order_spectrum_plot, pin_load_map, te_revolution_plot
+    from .units import ARCMIN
+
+    path = _target(path)
+    orders, amplitude = order_spectrum(np.asarray(result.input_angle) / result.ratio, result.te)
+    marks = reducer_orders(reducer)
+    lines = pd.DataFrame({"order": orders, "amplitude [arcmin]": amplitude / ARCMIN})
+    floor = 1e-9 * max(float(lines["amplitude [arcmin]"].max()), 1e-300)  # round-off lines
+    lines = lines[(lines["order"] > 0) & (lines["amplitude [arcmin]"] > floor)]
+    lines = lines.nlargest(10, "amplitude [arcmin]").set_index("order")
+    names = {}
+    for name, order in marks.items():
+        names.setdefault(order, []).append(name)
+    lines["marked as"] = [", ".join(names.get(float(o), [])) for o in lines.index]
+    body = [f"<h1>Quasi-static LTCA: {html.escape(reducer.name)} at {result.torque:g} N*m</h1>",
+            "<p class='note'>Static equilibrium of the whole reducer at equally spaced input "
+            "angles over one output revolution, one direction, constant output torque. "
+            "TE = theta_in/i - theta_out. The mean TE is measured from the nominal assembly "
+            "(lost motion plus wind-up: the paper's kind of index); the peak-to-peak is the "
+            "catalogue's angular transmission error; the TE relative to the loaded state "
+            "(TE minus its mean) is what a rig that zeroes its encoders while running "
+            "sees.</p>",
+            "<h2>Summary</h2>", _summary_table(result.summary()),
+            "<h2>Transmission error over one output revolution</h2>",
+            _png(te_revolution_plot(result)),
+            "<h2>TE order spectrum</h2>",
+            "<p class='note'>Amplitudes of the TE in orders of the output revolution, "
+            "rectangular window over the whole revolution (exact at integer orders); the "
+            "reducer's orders are marked (docs/catalogue_tests.md derives them).</p>",
+            _png(order_spectrum_plot(orders, amplitude / ARCMIN, marks)),
+            "<h3>Largest lines</h3>", _table(lines),
+            "<h2>Pin load distribution</h2>",
+            "<p class='note'>Contact force of every pin against the output angle, one map "
+            "per disc.</p>", _png(pin_load_map(result)),
+            "<h2>Parameters</h2>", _parameters_table(reducer)]
+    return atomic_write_text(path, _page(f"rvsim ltca {reducer.name}", body))
+
+
+def write_hysteresis_report(result, reducer, path: str | Path) -> Path:
+    """Write an HTML page for one torque-reversal (hysteresis) ``result`` of ``reducer``."""
+    from .plots import hysteresis_plot
+
+    path = _target(path)
+    summary = result.summary()
+    rated = result.rated_torque
+    body = [f"<h1>Torque-reversal test: {html.escape(reducer.name)}</h1>",
+            "<p class='note'>Input shaft locked; output torque 0 &rarr; -rated &rarr; 0 &rarr; "
+            f"+rated &rarr; 0 &rarr; -rated, rated = {rated:g} N*m. Definitions of GB/T "
+            "35089-2018: torsional rigidity = b/a, the secant between 50 % and 100 % of rated "
+            "torque (both directions averaged); lost motion = the angle between the "
+            "mid-points of the hysteresis width at +3 % and -3 % of rated; backlash = the "
+            "free play crossed at 0 N*m; hysteresis loss = the loop width at 0 N*m after "
+            "loading to rated and unloading.</p>",
+            "<h2>Catalogue quantities</h2>", _summary_table(summary),
+            "<h2>Torque-angle curve</h2>", _png(hysteresis_plot(result, rated)),
+            "<h2>Parameters</h2>", _parameters_table(reducer)]
+    return atomic_write_text(path, _page(f"rvsim hysteresis {reducer.name}", body))

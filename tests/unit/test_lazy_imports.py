@@ -25,6 +25,7 @@ def _loaded_after(code: str) -> set[str]:
     "import rvsim",
     "from rvsim.cli import build_parser; build_parser().format_help()",
     "import rvsim.dynamics, rvsim.doe",
+    "import rvsim.analysis.catalogue",   # on the quasi-static engine's first-call path
 ])
 def test_no_heavy_library_at_start_up(code):
     assert _loaded_after(code) == set()

@@ -1,16 +1,28 @@
-"""Analysis of designs of experiments: range analysis, ANOVA, S/N ratios (Minitab-grade)."""
+"""Analysis of designs of experiments: range analysis, ANOVA, S/N ratios (Minitab-grade); and
+the catalogue quantities of reducer curves (:mod:`rvsim.analysis.catalogue`).
 
-from .anova import (AnovaTable, anova, predict_optimum, signal_to_noise_smaller,
-                    sn_response_table)
-from .range_analysis import RangeAnalysis, range_analysis
+Names load on first use (:mod:`lazy_loader`), so the catalogue functions a quasi-static run
+needs do not import pandas.
+"""
+
+import lazy_loader
+
+__getattr__, __dir__, _ = lazy_loader.attach(__name__, submodules=["catalogue"], submod_attrs={
+    "anova": ["AnovaTable", "anova", "predict_optimum", "signal_to_noise_smaller",
+              "sn_response_table"],
+    "range_analysis": ["RangeAnalysis", "range_analysis"],
+})
 
 __all__ = ["RangeAnalysis", "range_analysis", "AnovaTable", "anova", "predict_optimum",
-           "signal_to_noise_smaller", "sn_response_table", "analyze_table"]
+           "signal_to_noise_smaller", "sn_response_table", "analyze_table", "catalogue"]
 
 
 def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
                   alpha: float = 0.1) -> dict:
     """Everything ``rvsim analyze --json`` prints, as one dict."""
+    from .anova import anova, predict_optimum, sn_response_table
+    from .range_analysis import range_analysis
+
     ra = range_analysis(table, response, factors)
     table_anova = anova(table, response, factors, pool=pool)
     out = ra.to_dict()

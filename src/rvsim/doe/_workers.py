@@ -26,14 +26,15 @@ TEST_KILL_ENV = "RVSIM_TEST_KILL_RUN"
 MAX_ATTEMPTS = 2
 
 
-def evaluate_task(key: str, reducer, time_step: float) -> tuple[str, dict]:
+def evaluate_task(key: str, reducer, time_step: float, engine: str = "dynamic",
+                  hysteresis: bool = False) -> tuple[str, dict]:
     """Evaluate one run in a worker (the entry point of local and Dask workers)."""
     from .runner import evaluate
 
     doomed = os.environ.get(TEST_KILL_ENV)
     if doomed and key.startswith(doomed):
         os.kill(os.getpid(), signal.SIGKILL)
-    return key, evaluate(reducer, time_step)
+    return key, evaluate(reducer, time_step, engine, hysteresis)
 
 
 def _die_with_parent(parent_pid: int) -> None:
@@ -102,7 +103,7 @@ def _death(code: int | None) -> str:
 
 def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str, dict], None],
                 inherited_fds: list[int] = ()) -> None:
-    """Evaluate ``tasks`` (key -> (reducer, time_step)) in ``workers`` processes.
+    """Evaluate ``tasks`` (key -> arguments of :func:`evaluate_task` after the key) in ``workers`` processes.
 
     ``on_result(key, outcome)`` is called in this process as each run finishes.
     """

@@ -33,12 +33,19 @@ from .study import Study
 __all__ = ["run", "evaluate", "compact_history", "StudyTerminated"]
 
 
-def evaluate(reducer: Reducer, time_step: float) -> dict:
-    """Simulate one run; never raises (the outcome carries status and error).
+def evaluate(reducer: Reducer, time_step: float, engine: str = "dynamic",
+             hysteresis: bool = False) -> dict:
+    """Evaluate one run; never raises (the outcome carries status and error).
 
-    A simulation that stops (even at step 0) keeps its own status; "error" is reserved for an
-    exception of the code itself.
+    ``engine`` is "dynamic" (a simulation at ``time_step``) or "quasi-static"
+    (:func:`rvsim.doe.engines.evaluate_quasi_static`, with the torque-reversal test when
+    ``hysteresis``).  A simulation that stops (even at step 0) keeps its own status; "error" is
+    reserved for an exception of the code itself.
     """
+    if engine == "quasi-static":
+        from .engines import evaluate_quasi_static
+
+        return evaluate_quasi_static(reducer, hysteresis=hysteresis)
     from ..dynamics import simulate
 
     try:
@@ -127,7 +134,12 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
         _check_scheduler(scheduler)          # before anything is written
     time_step = study.time_step or DEFAULT_TIME_STEP
     definition = _definition(study, time_step, reducers[0])
-    keys = [run_key(r, time_step) for r in reducers]
+    # the engine is part of a run's identity: a dynamic and a quasi-static result of the same
+    # reducer are different rows
+    tag = time_step if study.engine == "dynamic" else \
+        f"{study.engine}{'+hysteresis' if study.hysteresis else ''}"
+    keys = [run_key(r, tag) for r in reducers]
+    options = (time_step, study.engine, study.hysteresis)
     folder.mkdir(parents=True, exist_ok=True)
     with lock_folder(folder), _termination_interrupts():
         store = ResultStore(folder)
@@ -144,9 +156,9 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
                     bar.update(1)
 
                 if scheduler and todo:
-                    _run_dask(todo, time_step, scheduler, store_result)
+                    _run_dask(todo, options, scheduler, store_result)
                 elif todo:
-                    _run_local(todo, time_step, workers, store_result)
+                    _run_local(todo, options, workers, store_result)
             done = store.finished()
         finally:
             store.close()
@@ -156,9 +168,10 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
     return results
 
 
-def _run_local(todo: dict, time_step: float, workers: int | None, store_result) -> None:
+def _run_local(todo: dict, options: tuple, workers: int | None, store_result) -> None:
+    """``options``: the (time_step, engine, hysteresis) of :func:`evaluate`."""
     workers = workers or os.cpu_count() or 1
-    run_workers({key: (reducer, time_step) for key, reducer in todo.items()},
+    run_workers({key: (reducer, *options) for key, reducer in todo.items()},
                 min(workers, len(todo)), store_result, held_lock_fds())
 
 
@@ -188,7 +201,7 @@ def _check_scheduler(scheduler: str) -> None:
         raise InputFileError(f"cannot reach the Dask scheduler at {scheduler} ({exc})") from None
 
 
-def _run_dask(todo: dict, time_step: float, scheduler: str, store_result) -> None:
+def _run_dask(todo: dict, options: tuple, scheduler: str, store_result) -> None:
     from distributed import Client, as_completed as dask_completed
 
     try:
@@ -196,7 +209,7 @@ def _run_dask(todo: dict, time_step: float, scheduler: str, store_result) -> Non
     except (OSError, ValueError, TypeError) as exc:
         raise InputFileError(f"cannot reach the Dask scheduler at {scheduler} ({exc})") from None
     with client:
-        futures = {client.submit(evaluate_task, key, reducer, time_step, key=f"rvsim-{key}",
+        futures = {client.submit(evaluate_task, key, reducer, *options, key=f"rvsim-{key}",
                                  pure=False): key for key, reducer in todo.items()}
         try:
             for future in dask_completed(futures):
@@ -222,6 +235,7 @@ def _definition(study: Study, time_step: float, first: Reducer) -> dict:
     return {
         "name": study.name, "design": study.design, "samples": study.samples,
         "seed": study.seed, "time_step": time_step,
+        "engine": study.engine, "hysteresis": study.hysteresis,
         "reducer": f"{study.base.name} ({study.base.citation})" if study.base.citation
         else study.base.name,
         "steady_start": first.operating.steady_start,   # fixed settings included

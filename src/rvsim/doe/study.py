@@ -8,6 +8,8 @@ A study is a frozen dataclass; :func:`paper_l36` is the paper's Table 2 / Table 
     samples = 32              # lhs / sobol only
     seed = 1
     params = "my_reducer.toml"   # optional; default: the built-in RV-40E
+    engine = "quasi-static"   # optional; default "dynamic" (rvsim.doe.engines)
+    hysteresis = true         # quasi-static only: add the torque-reversal test
     [set]                     # fixed values for every run (user units)
     "operating.load_torque" = 300
     [factors.H]
@@ -71,6 +73,9 @@ class Study:
     samples: int | None = None
     seed: int = 0
     time_step: float | None = None
+    # issue 9: the model that evaluates each run (rvsim.doe.engines)
+    engine: str = "dynamic"
+    hysteresis: bool = False
 
     def __post_init__(self) -> None:
         seen_labels: set[str] = set()
@@ -176,7 +181,8 @@ def load_study(path: str | Path) -> Study:
     """Read a study TOML file (see module docstring); every error names the key at fault."""
     path = Path(path)
     data = _read_toml(path)
-    known = {"name", "design", "samples", "seed", "params", "set", "factors", "time_step"}
+    known = {"name", "design", "samples", "seed", "params", "set", "factors", "time_step",
+             "engine", "hysteresis"}
     extra = set(data) - known
     if extra:
         raise InputFileError(f"{path}: unknown key(s) {', '.join(sorted(extra))}")
@@ -208,9 +214,13 @@ def load_study(path: str | Path) -> Study:
     if time_step is not None and (isinstance(time_step, bool)
                                   or not isinstance(time_step, (int, float))):
         raise ParameterError("time_step", f"must be a number of seconds (got {time_step!r})")
+    from .engines import engine_options
+
+    engine, hysteresis = engine_options(data, path)
     study = Study(name=_string(data, "name", path, path.stem), factors=tuple(factors),
                   design=design, base=base, fixed=tuple(fixed), samples=samples, seed=seed,
-                  time_step=None if time_step is None else float(time_step))
+                  time_step=None if time_step is None else float(time_step), engine=engine,
+                  hysteresis=hysteresis)
     study.reducers()  # validate every run now
     return study
 

@@ -8,7 +8,10 @@ angle 0 with the crank's eccentricity a - G, at rest.  In that pose:
 * **pins**: every pin's gap to both discs is computed exactly (:func:`~rvsim.geometry.cycloid.
   pin_gaps`).  Errors that close clearance (G, rotation modification, disc runout, pin position
   errors) make some gaps negative unless the clearance-opening errors and modifications (F, H, I,
-  J) exceed them; G alone makes the disc overlap the pin opposite its eccentric by G.
+  J) exceed them; G alone makes the disc overlap the pin opposite its eccentric by G.  F, H,
+  I and J may be negative (they then close clearance); a negative equidistant modification
+  with a larger positive radial-moving one can nearly cancel on the working flank and still
+  assemble: the exact gaps decide.
 * **bushings**: the eccentric and journal centres coincide with their bore centres, so the
   radial approach is minus the clearance (K + M, O + L, O + N), never an overlap for the
   non-negative clearances validation allows.  It is computed all the same, so a future pose or
@@ -40,6 +43,9 @@ CONTACT_TOLERANCE = 1e-9
 #: parameters whose non-zero value can close clearance at the assembled pose
 _CLOSING = ("errors.eccentricity", "errors.rotation_modification", "errors.disc_runout",
             "errors.pin_position_tolerance")
+#: parameters that open clearance when positive and close it when negative (F, H, I, J)
+_OPENING = ("errors.pin_radius", "errors.pin_circle_radius", "errors.equidistant_modification",
+            "errors.radial_modification")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -109,13 +115,14 @@ def _closing_parameters(reducer: Reducer) -> str:
     from ..parameters._io import SPECS, get_value
 
     named = []
-    for name in _CLOSING:
+    for name in _CLOSING + _OPENING:
         value = get_value(reducer, name)
-        if value != 0.0:
+        if (value < 0.0) if name in _OPENING else (value != 0.0):
             named.append(f"{name} = {value:g} {SPECS[name].unit}")
     if not named:
         return ""
-    return f" (clearance closed by {' and '.join(named)}, not opened enough by F, H, I, J)"
+    return (f" (clearance closed by {' and '.join(named)}, not opened enough by positive F, H, "
+            "I, J)")
 
 
 def check_assembly(reducer: Reducer) -> None:

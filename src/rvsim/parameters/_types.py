@@ -129,21 +129,28 @@ class Crankshaft:
 class Errors:
     """Manufacturing errors and profile modifications (paper Table 2 F-J).
 
-    Magnitudes are given in the direction the paper names (Sec. 3.2).  F, H, I and J open
-    clearance at every pin; G, the rotation modification, runout and pin position errors close
-    it somewhere, and the assembly check (geometry.assembly) rejects a reducer whose parts
-    overlap when assembled (docs/model.md section 2).
+    Positive F, H, I and J open clearance at every pin (paper Sec. 3.2); negative values are
+    the opposite deviation (bigger pin, smaller pin circle, negative equidistant or
+    radial-moving modification), which closes it.  Industry combines signs, e.g. a negative
+    equidistant with a larger positive radial-moving modification that nearly cancel on the
+    working flank.  G, the rotation modification, runout and pin position errors close
+    clearance somewhere.  The assembly interference check (rvsim.geometry.assembly) decides
+    whether a combination can be assembled (docs/model.md section 2).
     """
 
-    pin_radius: float = quantity(0.0, "mm", "F: pin radius made smaller by this")
+    pin_radius: float = quantity(0.0, "mm", "F: pin radius made smaller by this "
+                                  "(negative: larger)", minimum=None)
     eccentricity: float = quantity(0.0, "mm", "G: crank eccentricity made smaller by this")
-    pin_circle_radius: float = quantity(0.0, "mm", "H: pin centre circle radius made larger")
+    pin_circle_radius: float = quantity(0.0, "mm", "H: pin centre circle radius made "
+                                        "larger by this (negative: smaller)", minimum=None)
     equidistant_modification: float = quantity(0.0, "mm",
                                                "I: cycloid equidistant modification "
-                                               "(profile offset by r_rp + this)")
+                                               "(profile offset by r_rp + this; negative: "
+                                               "fuller teeth)", minimum=None)
     radial_modification: float = quantity(0.0, "mm",
                                           "J: cycloid radial-moving modification "
-                                          "(generating circle r_p - this)")
+                                          "(generating circle r_p - this; negative: "
+                                          "moved outwards)", minimum=None)
     rotation_modification: float = quantity(0.0, "arcmin",
                                             "cycloid rotation modification (profile turned, "
                                             "beyond the paper)", minimum=None)

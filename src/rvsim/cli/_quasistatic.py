@@ -1,0 +1,201 @@
+"""``rvsim ltca`` and ``rvsim hysteresis``: the quasi-static engine and the catalogue tests.
+
+Arguments and output paths are checked before anything is computed (one-line error, exit 2);
+a solve that does not converge prints its status and exits 1.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+from pathlib import Path
+
+from ..errors import ParameterError
+from ..parameters import paper_run_values
+from ._common import add_command, add_reducer_options, print_json, reducer_from_args
+
+__all__ = ["register", "MIN_POSITIONS", "MAX_POSITIONS"]
+
+#: equally spaced input positions over one output revolution: at least enough for a spectrum
+#: up to a few orders, at most what a user could mean (0.01 deg of output per step at 36000)
+MIN_POSITIONS = 8
+MAX_POSITIONS = 100_000
+
+
+def _reducer(args: argparse.Namespace):
+    preset = paper_run_values(args.paper_run) if args.paper_run is not None else None
+    return reducer_from_args(args, preset)
+
+
+def _output_path(option: str, value: str | None, suffix: str) -> Path | None:
+    """A file the command will write: right suffix, not a folder, in a writable folder."""
+    if value is None:
+        return None
+    path = Path(value)
+    if path.suffix.lower() != suffix:
+        raise ParameterError(option, f"{value}: must be a {suffix} file")
+    if path.is_dir():
+        raise ParameterError(option, f"{value}: is a folder")
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise ParameterError(option, f"{value}: folder {folder} does not exist")
+    if not os.access(folder, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise ParameterError(option, f"{value}: not writable")
+    return path
+
+
+def _finite(option: str, value: float | None) -> None:
+    if value is not None and not math.isfinite(value):
+        raise ParameterError(option, f"must be a finite number (got {value})")
+
+
+def _failed(args: argparse.Namespace, what: str, status: str, summary: dict | None) -> int:
+    if args.json:
+        print_json({**(summary or {}), "status": status})
+    print(f"rvsim: {what} failed: status {status}", file=sys.stderr)
+    return 1
+
+
+def _solve(call, args: argparse.Namespace, what: str):
+    """(result, exit code or None) of one engine call; a raised SimulationError is a failure."""
+    from ..errors import SimulationError
+
+    try:
+        result = call()
+    except SimulationError as exc:
+        return None, _failed(args, what, exc.status, {"error": str(exc)})
+    if result.status != "ok":
+        return None, _failed(args, what, result.status, _safe_summary(result))
+    return result, None
+
+
+def _safe_summary(result) -> dict | None:
+    from ..errors import RvsimError
+
+    try:
+        return result.summary()
+    except RvsimError:     # a failed run's curve may not give every quantity
+        return None
+
+
+def _ltca(args: argparse.Namespace) -> int:
+    _finite("--torque", args.torque)
+    if not MIN_POSITIONS <= args.positions <= MAX_POSITIONS:
+        raise ParameterError("--positions", f"must be {MIN_POSITIONS} to {MAX_POSITIONS} "
+                             f"(got {args.positions})")
+    report = _output_path("--report", args.report, ".html")
+    reducer = _reducer(args)
+    from ..quasistatic import ltca
+
+    result, code = _solve(lambda: ltca(reducer, torque=args.torque, positions=args.positions),
+                          args, "ltca")
+    if result is None:
+        return code
+    if report:
+        from ..report import write_ltca_report
+
+        write_ltca_report(result, reducer, report)
+    summary = result.summary()
+    if args.json:
+        print_json(summary)
+    else:
+        print(f"{reducer.name} at {result.torque:g} N*m, {summary['positions']} positions over "
+              f"one output revolution ({summary['wall_s']:.3f} s), status {summary['status']}")
+        print(f"TE mean {summary['te_mean_arcmin']:.4f} arcmin (from the nominal assembly), "
+              f"peak-to-peak {summary['te_pp_arcmin']:.4f} arcmin; max pin force "
+              f"{summary['max_pin_force_n']:.1f} N, max contact stress "
+              f"{summary['max_contact_stress_mpa']:.0f} MPa, pins in contact "
+              f"{summary['pins_in_contact_min']}..{summary['pins_in_contact_max']}; "
+              f"torsional stiffness {summary['torsional_stiffness_nm_per_arcmin']:.2f} "
+              "N*m/arcmin")
+    return 0
+
+
+def _hysteresis(args: argparse.Namespace) -> int:
+    _finite("--rated-torque", args.rated_torque)
+    if args.rated_torque is not None and args.rated_torque <= 0:
+        raise ParameterError("--rated-torque", f"must be positive (got {args.rated_torque:g})")
+    report = _output_path("--report", args.report, ".html")
+    export = _output_path("--export", args.export, ".json")
+    reducer = _reducer(args)
+    from ..quasistatic import hysteresis, ltca
+
+    result, code = _solve(lambda: hysteresis(reducer, rated_torque=args.rated_torque), args,
+                          "hysteresis")
+    if result is None:
+        return code
+    from ..analysis.catalogue import CurveError
+
+    try:
+        summary = result.summary()
+    except CurveError as exc:   # the engine's curve cannot give a catalogue quantity
+        print(f"rvsim: hysteresis failed: status invalid_curve ({exc})", file=sys.stderr)
+        if args.json:
+            print_json({"status": "invalid_curve", "error": str(exc)})
+        return 1
+    if export:
+        from ..joint_model import joint_model, write_joint_model
+
+        te_run, code = _solve(lambda: ltca(reducer, torque=result.rated_torque), args,
+                              "ltca at rated torque (for --export)")
+        if te_run is None:
+            return code
+        write_joint_model(export, joint_model(result, te_run, reducer))
+    if report:
+        from ..report import write_hysteresis_report
+
+        write_hysteresis_report(result, reducer, report)
+    if args.json:
+        print_json(summary)
+    else:
+        print(f"{reducer.name}: torque-reversal test to +-{summary['rated_torque_nm']:g} N*m "
+              f"({summary['wall_s']:.3f} s), status {summary['status']}")
+        print(f"torsional rigidity {summary['torsional_rigidity_nm_per_arcmin']:.2f} "
+              f"N*m/arcmin (50-100 % of rated), lost motion {summary['lost_motion_arcmin']:.4f}"
+              f" arcmin (+-3 %), backlash {summary['backlash_arcmin']:.4f} arcmin, hysteresis "
+              f"loss {summary['hysteresis_loss_arcmin']:.4f} arcmin")
+    return 0
+
+
+def _common(p: argparse.ArgumentParser) -> None:
+    add_reducer_options(p)
+    p.add_argument("--paper-run", type=int, metavar="N",
+                   help="apply row N (1..36) of the paper's L36 scheme; --set values override it")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--report", metavar="FILE.html", help="write a self-contained HTML report")
+
+
+def register(sub) -> None:
+    p = add_command(sub, "ltca", "quasi-static loaded contact analysis over one output revolution",
+                    "Static equilibrium of the whole reducer at equally spaced input angles over "
+                    "one output revolution, one direction, under a constant output torque: "
+                    "TE = theta_in/i - theta_out (mean from the nominal assembly, and "
+                    "peak-to-peak = the catalogue's angular transmission error), pin forces, "
+                    "contact stress, local torsional stiffness.",
+                    ["rvsim ltca --json",
+                     "rvsim ltca --torque 412 --positions 720 --report ltca.html",
+                     "rvsim ltca --paper-run 2 --json"])
+    _common(p)
+    p.add_argument("--torque", type=float, metavar="NM",
+                   help="output torque [N*m] (default: operating.load_torque)")
+    p.add_argument("--positions", type=int, default=360, metavar="N",
+                   help=f"input positions over one output revolution ({MIN_POSITIONS} to "
+                        f"{MAX_POSITIONS}, default 360)")
+    p.set_defaults(func=_ltca)
+
+    p = add_command(sub, "hysteresis", "torque-reversal test: rigidity, lost motion, backlash",
+                    "Input locked, output torque 0 -> -rated -> 0 -> +rated -> 0 -> -rated "
+                    "(GB/T 35089-2018): torsional rigidity (secant 50-100 % of rated), lost "
+                    "motion (+-3 % of rated), backlash and hysteresis loss (at 0 N*m).",
+                    ["rvsim hysteresis --json",
+                     "rvsim hysteresis --paper-run 5 --report loop.html",
+                     "rvsim hysteresis --export joint.json"])
+    _common(p)
+    p.add_argument("--rated-torque", type=float, metavar="NM",
+                   help="rated torque [N*m] (default: the reducer's rating.rated_torque, "
+                        "412 N*m for the RV-40E)")
+    p.add_argument("--export", metavar="FILE.json",
+                   help="write the joint model for robot simulators (docs/joint_model.md)")
+    p.set_defaults(func=_hysteresis)

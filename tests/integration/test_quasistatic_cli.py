@@ -1,0 +1,106 @@
+"""``rvsim ltca`` / ``rvsim hysteresis`` as a user runs them, on the engine stand-in
+(tests/quasistatic_standin.py) until the quasi-static engine is merged."""
+
+import json
+import math
+
+import pytest
+
+from rvsim.joint_model import JOINT_MODEL_SCHEMA, load_joint_model
+from tests.quasistatic_standin import standin  # noqa: F401  (fixture)
+
+LTCA_KEYS = {"te_mean_arcmin", "te_pp_arcmin", "max_pin_force_n", "pins_in_contact_min",
+             "pins_in_contact_max", "max_contact_stress_mpa", "torsional_stiffness_nm_per_arcmin",
+             "positions", "wall_s", "status"}
+HYST_KEYS = {"rated_torque_nm", "torsional_rigidity_nm_per_arcmin", "lost_motion_arcmin",
+             "backlash_arcmin", "hysteresis_loss_arcmin", "wall_s", "status"}
+
+
+def test_ltca_json(cli, standin):
+    res = cli("ltca", "--torque", "412", "--positions", "720", "--json")
+    assert res.code == 0, res.err
+    data = json.loads(res.out)
+    assert LTCA_KEYS <= set(data) and data["status"] == "ok" and data["positions"] == 720
+    res = cli("ltca", "--paper-run", "2")
+    assert res.code == 0 and "peak-to-peak" in res.out
+
+
+def test_hysteresis_json_and_text(cli, standin):
+    res = cli("hysteresis", "--paper-run", "3", "--json")
+    assert res.code == 0, res.err
+    data = json.loads(res.out)
+    assert HYST_KEYS <= set(data) and data["rated_torque_nm"] == 412.0
+    assert data["torsional_rigidity_nm_per_arcmin"] == pytest.approx(35.0, rel=1e-12)
+    assert data["backlash_arcmin"] == pytest.approx(data["hysteresis_loss_arcmin"], rel=1e-12)
+    assert "lost motion" in cli("hysteresis").out
+
+
+def test_reports_and_export(cli, standin, tmp_path):
+    ltca_page, loop_page, joint = (tmp_path / n for n in ("l.html", "h.html", "joint.json"))
+    assert cli("ltca", "--report", str(ltca_page)).code == 0
+    res = cli("hysteresis", "--set", "I=0.02", "--report", str(loop_page), "--export",
+              str(joint), "--json")
+    assert res.code == 0, res.err
+    for page in (ltca_page, loop_page):
+        text = page.read_text()
+        assert text.startswith("<!DOCTYPE html>") and "http" not in text.replace(
+            "https://json", "")
+    model = load_joint_model(joint)
+    summary = json.loads(res.out)
+    arcmin = math.pi / 10800
+    assert model["backlash_rad"] == pytest.approx(summary["backlash_arcmin"] * arcmin, rel=1e-12)
+    jsonschema = pytest.importorskip("jsonschema")
+    jsonschema.validate(model, JOINT_MODEL_SCHEMA)
+
+
+@pytest.mark.parametrize("args, words", [
+    (("ltca", "--positions", "4"), "8 to 100000"),
+    (("ltca", "--positions", "1000001"), "8 to 100000"),
+    (("ltca", "--torque", "nan"), "finite"),
+    (("ltca", "--torque", "inf"), "finite"),
+    (("ltca", "--report", "x.pdf"), ".html"),
+    (("ltca", "--report", "."), "."),
+    (("ltca", "--report", "no/such/dir/x.html"), "does not exist"),
+    (("ltca", "--paper-run", "40"), "1 to 36"),
+    (("hysteresis", "--export", "joint.txt"), ".json"),
+    (("hysteresis", "--rated-torque", "-3"), "positive"),
+    (("hysteresis", "--set", "I=-0.02"), "assembly"),
+])
+def test_errors_before_computing(cli, standin, args, words, monkeypatch):
+    def boom(*a, **k):
+        raise AssertionError("computed before the arguments were checked")
+
+    monkeypatch.setattr(standin, "ltca", boom)
+    monkeypatch.setattr(standin, "hysteresis", boom)
+    res = cli(*args)
+    assert res.code == 2 and words in res.err and res.err.count("\n") == 1, res.err
+
+
+def test_report_folder_rejected(cli, standin, tmp_path):
+    folder = tmp_path / "page.html"
+    folder.mkdir()
+    res = cli("hysteresis", "--report", str(folder))
+    assert res.code == 2 and "is a folder" in res.err
+
+
+def test_failed_solve_exits_1_with_status(cli, standin, tmp_path):
+    page = tmp_path / "x.html"
+    res = cli("ltca", "--torque", "2e5", "--json", "--report", str(page))
+    assert res.code == 1 and json.loads(res.out)["status"] == "not_converged"
+    assert "not_converged" in res.err and not page.exists()
+    res = cli("hysteresis", "--rated-torque", "2e5")
+    assert res.code == 1 and "status not_converged" in res.err
+
+
+def test_engine_curve_without_catalogue_quantities_exits_1(cli, standin, monkeypatch):
+    real = standin.hysteresis
+
+    def short(reducer, **kwargs):   # a loop that never reaches rated torque
+        loop = real(reducer, **kwargs)
+        loop.torque = loop.torque * (300.0 / 412.0)
+        return loop
+
+    monkeypatch.setattr(standin, "hysteresis", short)
+    res = cli("hysteresis", "--json")
+    assert res.code == 1 and json.loads(res.out)["status"] == "invalid_curve"
+    assert "never reaches 412 N*m" in res.err

@@ -1,0 +1,71 @@
+"""``engine = "quasi-static"`` in a study file (issue 9, item 4), on the engine stand-in."""
+
+import textwrap
+
+import pytest
+
+from rvsim.doe import load_study, run
+from rvsim.doe.engines import evaluate_quasi_static
+from rvsim.errors import InputFileError
+from rvsim.parameters import RV40E, with_values
+from tests.quasistatic_standin import standin  # noqa: F401  (fixture)
+
+STUDY = """
+name = "qs"
+design = "L9"
+{extra}
+[factors.H]
+parameter = "H"
+levels = [0.0, 0.01, 0.02]
+[factors.I]
+parameter = "I"
+levels = [0.0, 0.01, 0.02]
+"""
+
+
+def _study(tmp_path, extra):
+    path = tmp_path / "qs.toml"
+    path.write_text(textwrap.dedent(STUDY.format(extra=extra)))
+    return path
+
+
+def test_quasi_static_study_runs_with_catalogue_responses(tmp_path, standin):
+    study = load_study(_study(tmp_path, 'engine = "quasi-static"\nhysteresis = true'))
+    assert (study.engine, study.hysteresis) == ("quasi-static", True)
+    results = run(study, tmp_path / "out", workers=1, progress=False)
+    assert (results["status"] == "ok").all() and len(results) == 9
+    for column in ("te_mean_arcmin", "te_pp_arcmin", "max_pin_force_n",
+                   "torsional_rigidity_nm_per_arcmin", "lost_motion_arcmin", "backlash_arcmin"):
+        assert results[column].notna().all(), column
+    # the stand-in's backlash grows with the clearance-opening H + I: the design sees it
+    by_level = results.groupby("H")["backlash_arcmin"].mean()
+    assert by_level.is_monotonic_increasing and by_level.iloc[-1] > by_level.iloc[0]
+    # the dynamic and the quasi-static rows of one reducer are different store entries
+    again = run(load_study(_study(tmp_path, 'engine = "quasi-static"')), tmp_path / "out",
+                workers=1, progress=False)
+    assert "backlash_arcmin" not in again.columns or again["backlash_arcmin"].isna().all()
+
+
+@pytest.mark.parametrize("extra, words", [
+    ('engine = "static"', "engine must be one of"),
+    ('hysteresis = true', "needs engine"),
+    ('engine = "quasi-static"\nhysteresis = "yes"', "true or false"),
+])
+def test_engine_key_errors(tmp_path, extra, words):
+    with pytest.raises(InputFileError, match=words):
+        load_study(_study(tmp_path, extra))
+
+
+def test_outcome_shape_and_failures(standin, monkeypatch):
+    outcome = evaluate_quasi_static(RV40E)
+    assert outcome["status"] == "ok" and "error" not in outcome and outcome["wall_s"] >= 0
+    assert outcome["metrics"]["positions"] == 360 and "status" not in outcome["metrics"]
+    failed = evaluate_quasi_static(with_values(RV40E, {"E": 2e5}))
+    assert failed["status"] == "not_converged" and "not converged" in failed["error"]
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("solver exploded")
+
+    monkeypatch.setattr(standin, "hysteresis", broken)
+    outcome = evaluate_quasi_static(RV40E, hysteresis=True)
+    assert outcome["status"] == "error" and "solver exploded" in outcome["error"]
