@@ -136,9 +136,13 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
 
 
 @numba.njit(cache=True)
-def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in):
+def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs):
     """Sun-planet mesh j: returns (force, input torque, energy, dissipated power, stiffness,
-    deflection).
+    deflection, number of tooth pairs at the roll position).
+
+    ``pairs`` > 0 holds the number of tooth pairs in contact (the quasi-static solver keeps it
+    during one equilibrium search: the rectangular-wave stiffness is discontinuous in q); 0
+    takes it from the roll position.
 
     ``K`` (17 x 17, or 0 x 0: not wanted) accumulates the stiffness matrix -dQ/dq of the
     elastic force (material term k g g^T; the curvature of the line-of-centres angle is left
@@ -162,7 +166,8 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in):
     # number of tooth pairs in contact from the roll position (rectangular-wave stiffness)
     roll = (rb1 * (theta_in - beta)) / P[BASE_PITCH] + phase
     frac = roll - math.floor(roll)
-    stiffness = P[K_MESH] * (2.0 if frac < P[CONTACT_RATIO] - 1.0 else 1.0)
+    natural = 2.0 if frac < P[CONTACT_RATIO] - 1.0 else 1.0
+    stiffness = P[K_MESH] * (pairs if pairs > 0.0 else natural)
     half = 0.5 * P[BACKLASH]
     force = 0.0
     sign = 0.0
@@ -190,7 +195,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in):
             wl, wu = P[W_G_L], P[W_G_U]
             add_rank_one(K, (b, b + 1, b + 2, b + 3, b + 4),
                          (wl * gx, wl * gy, wu * gx, wu * gy, sign * rb2), stiffness)
-    return force, force * sign * rb1, energy, power, stiffness, delta
+    return force, force * sign * rb1, energy, power, stiffness, delta, natural
 
 
 @numba.njit(cache=True)
@@ -393,13 +398,15 @@ def kinetic_energy(P, v):
 @numba.njit(cache=True)
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-              channel, mesh_state):
+              channel, mesh_state, mesh_pairs):
     """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
     ``torque_load``: the one evaluation of the force elements that both engines use.
 
     Fills the force channels and ``mesh_state`` (stiffness, deflection of each mesh); with a
     17 x 17 ``K`` (zeroed by the caller) it also accumulates the stiffness matrix -dQ/dq of the
-    elastic forces (a 0 x 0 ``K``: not wanted).  Returns (potential energy, dissipated power,
+    elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_pairs[j]`` > 0 holds mesh j's number of
+    tooth pairs (0: from the roll position); a third column of ``mesh_state`` receives the
+    number at the roll position.  Returns (potential energy, dissipated power,
     input torque, max pin penetration).
     """
     for i in range(N_DOF):
@@ -408,11 +415,14 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     power = 0.0
     torque_in = 0.0
     for j in range(2):
-        force, torque, e, pw, stiffness, deflection = gear_mesh(
-            P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in)
+        force, torque, e, pw, stiffness, deflection, natural = gear_mesh(
+            P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
+            mesh_pairs[j])
         channel[CH_MESH_F0 + j] = force
         mesh_state[j, 0] = stiffness
         mesh_state[j, 1] = deflection
+        if mesh_state.shape[1] > 2:
+            mesh_state[j, 2] = natural
         torque_in += torque
         energy += e
         power += pw
@@ -444,7 +454,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
 
 @numba.njit(cache=True)
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K):
+           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_pairs):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
     the run's schedule). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration, input angle, input speed)."""
@@ -453,7 +463,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     energy, power, torque_in, worst = forces_at(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-        mesh_state)
+        mesh_state, mesh_pairs)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
@@ -488,6 +498,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     dt = P[DT]
     Q = np.zeros(N_DOF)
     K = np.zeros((0, 0))
+    mesh_pairs = np.zeros(2)
     previous_stiffness = np.zeros(2)
     row = counters[COUNT_ROW]
     in_window = counters[COUNT_IN_WINDOW] == 1
@@ -499,7 +510,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             previous_stiffness[j] = mesh_state[j, 0]
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K)
+            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_pairs)
         if in_window:
             # work done on the meshes by the stiffness change between steps (parametric)
             for j in range(2):

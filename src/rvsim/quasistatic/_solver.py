@@ -9,7 +9,8 @@ the solver is a damped Newton method with the energy as merit function:
 * step (K + mu I) dx = r in scaled coordinates (rotations times a length, so that every
   coordinate is in metres and every residual in newtons), mu a Levenberg-Marquardt term that
   starts at :data:`MU_MIN` (several decades below any contact stiffness) and grows when a step
-  is rejected;
+  is rejected or is not a descent direction (K is indefinite where a body rocks on a convex
+  contact: the curvature terms of the bushings);
 * a trust region on the largest component of dx (grows after good steps, shrinks after
   rejected ones) carries the bodies across their clearances, where nothing resists them;
 * a step is accepted when Pi drops by at least a tenth of the quadratic model's prediction
@@ -57,21 +58,28 @@ TRUST_MAX = 1e-3
 
 @numba.njit(cache=True)
 def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
-              next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v):
-    """Residual Q, stiffness K and potential energy Pi at q (every pin evaluated)."""
+              next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
+              mesh_pairs):
+    """Residual Q, stiffness K and potential energy Pi at q (every pin evaluated); returns
+    (Pi, the size of its terms, input torque, max pin penetration)."""
     K[:, :] = 0.0
     next_eval[:, :] = 0
     energy, _, torque_in, worst = forces_at(
         P, q, v, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
-        next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state)
-    return energy + torque * q[CARRIER], torque_in, worst
+        next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
+        mesh_pairs)
+    work = torque * q[CARRIER]
+    return energy + work, abs(energy) + abs(work), torque_in, worst
 
 
 @numba.njit(cache=True)
 def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
-                Q, K, channel, mesh_state):
-    """Move ``q`` to the static equilibrium at input angle ``theta_in`` under ``torque``.
+                Q, K, channel, mesh_state, mesh_pairs):
+    """Move ``q`` to the static equilibrium at input angle ``theta_in`` under ``torque``, each
+    mesh with ``mesh_pairs`` tooth pairs in contact (0: the count at the starting pose, stored
+    into ``mesh_pairs``).  ``mesh_state`` has three columns (stiffness, deflection, pairs at
+    the roll position).
 
     ``scale[i]`` is the length that turns coordinate i into metres (1 for translations, a
     radius for rotations).  Returns (status, iterations, input torque); on return Q, K and the
@@ -82,9 +90,13 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
     q_trial = np.empty(n)
     A = np.empty((n, n))
     r = np.empty(n)
-    pi, torque_in, worst = _evaluate(P, q, theta_in, torque, pins, pin_angle, holes,
-                                     crank_angles, mesh_phase, u, next_eval, pin_force,
-                                     pin_elastic, arm_elastic, Q, K, channel, mesh_state, v)
+    pi, size, torque_in, worst = _evaluate(P, q, theta_in, torque, pins, pin_angle, holes,
+                                           crank_angles, mesh_phase, u, next_eval, pin_force,
+                                           pin_elastic, arm_elastic, Q, K, channel,
+                                           mesh_state, v, mesh_pairs)
+    for j in range(2):
+        if mesh_pairs[j] == 0.0:
+            mesh_pairs[j] = mesh_state[j, 2]
     mu = MU_MIN
     trust = TRUST_START
     for iteration in range(max_iter + 1):
@@ -108,6 +120,16 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                     A[i, j] = K[i, j] / (scale[i] * scale[j])
                 A[i, i] += mu
             dx = np.linalg.solve(A, r)
+            descent = 0.0
+            for i in range(n):
+                descent += r[i] * dx[i]
+            if not descent > 0.0:
+                # K has a negative eigenvalue (a body rocking on a convex contact) that mu
+                # does not yet cover: raise mu, keep the trust radius
+                mu *= 10.0
+                if mu > 1e16:
+                    return STATUS_NOT_CONVERGED, iteration, torque_in
+                continue
             largest = 0.0
             for i in range(n):
                 if abs(dx[i]) > largest:
@@ -126,11 +148,13 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             for i in range(n):
                 q_trial[i] = q[i] + dx[i] / scale[i]
             norm_old = norm
-            pi_trial, torque_in, worst = _evaluate(
+            pi_trial, size, torque_in, worst = _evaluate(
                 P, q_trial, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
-                u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v)
+                u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
+                mesh_pairs)
             drop = pi - pi_trial
-            flat = abs(drop) <= 1e-13 * (abs(pi) + abs(pi_trial)) + 1e-18
+            # below round-off of Pi's terms the energy cannot rank the points: the residual does
+            flat = abs(drop) <= 1e-12 * size + 1e-18
             norm_trial = 0.0
             for i in range(n):
                 if abs(Q[i] / scale[i]) > norm_trial:
@@ -148,13 +172,38 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 trust = 0.25 * largest
                 mu *= 10.0
                 # back to the last accepted state
-                pi, torque_in, worst = _evaluate(
+                pi, size, torque_in, worst = _evaluate(
                     P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                     u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-                    mesh_state, v)
+                    mesh_state, v, mesh_pairs)
                 if trust < 1e-16 or mu > 1e16:
                     return STATUS_NOT_CONVERGED, iteration, torque_in
     return STATUS_NOT_CONVERGED, max_iter, torque_in
+
+
+@numba.njit(cache=True)
+def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
+                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
+                 Q, K, channel, mesh_state):
+    """:func:`equilibrium` with each mesh's number of tooth pairs held at the count of the
+    starting pose; where the equilibrium lies on the other side of a switch of the count, solved
+    again with the new count.  Where the count would flip back (the equilibrium sits on the
+    switch: the rectangular-wave stiffness has none there), the second count is kept.  Returns
+    (status, total iterations, input torque)."""
+    pairs = np.zeros(2)              # 0: taken from the starting pose by equilibrium()
+    total = 0
+    status, torque_in = STATUS_OK, 0.0
+    for attempt in range(2):
+        status, iterations, torque_in = equilibrium(
+            P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
+            mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
+            mesh_state, pairs)
+        total += iterations
+        if status != STATUS_OK or (mesh_state[0, 2] == pairs[0]
+                                   and mesh_state[1, 2] == pairs[1]):
+            break
+        pairs[0], pairs[1] = mesh_state[0, 2], mesh_state[1, 2]
+    return status, total, torque_in
 
 
 @numba.njit(cache=True)
@@ -238,7 +287,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     pin_force = np.zeros((2, zp))
     pin_elastic = np.zeros((2, zp))
     arm_elastic = np.zeros((2, 2))
-    mesh_state = np.zeros((2, 2))
+    mesh_state = np.zeros((2, 3))
     channel = np.zeros(N_CHANNELS)
     Q = np.zeros(N_DOF)
     K = np.zeros((N_DOF, N_DOF))
@@ -263,7 +312,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
                 factor = 1.0 if largest <= TRUST_START else TRUST_START / largest
                 for i in range(N_DOF):
                     q[i] += factor * dx[i] / scale[i]
-        status, iterations, torque_in = equilibrium(
+        status, iterations, torque_in = _solve_point(
             P, q, theta_in[k], torque[k], scale, tol, max_iter, pins, pin_angle, holes,
             crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K,
             channel, mesh_state)
@@ -273,7 +322,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
         q_out[k, :] = q
         pin_out[k, :, :] = pin_force
         channel_out[k, :] = channel
-        mesh_out[k, :, :] = mesh_state
+        mesh_out[k, :, :] = mesh_state[:, :2]
         stiffness_out[k] = condensed_stiffness(K, scale)
         _hertz(P, hertz, q, u, pin_angle, pin_force, stress_out[k])
         if status != STATUS_OK:
