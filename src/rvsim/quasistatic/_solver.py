@@ -54,6 +54,9 @@ MU_MIN = 1.0
 TRUST_START = 2e-5
 #: largest trust radius [m]
 TRUST_MAX = 1e-3
+#: a point where no step above the positions' round-off lowers the energy counts as converged
+#: if its residual is below this multiple of the tolerance
+ROUNDOFF_FACTOR = 1e3
 
 
 @numba.njit(cache=True)
@@ -177,6 +180,11 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                     u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
                     mesh_state, v, mesh_pairs)
                 if trust < 1e-16 or mu > 1e16:
+                    # no step left above the round-off of the positions (1e-16 m): converged
+                    # as far as double precision goes if the residual is near tol (very stiff
+                    # contacts turn the positions' round-off into ~ tol of force)
+                    if norm <= ROUNDOFF_FACTOR * tol and worst <= P[PEN_LIMIT]:
+                        return STATUS_OK, iteration, torque_in
                     return STATUS_NOT_CONVERGED, iteration, torque_in
     return STATUS_NOT_CONVERGED, max_iter, torque_in
 

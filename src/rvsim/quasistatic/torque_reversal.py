@@ -23,7 +23,7 @@ __all__ = ["hysteresis", "HysteresisResult", "sweep_torques"]
 class HysteresisResult:
     """Output angle against output torque, input locked (SI; contract of issue 9)."""
 
-    torque: np.ndarray             # (m,) [N*m]
+    torque: np.ndarray             # (m,) [N*m] applied to the output (turns it positive)
     angle: np.ndarray              # (m,) [rad] output angle
     branch: np.ndarray             # (m,) +1 torque increasing (loading), -1 decreasing
     rated_torque: float            # [N*m]
@@ -75,7 +75,9 @@ def sweep_torques(rated: float, points_per_branch: int) -> tuple[np.ndarray, np.
 def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
                points_per_branch: int = 50, raise_on_failure: bool = True) -> HysteresisResult:
     """Torque-reversal test with the input locked at 0 (rated torque default:
-    reducer.rating.rated_torque).
+    reducer.rating.rated_torque).  ``torque`` is the torque applied to the output (positive
+    turns it in the positive sense; the output load of the dynamic model and of :func:`ltca`
+    is its negative, a resisting torque), so the curve rises: angle grows with torque.
 
     At exactly 0 N*m nothing holds the output: it stays at the contact on the side it comes
     from (the solver leaves an unloaded body where it was), so each branch crosses zero at its
@@ -93,7 +95,8 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
     from ..dynamics import _layout as L
 
     torque, branch = sweep_torques(rated, points_per_branch)
-    path = solve_path(reducer, np.zeros(len(torque)), torque)
+    # the model's output load resists the motion: a load of -T is a torque T applied
+    path = solve_path(reducer, np.zeros(len(torque)), -torque)
     converged = path.status_codes == 0
     angle = path.q[:, L.CARRIER].copy()
     angle[~converged] = np.nan
