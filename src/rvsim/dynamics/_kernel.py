@@ -110,7 +110,7 @@ def contact(delta, rate, c, cb, zeta, mass, guess):
     return fn, energy, (fn - f) * rate, f, k
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def add_rank_one(K, index, g, scale):
     """K[index, index] += scale * g g^T (``index``, ``g``: tuples of one length)."""
     for a in range(len(index)):
@@ -233,6 +233,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     energy = 0.0
     power = 0.0
     worst = 0.0
+    want = K.shape[0] > 0
     n = pins.shape[0]
     for i in range(n):
         if step < next_eval[disc, i]:
@@ -270,7 +271,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         fx = fn * gx
         fy = fn * gy
         torque = fn * lever
-        if K.shape[0] > 0:
+        if want:
             add_rank_one(K, (d, d + 1, d + 2), (gx, gy, lever), k)
         if P[MU] > 0.0:
             # contact point on the disc (disc axes, from its centre) and sliding speed there
@@ -287,6 +288,30 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         Q[d + 1] += fy
         Q[d + 2] += torque
     return energy, power, worst
+
+
+@numba.njit(cache=True)
+def arm_stiffness(K, b, d, wl, wu, nx, ny, ecc, cos_p, sin_p, lx, ly, k, force, dist):
+    """Stiffness matrix of an arm bushing contact (crank coordinates from b, disc from d; (lx,
+    ly) the hole centre from the disc centre): k g g^T + F/dist h h^T + F n . d2r/dq2."""
+    index = (b, b + 1, b + 2, b + 3, b + 4, d, d + 1, d + 2)
+    add_rank_one(K, index, (wl * nx, wl * ny, wu * nx, wu * ny,
+                            ecc * (-nx * sin_p + ny * cos_p), -nx, -ny, nx * ly - ny * lx), k)
+    tx, ty = -ny, nx
+    add_rank_one(K, index, (wl * tx, wl * ty, wu * tx, wu * ty,
+                            ecc * (-tx * sin_p + ty * cos_p), -tx, -ty, tx * ly - ty * lx),
+                 force / dist)
+    K[b + 4, b + 4] -= force * ecc * (nx * cos_p + ny * sin_p)
+    K[d + 2, d + 2] += force * (nx * lx + ny * ly)
+
+
+@numba.njit(cache=True)
+def support_stiffness(K, b, nx, ny, bx, by, k, force, dist):
+    """Stiffness matrix of a support bushing contact (node coordinates from b, bore centre
+    (bx, by) on the carrier): k g g^T + F/dist h h^T + F n . d2r/dtheta_c^2."""
+    add_rank_one(K, (b, b + 1, CARRIER), (nx, ny, nx * by - ny * bx), k)
+    add_rank_one(K, (b, b + 1, CARRIER), (-ny, nx, -ny * by - nx * bx), force / dist)
+    K[CARRIER, CARRIER] += force * (nx * bx + ny * by)
 
 
 @numba.njit(cache=True)
@@ -324,18 +349,8 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
                                                          P[ZETA], P[M_NODE],
                                                          elastic[crank, disc])
     if K.shape[0] > 0:
-        f_el = elastic[crank, disc]
-        lx, ly = hx - q[d], hy - q[d + 1]            # hole centre from the disc centre
-        index = (b, b + 1, b + 2, b + 3, b + 4, d, d + 1, d + 2)
-        add_rank_one(K, index, (wl * nx, wl * ny, wu * nx, wu * ny,
-                                ecc * (-nx * sin_p + ny * cos_p), -nx, -ny,
-                                nx * ly - ny * lx), k)
-        tx, ty = -ny, nx
-        add_rank_one(K, index, (wl * tx, wl * ty, wu * tx, wu * ty,
-                                ecc * (-tx * sin_p + ty * cos_p), -tx, -ty,
-                                tx * ly - ty * lx), f_el / dist)
-        K[b + 4, b + 4] -= f_el * ecc * (nx * cos_p + ny * sin_p)
-        K[d + 2, d + 2] += f_el * (nx * lx + ny * ly)
+        arm_stiffness(K, b, d, wl, wu, nx, ny, ecc, cos_p, sin_p, hx - q[d], hy - q[d + 1], k,
+                      elastic[crank, disc], dist)
     fx, fy = -fn * nx, -fn * ny                      # on the crank
     add_crank_force(Q, crank, wl, wu, fx, fy)
     Q[b + 4] += fx * (-ecc * sin_p) + fy * (ecc * cos_p)
@@ -367,9 +382,7 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle):
     fn, energy, power, f_el, k = contact(delta, rate, P[SUP_C], P[SUP_CB], P[ZETA], P[M_NODE],
                                          0.0)
     if K.shape[0] > 0:
-        add_rank_one(K, (b, b + 1, CARRIER), (nx, ny, nx * by - ny * bx), k)
-        add_rank_one(K, (b, b + 1, CARRIER), (-ny, nx, -ny * by - nx * bx), f_el / dist)
-        K[CARRIER, CARRIER] += f_el * (nx * bx + ny * by)
+        support_stiffness(K, b, nx, ny, bx, by, k, f_el, dist)
     Q[b] -= fn * nx
     Q[b + 1] -= fn * ny
     Q[CARRIER] += fn * (-nx * by + ny * bx)
@@ -395,7 +408,7 @@ def kinetic_energy(P, v):
     return energy
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
               channel, mesh_state, mesh_pairs):
@@ -452,7 +465,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     return energy, power, torque_in, worst
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_pairs):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
