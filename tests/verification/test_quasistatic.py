@@ -163,3 +163,19 @@ def test_failure_is_a_status_not_a_number(monkeypatch):
     assert not result.converged.any()
     assert np.isnan(result.te).all()
     assert np.isnan(result.summary()["te_mean_arcmin"])
+
+
+def test_result_tables_and_summary_keys():
+    result = ltca(RV40E, torque=412.0, positions=12, revolutions=0.1)
+    summary = result.summary()
+    for key in ("te_mean_arcmin", "te_pp_arcmin", "max_pin_force_n", "pins_in_contact_min",
+                "pins_in_contact_max", "max_contact_stress_mpa",
+                "torsional_stiffness_nm_per_arcmin", "positions", "wall_s", "status"):
+        assert key in summary
+    assert summary["positions"] == 12 and summary["status"] == "ok"
+    assert 0 < summary["pins_in_contact_min"] <= summary["pins_in_contact_max"] <= 40
+    frame = result.to_frame()
+    assert len(frame) == 12 and np.allclose(frame["te"], result.te)
+    assert np.allclose(result.te_relative.mean(), 0.0, atol=1e-15)
+    curve = hysteresis(RV40E, points_per_branch=4).to_frame()
+    assert list(curve["branch"][:5]) == [-1, -1, -1, -1, -1] and len(curve) == 21
