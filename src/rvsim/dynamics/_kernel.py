@@ -136,13 +136,16 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
 
 
 @numba.njit(cache=True)
-def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs):
+def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank):
     """Sun-planet mesh j: returns (force, input torque, energy, dissipated power, stiffness,
-    deflection, number of tooth pairs at the roll position).
+    deflection, number of tooth pairs at the roll position, flank the rule picks).
 
-    ``pairs`` > 0 holds the number of tooth pairs in contact (the quasi-static solver keeps it
-    during one equilibrium search: the rectangular-wave stiffness is discontinuous in q); 0
-    takes it from the roll position.
+    The mesh acts on one flank: the positive one if it is engaged, else the negative one (the
+    rule; 0 returned for "none").  ``pairs`` > 0 holds the number of tooth pairs in contact and
+    ``flank`` = +-1 the flank (the quasi-static solver keeps both during one equilibrium search:
+    the rectangular-wave stiffness and the rule are discontinuous in q, the rule where the crank
+    is pressed towards the sun so far that both flanks would touch); 0 takes them from the roll
+    position and the rule.
 
     ``K`` (17 x 17, or 0 x 0: not wanted) accumulates the stiffness matrix -dQ/dq of the
     elastic force (material term k g g^T; the curvature of the line-of-centres angle is left
@@ -173,9 +176,15 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs):
     sign = 0.0
     delta = 0.0
     rate = 0.0
+    rule = 0.0
     if rot - radial - half > 0.0:
-        sign, delta, rate = 1.0, rot - radial - half, rot_rate - radial_rate
+        rule = 1.0
     elif -rot - radial - half > 0.0:
+        rule = -1.0
+    chosen = rule if flank == 0.0 else flank
+    if chosen > 0.0 and rot - radial - half > 0.0:
+        sign, delta, rate = 1.0, rot - radial - half, rot_rate - radial_rate
+    elif chosen < 0.0 and -rot - radial - half > 0.0:
         sign, delta, rate = -1.0, -rot - radial - half, -rot_rate - radial_rate
     energy = 0.0
     power = 0.0
@@ -195,7 +204,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs):
             wl, wu = P[W_G_L], P[W_G_U]
             add_rank_one(K, (b, b + 1, b + 2, b + 3, b + 4),
                          (wl * gx, wl * gy, wu * gx, wu * gy, sign * rb2), stiffness)
-    return force, force * sign * rb1, energy, power, stiffness, delta, natural
+    return force, force * sign * rb1, energy, power, stiffness, delta, natural, rule
 
 
 @numba.njit(cache=True)
@@ -411,15 +420,16 @@ def kinetic_energy(P, v):
 @numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-              channel, mesh_state, mesh_pairs):
+              channel, mesh_state, mesh_hold):
     """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
     ``torque_load``: the one evaluation of the force elements that both engines use.
 
     Fills the force channels and ``mesh_state`` (stiffness, deflection of each mesh); with a
     17 x 17 ``K`` (zeroed by the caller) it also accumulates the stiffness matrix -dQ/dq of the
-    elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_pairs[j]`` > 0 holds mesh j's number of
-    tooth pairs (0: from the roll position); a third column of ``mesh_state`` receives the
-    number at the roll position.  Returns (potential energy, dissipated power,
+    elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_hold[j]`` = (pairs, flank) held for mesh
+    j (zeros: from the roll position and the flank rule, see :func:`gear_mesh`); with four
+    columns, ``mesh_state`` also receives the pairs at the roll position and the rule's flank.
+    Returns (potential energy, dissipated power,
     input torque, max pin penetration).
     """
     for i in range(N_DOF):
@@ -428,14 +438,15 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     power = 0.0
     torque_in = 0.0
     for j in range(2):
-        force, torque, e, pw, stiffness, deflection, natural = gear_mesh(
+        force, torque, e, pw, stiffness, deflection, natural, rule = gear_mesh(
             P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
-            mesh_pairs[j])
+            mesh_hold[j, 0], mesh_hold[j, 1])
         channel[CH_MESH_F0 + j] = force
         mesh_state[j, 0] = stiffness
         mesh_state[j, 1] = deflection
-        if mesh_state.shape[1] > 2:
+        if mesh_state.shape[1] > 3:
             mesh_state[j, 2] = natural
+            mesh_state[j, 3] = rule
         torque_in += torque
         energy += e
         power += pw
@@ -467,7 +478,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
 
 @numba.njit(cache=True, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_pairs):
+           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
     the run's schedule). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration, input angle, input speed)."""
@@ -476,7 +487,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     energy, power, torque_in, worst = forces_at(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-        mesh_state, mesh_pairs)
+        mesh_state, mesh_hold)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
@@ -511,7 +522,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     dt = P[DT]
     Q = np.zeros(N_DOF)
     K = np.zeros((0, 0))
-    mesh_pairs = np.zeros(2)
+    mesh_hold = np.zeros((2, 2))
     previous_stiffness = np.zeros(2)
     row = counters[COUNT_ROW]
     in_window = counters[COUNT_IN_WINDOW] == 1
@@ -523,7 +534,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             previous_stiffness[j] = mesh_state[j, 0]
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_pairs)
+            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold)
         if in_window:
             # work done on the meshes by the stiffness change between steps (parametric)
             for j in range(2):

@@ -62,7 +62,7 @@ ROUNDOFF_FACTOR = 1e3
 @numba.njit(cache=True)
 def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
               next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
-              mesh_pairs):
+              mesh_hold):
     """Residual Q, stiffness K and potential energy Pi at q (every pin evaluated); returns
     (Pi, the size of its terms, input torque, max pin penetration)."""
     K[:, :] = 0.0
@@ -70,7 +70,7 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
     energy, _, torque_in, worst = forces_at(
         P, q, v, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
         next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
-        mesh_pairs)
+        mesh_hold)
     work = torque * q[CARRIER]
     return energy + work, abs(energy) + abs(work), torque_in, worst
 
@@ -78,11 +78,12 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
 @numba.njit(cache=True)
 def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
-                Q, K, channel, mesh_state, mesh_pairs):
+                Q, K, channel, mesh_state, mesh_hold):
     """Move ``q`` to the static equilibrium at input angle ``theta_in`` under ``torque``, each
-    mesh with ``mesh_pairs`` tooth pairs in contact (0: the count at the starting pose, stored
-    into ``mesh_pairs``).  ``mesh_state`` has three columns (stiffness, deflection, pairs at
-    the roll position).
+    mesh j with ``mesh_hold[j]`` = (tooth pairs, flank) held (zeros: those of the starting
+    pose, stored into ``mesh_hold``; a flank stays 0 while the mesh is open there).
+    ``mesh_state`` has four columns (stiffness, deflection, pairs at the roll position, flank
+    of the kernel's rule).
 
     ``scale[i]`` is the length that turns coordinate i into metres (1 for translations, a
     radius for rotations).  Returns (status, iterations, input torque); on return Q, K and the
@@ -96,10 +97,12 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
     pi, size, torque_in, worst = _evaluate(P, q, theta_in, torque, pins, pin_angle, holes,
                                            crank_angles, mesh_phase, u, next_eval, pin_force,
                                            pin_elastic, arm_elastic, Q, K, channel,
-                                           mesh_state, v, mesh_pairs)
+                                           mesh_state, v, mesh_hold)
     for j in range(2):
-        if mesh_pairs[j] == 0.0:
-            mesh_pairs[j] = mesh_state[j, 2]
+        if mesh_hold[j, 0] == 0.0:
+            mesh_hold[j, 0] = mesh_state[j, 2]
+        if mesh_hold[j, 1] == 0.0:
+            mesh_hold[j, 1] = mesh_state[j, 3]
     mu = MU_MIN
     trust = TRUST_START
     for iteration in range(max_iter + 1):
@@ -154,7 +157,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             pi_trial, size, torque_in, worst = _evaluate(
                 P, q_trial, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                 u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
-                mesh_pairs)
+                mesh_hold)
             drop = pi - pi_trial
             # below round-off of Pi's terms the energy cannot rank the points: the residual does
             flat = abs(drop) <= 1e-12 * size + 1e-18
@@ -178,7 +181,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 pi, size, torque_in, worst = _evaluate(
                     P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                     u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-                    mesh_state, v, mesh_pairs)
+                    mesh_state, v, mesh_hold)
                 if trust < 1e-16 or mu > 1e16:
                     # no step left above the round-off of the positions (1e-16 m): converged
                     # as far as double precision goes if the residual is near tol (very stiff
@@ -193,24 +196,32 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
 def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                  crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
                  Q, K, channel, mesh_state):
-    """:func:`equilibrium` with each mesh's number of tooth pairs held at the count of the
-    starting pose; where the equilibrium lies on the other side of a switch of the count, solved
-    again with the new count.  Where the count would flip back (the equilibrium sits on the
-    switch: the rectangular-wave stiffness has none there), the second count is kept.  Returns
-    (status, total iterations, input torque)."""
-    pairs = np.zeros(2)              # 0: taken from the starting pose by equilibrium()
+    """:func:`equilibrium` with each mesh's number of tooth pairs and engaged flank held at
+    those of the starting pose (both are discontinuous in q: the rectangular-wave stiffness,
+    and the kernel's one-flank rule where the crank is pressed towards the sun so far that both
+    flanks would touch); where the equilibrium lies across a switch, solved again with the
+    count and flank found there.  Where they would flip back (the equilibrium sits on the
+    switch, where none exists for either choice), the second choice is kept.  Returns (status,
+    total iterations, input torque)."""
+    hold = np.zeros((2, 2))          # zeros: taken from the starting pose by equilibrium()
     total = 0
     status, torque_in = STATUS_OK, 0.0
     for attempt in range(2):
         status, iterations, torque_in = equilibrium(
             P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
             mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-            mesh_state, pairs)
+            mesh_state, hold)
         total += iterations
-        if status != STATUS_OK or (mesh_state[0, 2] == pairs[0]
-                                   and mesh_state[1, 2] == pairs[1]):
+        same = True
+        for j in range(2):
+            if mesh_state[j, 2] != hold[j, 0] or (mesh_state[j, 3] != 0.0
+                                                   and mesh_state[j, 3] != hold[j, 1]):
+                same = False
+        if status != STATUS_OK or same:
             break
-        pairs[0], pairs[1] = mesh_state[0, 2], mesh_state[1, 2]
+        for j in range(2):
+            hold[j, 0] = mesh_state[j, 2]
+            hold[j, 1] = mesh_state[j, 3]
     return status, total, torque_in
 
 
@@ -297,7 +308,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     pin_force = np.zeros((2, zp))
     pin_elastic = np.zeros((2, zp))
     arm_elastic = np.zeros((2, 2))
-    mesh_state = np.zeros((2, 3))
+    mesh_state = np.zeros((2, 4))
     channel = np.zeros(N_CHANNELS)
     Q = np.zeros(N_DOF)
     K = np.zeros((N_DOF, N_DOF))
