@@ -179,3 +179,13 @@ def test_result_tables_and_summary_keys():
     assert np.allclose(result.te_relative.mean(), 0.0, atol=1e-15)
     curve = hysteresis(RV40E, points_per_branch=4).to_frame()
     assert list(curve["branch"][:5]) == [-1, -1, -1, -1, -1] and len(curve) == 21
+
+
+@pytest.mark.parametrize("run", [0, 3])
+def test_driven_backwards_and_nearly_unloaded_converge(run):
+    reducer = RV40E if run == 0 else with_values(RV40E, paper_run_values(run))
+    backwards = ltca(reducer, torque=-300.0, positions=36)
+    forwards = ltca(reducer, torque=300.0, positions=36)
+    assert backwards.status == "ok" and np.all(backwards.te < 0) and np.all(forwards.te > 0)
+    # crossing the clearances with almost nothing to push: many steps, still converged
+    assert ltca(reducer, torque=1.0, positions=36).status == "ok"

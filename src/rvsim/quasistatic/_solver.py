@@ -81,7 +81,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 Q, K, channel, mesh_state, mesh_hold):
     """Move ``q`` to the static equilibrium at input angle ``theta_in`` under ``torque``, each
     mesh j with ``mesh_hold[j]`` = (tooth pairs, flank) held (zeros: those of the starting
-    pose, stored into ``mesh_hold``; a flank stays 0 while the mesh is open there).
+    pose, stored into ``mesh_hold``; a mesh open there gets the flank it first engages with).
     ``mesh_state`` has four columns (stiffness, deflection, pairs at the roll position, flank
     of the kernel's rule).
 
@@ -170,6 +170,10 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 accepted = True
                 for i in range(n):
                     q[i] = q_trial[i]
+                for j in range(2):
+                    # a mesh open so far: hold the flank it engages with
+                    if mesh_hold[j, 1] == 0.0:
+                        mesh_hold[j, 1] = mesh_state[j, 3]
                 pi = pi_trial
                 if drop >= 0.75 * predicted and clipped:
                     trust = min(2.0 * trust, TRUST_MAX)
