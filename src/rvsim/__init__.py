@@ -18,10 +18,11 @@ except PackageNotFoundError:  # running from a source tree without installation
     __version__ = "0.0.0+unknown"
 
 _lazy_getattr, _lazy_dir, _ = lazy_loader.attach(
-    __name__, submod_attrs={"dynamics": ["simulate", "decompose_te", "Result"]})
+    __name__, submod_attrs={"dynamics": ["simulate", "decompose_te", "Result"],
+                            "quasistatic": ["ltca", "hysteresis"]})
 
 __all__ = ["Reducer", "RV40E", "load_toml", "with_values", "simulate", "decompose_te", "Result",
-           "RvsimError", "ParameterError", "InputFileError", "SimulationError", "__version__"]
+           "ltca", "hysteresis", "RvsimError", "ParameterError", "InputFileError", "SimulationError", "__version__"]
 
 
 def __getattr__(name: str):

@@ -66,12 +66,10 @@ def test_stale_kernel_is_removed_and_not_loaded(tmp_path):
     assert (folder / STAMP_NAME).read_text() != "fingerprint of older sources"
 
 
-def test_every_module_compiled_into_the_kernel_is_a_dependency():
+def _compiled_in(module_file):
+    """The module and the project modules it imports, recursively (the cache guard aside)."""
     import ast
     from pathlib import Path
-
-    from rvsim.dynamics import _kernel
-    from rvsim.dynamics._cache_guard import DEPENDENCIES
 
     def local_imports(path):
         found = set()
@@ -85,11 +83,30 @@ def test_every_module_compiled_into_the_kernel_is_a_dependency():
                     found.add(target.resolve())
         return found
 
-    kernel = Path(_kernel.__file__)
-    seen, todo = set(), [kernel.resolve()]
-    while todo:                      # the kernel's imports, and theirs, recursively
+    seen, todo = set(), [Path(module_file).resolve()]
+    while todo:                      # the module's imports, and theirs, recursively
         path = todo.pop()
         if path not in seen:
             seen.add(path)
             todo.extend(local_imports(path))
-    assert seen == {Path(p).resolve() for p in DEPENDENCIES}
+    return seen
+
+
+def test_every_module_compiled_into_the_kernel_is_a_dependency():
+    from pathlib import Path
+
+    from rvsim.dynamics import _kernel
+    from rvsim.dynamics._cache_guard import DEPENDENCIES
+
+    assert _compiled_in(_kernel.__file__) == {Path(p).resolve() for p in DEPENDENCIES}
+
+
+def test_the_quasi_static_solver_is_guarded_with_all_it_compiles_in():
+    from pathlib import Path
+
+    from rvsim.dynamics._cache_guard import DEPENDENCIES
+    from rvsim.quasistatic import _solver
+
+    solver = Path(_solver.__file__).resolve()
+    assert "invalidate_stale_cache(__file__)" in solver.read_text()
+    assert _compiled_in(solver) == {Path(p).resolve() for p in DEPENDENCIES} | {solver}

@@ -3,7 +3,9 @@
 numba invalidates a cached function when its own source file changes, not when a module it
 imports does.  The kernel compiles in the index constants of ``_layout`` and the curve and gap
 functions of ``geometry._curve``; this guard stores a fingerprint of those files beside the
-cache and deletes the kernel's cache files when the fingerprint changes.
+cache and deletes the kernel's cache files when the fingerprint changes.  A module that compiles
+the kernel's functions into its own (the quasi-static solver) calls the guard with its own file:
+its fingerprint covers the kernel's dependencies and that file.
 
 The cache folder is the one numba itself picks, asked from numba's own cache locators in
 numba's order (``numba.core.caching.CacheImpl``): ``NUMBA_CACHE_DIR`` when set, else
@@ -26,9 +28,9 @@ DEPENDENCIES = (_HERE / "_layout.py", _HERE.parent / "geometry" / "_curve.py", _
 STAMP_NAME = "rvsim_kernel_dependencies.sha256"
 
 
-def _fingerprint() -> str:
+def _fingerprint(paths) -> str:
     digest = hashlib.sha256()
-    for path in DEPENDENCIES:
+    for path in paths:
         digest.update(path.read_bytes())
     return digest.hexdigest()
 
@@ -37,28 +39,33 @@ def _probe() -> None:  # stands for a kernel function: the locators only read it
     pass
 
 
-def kernel_cache_folder() -> Path | None:
-    """The folder numba caches the kernel's functions in (None: no usable cache folder)."""
+def kernel_cache_folder(module: str | Path = _KERNEL) -> Path | None:
+    """The folder numba caches the functions of ``module`` (default: the kernel) in (None: no
+    usable cache folder)."""
     from numba.core.caching import CacheImpl
 
     for locator_class in CacheImpl._locator_classes:
-        locator = locator_class.from_function(_probe, str(_KERNEL))
+        locator = locator_class.from_function(_probe, str(module))
         if locator is not None:
             return Path(locator.get_cache_path())
     return None
 
 
-def invalidate_stale_cache() -> None:
-    """Delete cached kernel code compiled against other versions of its dependencies."""
+def invalidate_stale_cache(module: str | Path = _KERNEL) -> None:
+    """Delete cached code of ``module`` (default: the kernel) compiled against other versions
+    of its dependencies (the kernel's, and ``module`` itself)."""
+    module = Path(module).resolve()
+    kernel = module == _KERNEL.resolve()
+    paths = DEPENDENCIES if kernel else DEPENDENCIES + (module,)
     try:
-        cache = kernel_cache_folder()
+        cache = kernel_cache_folder(module)
         if cache is None:
             return  # numba compiles in memory: nothing stale can be loaded
-        stamp = cache / STAMP_NAME
-        current = _fingerprint()
+        stamp = cache / (STAMP_NAME if kernel else f"rvsim_{module.stem}_dependencies.sha256")
+        current = _fingerprint(paths)
         if stamp.exists() and stamp.read_text() == current:
             return
-        for pattern in ("_kernel.*.nbi", "_kernel.*.nbc"):
+        for pattern in (f"{module.stem}.*.nbi", f"{module.stem}.*.nbc"):
             for stale in cache.glob(pattern):
                 stale.unlink(missing_ok=True)
         cache.mkdir(parents=True, exist_ok=True)

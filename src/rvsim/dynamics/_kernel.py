@@ -100,13 +100,22 @@ def contact(delta, rate, c, cb, zeta, mass, guess):
     """Normal force of a compliant contact with damping that vanishes at first touch.
 
     Damping is 2 zeta sqrt(k m) at the current tangent stiffness k (zero at delta = 0); the total
-    force never pulls.  Returns (force, stored energy, dissipated power, elastic force).
+    force never pulls.  Returns (force, stored energy, dissipated power, elastic force,
+    tangent stiffness of the elastic force).
     """
     f, k, energy = spring_force(delta, c, cb, guess)
     fn = f + 2.0 * zeta * math.sqrt(k * mass) * rate
     if fn < 0.0:
         fn = 0.0
-    return fn, energy, (fn - f) * rate, f
+    return fn, energy, (fn - f) * rate, f, k
+
+
+@numba.njit(cache=True)
+def add_rank_one(K, index, g, scale):
+    """K[index, index] += scale * g g^T (``index``, ``g``: tuples of one length)."""
+    for a in range(len(index)):
+        for b in range(len(index)):
+            K[index[a], index[b]] += scale * g[a] * g[b]
 
 
 @numba.njit(cache=True)
@@ -127,9 +136,20 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
 
 
 @numba.njit(cache=True)
-def gear_mesh(P, q, v, Q, j, crank_angle, phase, theta_in, omega_in):
+def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank):
     """Sun-planet mesh j: returns (force, input torque, energy, dissipated power, stiffness,
-    deflection)."""
+    deflection, number of tooth pairs at the roll position, flank the rule picks).
+
+    The mesh acts on one flank: the positive one if it is engaged, else the negative one (the
+    rule; 0 returned for "none").  ``pairs`` > 0 holds the number of tooth pairs in contact and
+    ``flank`` = +-1 the flank (the quasi-static solver keeps both during one equilibrium search:
+    the rectangular-wave stiffness and the rule are discontinuous in q, the rule where the crank
+    is pressed towards the sun so far that both flanks would touch); 0 takes them from the roll
+    position and the rule.
+
+    ``K`` (17 x 17, or 0 x 0: not wanted) accumulates the stiffness matrix -dQ/dq of the
+    elastic force (material term k g g^T; the curvature of the line-of-centres angle is left
+    out: docs/model.md, "Quasi-static analysis")."""
     px, py, pvx, pvy = crank_point(q, v, j, P[W_G_L], P[W_G_U])
     r2 = px * px + py * py
     r = math.sqrt(r2)
@@ -149,15 +169,22 @@ def gear_mesh(P, q, v, Q, j, crank_angle, phase, theta_in, omega_in):
     # number of tooth pairs in contact from the roll position (rectangular-wave stiffness)
     roll = (rb1 * (theta_in - beta)) / P[BASE_PITCH] + phase
     frac = roll - math.floor(roll)
-    stiffness = P[K_MESH] * (2.0 if frac < P[CONTACT_RATIO] - 1.0 else 1.0)
+    natural = 2.0 if frac < P[CONTACT_RATIO] - 1.0 else 1.0
+    stiffness = P[K_MESH] * (pairs if pairs > 0.0 else natural)
     half = 0.5 * P[BACKLASH]
     force = 0.0
     sign = 0.0
     delta = 0.0
     rate = 0.0
+    rule = 0.0
     if rot - radial - half > 0.0:
-        sign, delta, rate = 1.0, rot - radial - half, rot_rate - radial_rate
+        rule = 1.0
     elif -rot - radial - half > 0.0:
+        rule = -1.0
+    chosen = rule if flank == 0.0 else flank
+    if chosen > 0.0 and rot - radial - half > 0.0:
+        sign, delta, rate = 1.0, rot - radial - half, rot_rate - radial_rate
+    elif chosen < 0.0 and -rot - radial - half > 0.0:
         sign, delta, rate = -1.0, -rot - radial - half, -rot_rate - radial_rate
     energy = 0.0
     power = 0.0
@@ -173,11 +200,15 @@ def gear_mesh(P, q, v, Q, j, crank_angle, phase, theta_in, omega_in):
         gy = sign * (-(rb1 + rb2) * dbeta_y) - P[SIN_AW] * dr_y
         add_crank_force(Q, j, P[W_G_L], P[W_G_U], -force * gx, -force * gy)
         Q[b + 4] -= force * sign * rb2
-    return force, force * sign * rb1, energy, power, stiffness, delta
+        if K.shape[0] > 0:
+            wl, wu = P[W_G_L], P[W_G_U]
+            add_rank_one(K, (b, b + 1, b + 2, b + 3, b + 4),
+                         (wl * gx, wl * gy, wu * gx, wu * gy, sign * rb2), stiffness)
+    return force, force * sign * rb1, energy, power, stiffness, delta, natural, rule
 
 
 @numba.njit(cache=True)
-def pin_contacts(P, q, v, Q, disc, pins, pin_angle, u, next_eval, step, forces, elastic):
+def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
@@ -190,6 +221,9 @@ def pin_contacts(P, q, v, Q, disc, pins, pin_angle, u, next_eval, step, forces, 
     is a 1-Lipschitz function of the pin centre in disc axes, whose speed is at most
     |dO/dt| + |dtheta/dt| * (pin circle + a), so a gap g stays open for g / (2 v dt) steps
     (factor 2 for speed changes within at most 64 steps).
+
+    ``K`` (17 x 17, or 0 x 0) accumulates the material stiffness k g g^T of each contact, g the
+    gradient of its gap (the profile-curvature term F d2gap/dq2 is left out).
     """
     d = DISC0 + DISC_STRIDE * disc
     ox, oy, th = q[d], q[d + 1], q[d + 2]
@@ -208,6 +242,7 @@ def pin_contacts(P, q, v, Q, disc, pins, pin_angle, u, next_eval, step, forces, 
     energy = 0.0
     power = 0.0
     worst = 0.0
+    want = K.shape[0] > 0
     n = pins.shape[0]
     for i in range(n):
         if step < next_eval[disc, i]:
@@ -233,16 +268,20 @@ def pin_contacts(P, q, v, Q, disc, pins, pin_angle, u, next_eval, step, forces, 
         px, py = qx + runout_x, qy + runout_y
         lever = nx * py - ny * px                    # d(gap)/d(theta)
         gap_rate = -(nx * lvx + ny * lvy) + w * lever
-        fn, e, pw, fel = contact(delta, -gap_rate, P[PIN_C], P[PIN_CB], P[ZETA], P[M_DISC],
-                                 elastic[disc, i])
+        fn, e, pw, fel, k = contact(delta, -gap_rate, P[PIN_C], P[PIN_CB], P[ZETA],
+                                    P[M_DISC], elastic[disc, i])
         forces[disc, i] = fn
         elastic[disc, i] = fel
         energy += e
         power += pw
         # generalised forces Q = F d(gap)/dq on the disc
-        fx = -fn * (cos_t * nx - sin_t * ny)
-        fy = -fn * (sin_t * nx + cos_t * ny)
+        gx = -(cos_t * nx - sin_t * ny)                 # d(gap)/d(x, y) of the disc
+        gy = -(sin_t * nx + cos_t * ny)
+        fx = fn * gx
+        fy = fn * gy
         torque = fn * lever
+        if want:
+            add_rank_one(K, (d, d + 1, d + 2), (gx, gy, lever), k)
         if P[MU] > 0.0:
             # contact point on the disc (disc axes, from its centre) and sliding speed there
             cx = px - (P[PIN_RADIUS] - gap) * nx
@@ -261,11 +300,37 @@ def pin_contacts(P, q, v, Q, disc, pins, pin_angle, u, next_eval, step, forces, 
 
 
 @numba.njit(cache=True)
-def arm_bushing(P, q, v, Q, crank, disc, hole_x, hole_y, wl, wu, elastic):
+def arm_stiffness(K, b, d, wl, wu, nx, ny, ecc, cos_p, sin_p, lx, ly, k, force, dist):
+    """Stiffness matrix of an arm bushing contact (crank coordinates from b, disc from d; (lx,
+    ly) the hole centre from the disc centre): k g g^T + F/dist h h^T + F n . d2r/dq2."""
+    index = (b, b + 1, b + 2, b + 3, b + 4, d, d + 1, d + 2)
+    add_rank_one(K, index, (wl * nx, wl * ny, wu * nx, wu * ny,
+                            ecc * (-nx * sin_p + ny * cos_p), -nx, -ny, nx * ly - ny * lx), k)
+    tx, ty = -ny, nx
+    add_rank_one(K, index, (wl * tx, wl * ty, wu * tx, wu * ty,
+                            ecc * (-tx * sin_p + ty * cos_p), -tx, -ty, tx * ly - ty * lx),
+                 force / dist)
+    K[b + 4, b + 4] -= force * ecc * (nx * cos_p + ny * sin_p)
+    K[d + 2, d + 2] += force * (nx * lx + ny * ly)
+
+
+@numba.njit(cache=True)
+def support_stiffness(K, b, nx, ny, bx, by, k, force, dist):
+    """Stiffness matrix of a support bushing contact (node coordinates from b, bore centre
+    (bx, by) on the carrier): k g g^T + F/dist h h^T + F n . d2r/dtheta_c^2."""
+    add_rank_one(K, (b, b + 1, CARRIER), (nx, ny, nx * by - ny * bx), k)
+    add_rank_one(K, (b, b + 1, CARRIER), (-ny, nx, -ny * by - nx * bx), force / dist)
+    K[CARRIER, CARRIER] += force * (nx * bx + ny * by)
+
+
+@numba.njit(cache=True)
+def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     """Crank ``crank``'s eccentric in disc ``disc``'s hole through the arm bushing (K + M).
 
     ``elastic[crank, disc]`` carries the contact's elastic force from step to step (Newton
-    start)."""
+    start).  ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic
+    force: k g g^T + F/dist h h^T (turning of the normal, h the gradient along the tangent)
+    + F n . d2r/dq2 (the eccentric's and the hole's rotation)."""
     ax, ay, avx, avy = crank_point(q, v, crank, wl, wu)
     b = CRANK0 + CRANK_STRIDE * crank
     phi = q[b + 4] + disc * math.pi
@@ -289,9 +354,12 @@ def arm_bushing(P, q, v, Q, crank, disc, hole_x, hole_y, wl, wu, elastic):
         return 0.0, 0.0, 0.0
     nx, ny = rx / dist, ry / dist
     rate = nx * (evx - hvx) + ny * (evy - hvy)
-    fn, energy, power, elastic[crank, disc] = contact(delta, rate, P[ARM_C], P[ARM_CB],
-                                                      P[ZETA], P[M_NODE],
-                                                      elastic[crank, disc])
+    fn, energy, power, elastic[crank, disc], k = contact(delta, rate, P[ARM_C], P[ARM_CB],
+                                                         P[ZETA], P[M_NODE],
+                                                         elastic[crank, disc])
+    if K.shape[0] > 0:
+        arm_stiffness(K, b, d, wl, wu, nx, ny, ecc, cos_p, sin_p, hx - q[d], hy - q[d + 1], k,
+                      elastic[crank, disc], dist)
     fx, fy = -fn * nx, -fn * ny                      # on the crank
     add_crank_force(Q, crank, wl, wu, fx, fy)
     Q[b + 4] += fx * (-ecc * sin_p) + fy * (ecc * cos_p)
@@ -302,8 +370,11 @@ def arm_bushing(P, q, v, Q, crank, disc, hole_x, hole_y, wl, wu, elastic):
 
 
 @numba.njit(cache=True)
-def support_bushing(P, q, v, Q, crank, upper, crank_angle):
-    """Crank ``crank``'s lower or upper support node in its carrier / flange bore."""
+def support_bushing(P, q, v, Q, K, crank, upper, crank_angle):
+    """Crank ``crank``'s lower or upper support node in its carrier / flange bore.
+
+    ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic force (as in
+    :func:`arm_bushing`)."""
     b = CRANK0 + CRANK_STRIDE * crank + (2 if upper else 0)
     carrier_angle = q[CARRIER] + crank_angle
     bx = P[CENTRE_DIST] * math.cos(carrier_angle)
@@ -317,7 +388,10 @@ def support_bushing(P, q, v, Q, crank, upper, crank_angle):
     nx, ny = rx / dist, ry / dist
     wc = v[CARRIER]
     rate = nx * (v[b] + wc * by) + ny * (v[b + 1] - wc * bx)
-    fn, energy, power, _ = contact(delta, rate, P[SUP_C], P[SUP_CB], P[ZETA], P[M_NODE], 0.0)
+    fn, energy, power, f_el, k = contact(delta, rate, P[SUP_C], P[SUP_CB], P[ZETA], P[M_NODE],
+                                         0.0)
+    if K.shape[0] > 0:
+        support_stiffness(K, b, nx, ny, bx, by, k, f_el, dist)
     Q[b] -= fn * nx
     Q[b + 1] -= fn * ny
     Q[CARRIER] += fn * (-nx * by + ny * bx)
@@ -343,30 +417,42 @@ def kinetic_energy(P, v):
     return energy
 
 
-@numba.njit(cache=True)
-def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state):
-    """Generalised forces Q at time t; fills the force channels and ``mesh_state`` (stiffness,
-    deflection of each mesh). Returns (potential energy, dissipated power, input torque,
-    load torque, max pin penetration, input angle, input speed)."""
+@numba.njit(cache=True, inline="always")
+def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
+              mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
+              channel, mesh_state, mesh_hold):
+    """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
+    ``torque_load``: the one evaluation of the force elements that both engines use.
+
+    Fills the force channels and ``mesh_state`` (stiffness, deflection of each mesh); with a
+    17 x 17 ``K`` (zeroed by the caller) it also accumulates the stiffness matrix -dQ/dq of the
+    elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_hold[j]`` = (pairs, flank) held for mesh
+    j (zeros: from the roll position and the flank rule, see :func:`gear_mesh`); with four
+    columns, ``mesh_state`` also receives the pairs at the roll position and the rule's flank.
+    Returns (potential energy, dissipated power,
+    input torque, max pin penetration).
+    """
     for i in range(N_DOF):
         Q[i] = 0.0
-    theta_in, omega_in = input_motion(P, t)
     energy = 0.0
     power = 0.0
     torque_in = 0.0
     for j in range(2):
-        force, torque, e, pw, stiffness, deflection = gear_mesh(
-            P, q, v, Q, j, crank_angles[j], mesh_phase[j], theta_in, omega_in)
+        force, torque, e, pw, stiffness, deflection, natural, rule = gear_mesh(
+            P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
+            mesh_hold[j, 0], mesh_hold[j, 1])
         channel[CH_MESH_F0 + j] = force
         mesh_state[j, 0] = stiffness
         mesh_state[j, 1] = deflection
+        if mesh_state.shape[1] > 3:
+            mesh_state[j, 2] = natural
+            mesh_state[j, 3] = rule
         torque_in += torque
         energy += e
         power += pw
     worst = 0.0
     for disc in range(2):
-        e, pw, pen = pin_contacts(P, q, v, Q, disc, pins, pin_angle, u, next_eval, step,
+        e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
                                   pin_force, pin_elastic)
         energy += e
         power += pw
@@ -376,18 +462,32 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
         for disc in range(2):
             wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
             wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
-            force, e, pw = arm_bushing(P, q, v, Q, j, disc, holes[j, 0], holes[j, 1], wl, wu,
-                                       arm_elastic)
+            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, holes[j, 0], holes[j, 1], wl,
+                                       wu, arm_elastic)
             channel[CH_ARM_F00 + 2 * j + disc] = force
             energy += e
             power += pw
         for upper in range(2):
-            force, e, pw = support_bushing(P, q, v, Q, j, upper == 1, crank_angles[j])
+            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j])
             channel[CH_SUP_FL0 + 2 * j + upper] = force
             energy += e
             power += pw
-    torque_load = load_torque(P, t)
     Q[CARRIER] -= torque_load
+    return energy, power, torque_in, worst
+
+
+@numba.njit(cache=True, inline="always")
+def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
+           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold):
+    """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
+    the run's schedule). Returns (potential energy, dissipated power, input torque,
+    load torque, max pin penetration, input angle, input speed)."""
+    theta_in, omega_in = input_motion(P, t)
+    torque_load = load_torque(P, t)
+    energy, power, torque_in, worst = forces_at(
+        P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
+        mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
+        mesh_state, mesh_hold)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
@@ -421,6 +521,8 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     """
     dt = P[DT]
     Q = np.zeros(N_DOF)
+    K = np.zeros((0, 0))
+    mesh_hold = np.zeros((2, 2))
     previous_stiffness = np.zeros(2)
     row = counters[COUNT_ROW]
     in_window = counters[COUNT_IN_WINDOW] == 1
@@ -432,7 +534,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             previous_stiffness[j] = mesh_state[j, 0]
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state)
+            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold)
         if in_window:
             # work done on the meshes by the stiffness change between steps (parametric)
             for j in range(2):

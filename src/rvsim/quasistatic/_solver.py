@@ -1,0 +1,375 @@
+"""Compiled static equilibrium of the 17 generalised coordinates (numba; no objects, no raises).
+
+The residual is the dynamic kernel's own force evaluation, :func:`rvsim.dynamics._kernel.
+forces_at`, at zero velocity (so every damping and friction term vanishes) with the input
+angle held and the output torque given; its stiffness matrix comes from the same force
+elements.  The equilibrium minimises the potential energy Pi(q) = U(q) + T_load theta_c, so
+the solver is a damped Newton method with the energy as merit function:
+
+* step (K + mu I) dx = r in scaled coordinates (rotations times a length, so that every
+  coordinate is in metres and every residual in newtons), mu a Levenberg-Marquardt term that
+  starts at :data:`MU_MIN` (several decades below any contact stiffness) and grows when a step
+  is rejected or is not a descent direction (K is indefinite where a body rocks on a convex
+  contact: the curvature terms of the bushings);
+* a trust region on the largest component of dx (grows after good steps, shrinks after
+  rejected ones) carries the bodies across their clearances, where nothing resists them;
+* a step is accepted when Pi drops by at least a tenth of the quadratic model's prediction
+  (or, once Pi is flat to round-off, when the residual drops);
+* converged when every scaled residual is below ``tol`` [N].
+
+A body that no contact touches carries no force, so its residual is zero and the Levenberg-
+Marquardt step leaves it where it was: the position of an unloaded body inside its clearance
+is the one the continuation brought it to (docs/model.md, "Quasi-static analysis").
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ..dynamics._cache_guard import invalidate_stale_cache
+
+# numba caches this module's functions keyed on this file only; the kernel's force elements,
+# its layout and the curve functions are compiled in (same guard as the kernel's)
+invalidate_stale_cache(__file__)
+
+from ..dynamics._kernel import forces_at  # noqa: E402
+from ..dynamics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
+                                DISC_STRIDE, ECC, N_CHANNELS, N_DOF, PEN_LIMIT, PIN_RADIUS,
+                                PROFILE_OFFSET, PROFILE_ROT, RB1, RB2, RG, ZC, ZP)
+from ..geometry._curve import curvature  # noqa: E402
+
+STATUS_OK = 0
+STATUS_NOT_CONVERGED = 1
+STATUS_NONFINITE = 2
+STATUS_PENETRATION = 3
+STATUS_TEXT = {STATUS_OK: "ok", STATUS_NOT_CONVERGED: "not_converged",
+               STATUS_NONFINITE: "diverged", STATUS_PENETRATION: "runaway_penetration"}
+
+#: smallest Levenberg-Marquardt term [N/m] (contact stiffnesses are 1e7 .. 1e10 N/m)
+MU_MIN = 1.0
+#: first trust radius [m of scaled coordinate]
+TRUST_START = 2e-5
+#: largest trust radius [m]
+TRUST_MAX = 1e-3
+#: a point where no step above the positions' round-off lowers the energy counts as converged
+#: if its residual is below this multiple of the tolerance
+ROUNDOFF_FACTOR = 1e3
+
+
+@numba.njit(cache=True)
+def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
+              next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
+              mesh_hold):
+    """Residual Q, stiffness K and potential energy Pi at q (every pin evaluated); returns
+    (Pi, the size of its terms, input torque, max pin penetration)."""
+    K[:, :] = 0.0
+    next_eval[:, :] = 0
+    energy, _, torque_in, worst = forces_at(
+        P, q, v, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
+        next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
+        mesh_hold)
+    work = torque * q[CARRIER]
+    return energy + work, abs(energy) + abs(work), torque_in, worst
+
+
+@numba.njit(cache=True)
+def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
+                crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
+                Q, K, channel, mesh_state, mesh_hold):
+    """Move ``q`` to the static equilibrium at input angle ``theta_in`` under ``torque``, each
+    mesh j with ``mesh_hold[j]`` = (tooth pairs, flank) held (zeros: those of the starting
+    pose, stored into ``mesh_hold``; a mesh open there gets the flank it first engages with).
+    ``mesh_state`` has four columns (stiffness, deflection, pairs at the roll position, flank
+    of the kernel's rule).
+
+    ``scale[i]`` is the length that turns coordinate i into metres (1 for translations, a
+    radius for rotations).  Returns (status, iterations, input torque); on return Q, K and the
+    work arrays hold the state at q.
+    """
+    n = N_DOF
+    v = np.zeros(n)
+    q_trial = np.empty(n)
+    A = np.empty((n, n))
+    r = np.empty(n)
+    pi, size, torque_in, worst = _evaluate(P, q, theta_in, torque, pins, pin_angle, holes,
+                                           crank_angles, mesh_phase, u, next_eval, pin_force,
+                                           pin_elastic, arm_elastic, Q, K, channel,
+                                           mesh_state, v, mesh_hold)
+    for j in range(2):
+        if mesh_hold[j, 0] == 0.0:
+            mesh_hold[j, 0] = mesh_state[j, 2]
+        if mesh_hold[j, 1] == 0.0:
+            mesh_hold[j, 1] = mesh_state[j, 3]
+    mu = MU_MIN
+    trust = TRUST_START
+    for iteration in range(max_iter + 1):
+        norm = 0.0
+        for i in range(n):
+            r[i] = Q[i] / scale[i]
+            if abs(r[i]) > norm:
+                norm = abs(r[i])
+        if not (math.isfinite(norm) and math.isfinite(pi)):
+            return STATUS_NONFINITE, iteration, torque_in
+        if norm <= tol:
+            if worst > P[PEN_LIMIT]:
+                return STATUS_PENETRATION, iteration, torque_in
+            return STATUS_OK, iteration, torque_in
+        if iteration == max_iter:
+            break
+        accepted = False
+        while not accepted:
+            for i in range(n):
+                for j in range(n):
+                    A[i, j] = K[i, j] / (scale[i] * scale[j])
+                A[i, i] += mu
+            dx = np.linalg.solve(A, r)
+            descent = 0.0
+            for i in range(n):
+                descent += r[i] * dx[i]
+            if not descent > 0.0:
+                # K has a negative eigenvalue (a body rocking on a convex contact) that mu
+                # does not yet cover: raise mu, keep the trust radius
+                mu *= 10.0
+                if mu > 1e16:
+                    return STATUS_NOT_CONVERGED, iteration, torque_in
+                continue
+            largest = 0.0
+            for i in range(n):
+                if abs(dx[i]) > largest:
+                    largest = abs(dx[i])
+            clipped = largest > trust
+            if clipped:
+                for i in range(n):
+                    dx[i] *= trust / largest
+                largest = trust
+            # decrease of Pi predicted by the quadratic model
+            predicted = 0.0
+            for i in range(n):
+                predicted += r[i] * dx[i]
+                for j in range(n):
+                    predicted -= 0.5 * dx[i] * (A[i, j] - (mu if i == j else 0.0)) * dx[j]
+            for i in range(n):
+                q_trial[i] = q[i] + dx[i] / scale[i]
+            norm_old = norm
+            pi_trial, size, torque_in, worst = _evaluate(
+                P, q_trial, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
+                u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
+                mesh_hold)
+            drop = pi - pi_trial
+            # below round-off of Pi's terms the energy cannot rank the points: the residual does
+            flat = abs(drop) <= 1e-12 * size + 1e-18
+            norm_trial = 0.0
+            for i in range(n):
+                if abs(Q[i] / scale[i]) > norm_trial:
+                    norm_trial = abs(Q[i] / scale[i])
+            if math.isfinite(pi_trial) and (drop >= 0.1 * predicted
+                                            or (flat and norm_trial < norm_old)):
+                accepted = True
+                for i in range(n):
+                    q[i] = q_trial[i]
+                for j in range(2):
+                    # a mesh open so far: hold the flank it engages with
+                    if mesh_hold[j, 1] == 0.0:
+                        mesh_hold[j, 1] = mesh_state[j, 3]
+                pi = pi_trial
+                if drop >= 0.75 * predicted and clipped:
+                    trust = min(2.0 * trust, TRUST_MAX)
+                mu = max(0.1 * mu, MU_MIN)
+            else:
+                trust = 0.25 * largest
+                mu *= 10.0
+                # back to the last accepted state
+                pi, size, torque_in, worst = _evaluate(
+                    P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
+                    u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
+                    mesh_state, v, mesh_hold)
+                if trust < 1e-16 or mu > 1e16:
+                    # no step left above the round-off of the positions (1e-16 m): converged
+                    # as far as double precision goes if the residual is near tol (very stiff
+                    # contacts turn the positions' round-off into ~ tol of force)
+                    if norm <= ROUNDOFF_FACTOR * tol and worst <= P[PEN_LIMIT]:
+                        return STATUS_OK, iteration, torque_in
+                    return STATUS_NOT_CONVERGED, iteration, torque_in
+    return STATUS_NOT_CONVERGED, max_iter, torque_in
+
+
+@numba.njit(cache=True)
+def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
+                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
+                 Q, K, channel, mesh_state):
+    """:func:`equilibrium` with each mesh's number of tooth pairs and engaged flank held at
+    those of the starting pose (both are discontinuous in q: the rectangular-wave stiffness,
+    and the kernel's one-flank rule where the crank is pressed towards the sun so far that both
+    flanks would touch); where the equilibrium lies across a switch, solved again with the
+    count and flank found there.  Where they would flip back (the equilibrium sits on the
+    switch, where none exists for either choice), the second choice is kept.  Returns (status,
+    total iterations, input torque)."""
+    hold = np.zeros((2, 2))          # zeros: taken from the starting pose by equilibrium()
+    total = 0
+    status, torque_in = STATUS_OK, 0.0
+    for attempt in range(2):
+        status, iterations, torque_in = equilibrium(
+            P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
+            mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
+            mesh_state, hold)
+        total += iterations
+        same = True
+        for j in range(2):
+            if mesh_state[j, 2] != hold[j, 0] or (mesh_state[j, 3] != 0.0
+                                                   and mesh_state[j, 3] != hold[j, 1]):
+                same = False
+        if status != STATUS_OK or same:
+            break
+        for j in range(2):
+            hold[j, 0] = mesh_state[j, 2]
+            hold[j, 1] = mesh_state[j, 3]
+    return status, total, torque_in
+
+
+@numba.njit(cache=True)
+def kinematic_pose(P, theta_in, holes, q):
+    """The ideal (rigid, error-free) pose at input angle ``theta_in`` into ``q``; returns the
+    eccentric angle beta (docs/model.md section 1)."""
+    ratio = 1.0 + P[RB2] / P[RB1] * P[ZP]
+    theta_c = theta_in / ratio
+    beta = theta_c - P[RB1] / P[RB2] * (theta_in - theta_c)
+    q[CARRIER] = theta_c
+    cos_c, sin_c = math.cos(theta_c), math.sin(theta_c)
+    for j in range(2):
+        b = CRANK0 + CRANK_STRIDE * j
+        x = cos_c * holes[j, 0] - sin_c * holes[j, 1]
+        y = sin_c * holes[j, 0] + cos_c * holes[j, 1]
+        q[b], q[b + 1], q[b + 2], q[b + 3] = x, y, x, y
+        q[b + 4] = beta
+    for disc in range(2):
+        d = DISC0 + DISC_STRIDE * disc
+        q[d] = P[ECC] * math.cos(beta + disc * math.pi)
+        q[d + 1] = P[ECC] * math.sin(beta + disc * math.pi)
+        q[d + 2] = theta_c
+    return beta
+
+
+@numba.njit(cache=True)
+def _predict(P, q, theta_old, theta_new, holes):
+    """Carry the elastic and clearance deviation from the ideal pose from one input angle to
+    the next, the discs' translations turned with the eccentric (the pin resultant turns with
+    it); the cranks' kept (fewest Newton iterations of the variants tried: 3.0 per position
+    for the RV-40E at rated torque against 3.8 with the cranks' turned too and 5.0 with
+    nothing turned)."""
+    ideal_old = np.empty(N_DOF)
+    ideal_new = np.empty(N_DOF)
+    beta_old = kinematic_pose(P, theta_old, holes, ideal_old)
+    beta_new = kinematic_pose(P, theta_new, holes, ideal_new)
+    c, s = math.cos(beta_new - beta_old), math.sin(beta_new - beta_old)
+    dev = q - ideal_old
+    for base in (DISC0, DISC0 + DISC_STRIDE):
+        x, y = dev[base], dev[base + 1]
+        dev[base], dev[base + 1] = c * x - s * y, s * x + c * y
+    for i in range(N_DOF):
+        q[i] = ideal_new[i] + dev[i]
+
+
+@numba.njit(cache=True)
+def condensed_stiffness(K, scale):
+    """Torsional stiffness of the output with the input held: 1 / (K^-1)_cc [N*m/rad].
+
+    The Levenberg-Marquardt floor (:data:`MU_MIN`) keeps a body that no contact holds from
+    making K singular (it adds a compliance in series with that body only).
+    """
+    n = N_DOF
+    A = np.empty((n, n))
+    for i in range(n):
+        for j in range(n):
+            A[i, j] = K[i, j] / (scale[i] * scale[j])
+        A[i, i] += MU_MIN
+    e = np.zeros(n)
+    e[CARRIER] = 1.0
+    x = np.linalg.solve(A, e)
+    return scale[CARRIER] ** 2 / x[CARRIER]
+
+
+@numba.njit(cache=True)
+def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes, crank_angles,
+          mesh_phase, q_out, pin_out, stress_out, channel_out, mesh_out, stiffness_out,
+          status_out, iterations_out, torque_in_out):
+    """Equilibria along a path of (input angle, output torque) pairs, each started from the
+    previous one (continuation); the first from ``q_start``.
+
+    ``hertz`` = (E* of the pin-disc pair [Pa], disc width [m]).  Fills, per point: q, pin
+    forces, maximum Hertz pressure per pin, the force channels, mesh (stiffness, deflection),
+    local torsional stiffness, status, iterations and input torque.  Stops at the first point
+    that fails (its status stored; the later ones keep status -1).  Returns the number of points
+    solved.
+    """
+    n_points = theta_in.shape[0]
+    zp = pins.shape[0]
+    pin_angle = 2.0 * np.pi * np.arange(zp) / zp
+    u = np.zeros((2, zp))
+    next_eval = np.zeros((2, zp), dtype=np.int64)
+    pin_force = np.zeros((2, zp))
+    pin_elastic = np.zeros((2, zp))
+    arm_elastic = np.zeros((2, 2))
+    mesh_state = np.zeros((2, 4))
+    channel = np.zeros(N_CHANNELS)
+    Q = np.zeros(N_DOF)
+    K = np.zeros((N_DOF, N_DOF))
+    A = np.empty((N_DOF, N_DOF))
+    q = q_start.copy()
+    for k in range(n_points):
+        status_out[k] = -1
+    for k in range(n_points):
+        if k > 0:
+            if theta_in[k] != theta_in[k - 1]:
+                _predict(P, q, theta_in[k - 1], theta_in[k], holes)
+            elif torque[k] != torque[k - 1]:
+                # tangent predictor: K dq = -dT e_c, limited to the first trust radius
+                for i in range(N_DOF):
+                    for j in range(N_DOF):
+                        A[i, j] = K[i, j] / (scale[i] * scale[j])
+                    A[i, i] += MU_MIN
+                e = np.zeros(N_DOF)
+                e[CARRIER] = -(torque[k] - torque[k - 1]) / scale[CARRIER]
+                dx = np.linalg.solve(A, e)
+                largest = np.max(np.abs(dx))
+                factor = 1.0 if largest <= TRUST_START else TRUST_START / largest
+                for i in range(N_DOF):
+                    q[i] += factor * dx[i] / scale[i]
+        status, iterations, torque_in = _solve_point(
+            P, q, theta_in[k], torque[k], scale, tol, max_iter, pins, pin_angle, holes,
+            crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K,
+            channel, mesh_state)
+        status_out[k] = status
+        iterations_out[k] = iterations
+        torque_in_out[k] = torque_in
+        q_out[k, :] = q
+        pin_out[k, :, :] = pin_force
+        channel_out[k, :] = channel
+        mesh_out[k, :, :] = mesh_state[:, :2]
+        stiffness_out[k] = condensed_stiffness(K, scale)
+        _hertz(P, hertz, q, u, pin_angle, pin_force, stress_out[k])
+        if status != STATUS_OK:
+            return k + 1
+    return n_points
+
+
+@numba.njit(cache=True)
+def _hertz(P, hertz, q, u, pin_angle, pin_force, out):
+    """Maximum Hertz pressure of each loaded pin (line contact, the profile's curvature at the
+    contact point): p = sqrt(F E* (1/r_pin + kappa_profile) / (pi L))."""
+    e_star, width = hertz[0], hertz[1]
+    offset = P[PROFILE_OFFSET]
+    for disc in range(2):
+        angle = q[DISC0 + DISC_STRIDE * disc + 2] - disc * math.pi / P[ZC] + P[PROFILE_ROT]
+        for i in range(pin_force.shape[1]):
+            f = pin_force[disc, i]
+            if f <= 0.0:
+                out[disc, i] = 0.0
+                continue
+            foot = pin_angle[i] - angle + u[disc, i]
+            kappa = curvature(foot, P[RG], P[A_GEN], P[ZP])     # of the pin-centre curve
+            kappa_profile = kappa / (1.0 - offset * kappa)      # of the offset profile
+            relative = 1.0 / P[PIN_RADIUS] + kappa_profile
+            out[disc, i] = math.sqrt(f * e_star * max(relative, 0.0) / (math.pi * width))

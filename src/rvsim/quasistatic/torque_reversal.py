@@ -1,0 +1,110 @@
+"""The torque-reversal (hysteresis) test, quasi-static: :func:`hysteresis`.
+
+Input locked at 0; the output torque is swept 0 -> -rated -> 0 -> +rated -> 0 -> -rated
+(shared/design/catalogue_tests.md) and the whole reducer solved for static equilibrium at each
+torque, each point continued from the previous one (docs/model.md, "Quasi-static analysis").
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..errors import ParameterError, SimulationError
+from ..parameters import Reducer
+from ..units import ARCMIN
+from .transmission import _finite, solve_path
+
+__all__ = ["hysteresis", "HysteresisResult", "sweep_torques"]
+
+
+@dataclasses.dataclass
+class HysteresisResult:
+    """Output angle against output torque, input locked (SI; contract of issue 9)."""
+
+    torque: np.ndarray             # (m,) [N*m] applied to the output (turns it positive)
+    angle: np.ndarray              # (m,) [rad] output angle
+    branch: np.ndarray             # (m,) +1 torque increasing (loading), -1 decreasing
+    rated_torque: float            # [N*m]
+    status: str
+    wall_s: float
+    converged: np.ndarray          # (m,) bool
+    torsional_stiffness: np.ndarray  # (m,) [N*m/rad] local dT/dtheta_out
+
+    def summary(self) -> dict:
+        """The issue's JSON keys: catalogue quantities from rvsim.analysis.catalogue."""
+        from ..analysis import catalogue                     # CATALOGUE's module (merge)
+
+        ok = self.converged
+        t, a, b = self.torque[ok], self.angle[ok], self.branch[ok]
+        return {
+            "rated_torque_nm": self.rated_torque,
+            "torsional_rigidity_nm_per_arcmin": float(
+                catalogue.torsional_rigidity(t, a, self.rated_torque) * ARCMIN),
+            "lost_motion_arcmin": float(catalogue.lost_motion(t, a, b, self.rated_torque)
+                                        / ARCMIN),
+            "backlash_arcmin": float(catalogue.backlash(t, a, b) / ARCMIN),
+            "hysteresis_loss_arcmin": float(catalogue.hysteresis_loss(t, a, b) / ARCMIN),
+            "points": int(len(self.torque)),
+            "wall_s": self.wall_s,
+            "status": self.status,
+        }
+
+    def to_frame(self):
+        import pandas as pd
+
+        return pd.DataFrame({"torque": self.torque, "angle": self.angle,
+                             "angle_arcmin": self.angle / ARCMIN, "branch": self.branch,
+                             "torsional_stiffness": self.torsional_stiffness,
+                             "converged": self.converged})
+
+
+def sweep_torques(rated: float, points_per_branch: int) -> tuple[np.ndarray, np.ndarray]:
+    """Torques 0 -> -rated -> 0 -> +rated -> 0 -> -rated, ``points_per_branch`` steps per
+    quarter, and the branch of each point (+1 increasing, -1 decreasing; the first point
+    belongs to the first, decreasing, quarter)."""
+    ends = [0.0, -rated, 0.0, rated, 0.0, -rated]
+    torque, branch = [np.array([0.0])], [np.array([-1])]
+    for a, b in zip(ends[:-1], ends[1:]):
+        torque.append(np.linspace(a, b, points_per_branch + 1)[1:])
+        branch.append(np.full(points_per_branch, 1 if b > a else -1))
+    return np.concatenate(torque), np.concatenate(branch)
+
+
+def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
+               points_per_branch: int = 50, raise_on_failure: bool = True) -> HysteresisResult:
+    """Torque-reversal test with the input locked at 0 (rated torque default:
+    reducer.rating.rated_torque).  ``torque`` is the torque applied to the output (positive
+    turns it in the positive sense; the output load of the dynamic model and of :func:`ltca`
+    is its negative, a resisting torque), so the curve rises: angle grows with torque.
+
+    At exactly 0 N*m nothing holds the output: it stays at the contact on the side it comes
+    from (the solver leaves an unloaded body where it was), so each branch crosses zero at its
+    own side of the clearance.
+    """
+    rated = _finite("rated_torque", reducer.rating.rated_torque if rated_torque is None
+                    else rated_torque)
+    if rated <= 0:
+        raise ParameterError("rated_torque", f"must be positive (got {rated:g})")
+    if isinstance(points_per_branch, bool) or not isinstance(points_per_branch,
+                                                             (int, np.integer)) \
+            or points_per_branch < 2:
+        raise ParameterError("points_per_branch",
+                             f"must be an integer >= 2 (got {points_per_branch!r})")
+    from ..dynamics import _layout as L
+
+    torque, branch = sweep_torques(rated, points_per_branch)
+    # the model's output load resists the motion: a load of -T is a torque T applied
+    path = solve_path(reducer, np.zeros(len(torque)), -torque)
+    converged = path.status_codes == 0
+    angle = path.q[:, L.CARRIER].copy()
+    angle[~converged] = np.nan
+    result = HysteresisResult(torque=torque, angle=angle, branch=branch, rated_torque=rated,
+                              status=path.status, wall_s=path.wall_s, converged=converged,
+                              torsional_stiffness=path.torsional_stiffness)
+    if path.status != "ok" and raise_on_failure:
+        k = int(np.argmax(path.status_codes != 0))
+        raise SimulationError(path.status, f"torque-reversal test stopped at {torque[k]:.6g} "
+                              f"N*m: {path.status.replace('_', ' ')}")
+    return result

@@ -1,0 +1,241 @@
+"""Quasi-static transmission error of the loaded reducer over an output revolution: :func:`ltca`.
+
+The input turns in one direction in equal steps; at each step the whole reducer is solved for
+static equilibrium under the output torque (:mod:`rvsim.quasistatic._solver`), each position
+continued from the previous one.  docs/model.md, "Quasi-static analysis".
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time as _time
+
+import numpy as np
+
+from ..errors import ParameterError, SimulationError
+from ..parameters import Reducer, validate
+from ..units import ARCMIN
+
+__all__ = ["ltca", "LtcaResult", "solve_path", "PathSolution", "TOLERANCE", "MAX_ITERATIONS"]
+
+#: converged when every residual force (torques over their lever) is below this fraction of
+#: rated torque / centre distance (412 N*m / 45 mm x 1e-7 = 9e-4 N for the RV-40E; the force
+#: elements' own round-off is ~1e-4 N)
+TOLERANCE = 1e-7
+#: Newton iterations allowed per position
+MAX_ITERATIONS = 200
+
+
+@dataclasses.dataclass
+class PathSolution:
+    """Equilibria along a path of (input angle, output torque) points (SI)."""
+
+    q: np.ndarray                  # (n, 17) generalised coordinates
+    pin_forces: np.ndarray         # (n, 2, zp)
+    contact_stress: np.ndarray     # (n, 2, zp)
+    channels: np.ndarray           # (n, N_CHANNELS) force channels of the dynamic layout
+    mesh_state: np.ndarray         # (n, 2, 2) (stiffness, deflection) per mesh
+    torsional_stiffness: np.ndarray  # (n,)
+    iterations: np.ndarray         # (n,)
+    input_torque: np.ndarray       # (n,)
+    status_codes: np.ndarray       # (n,) 0 ok, -1 not reached
+    status: str
+    wall_s: float
+
+
+def _finite(name: str, value: float) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(name, f"must be a number (got {value!r})") from None
+    if not math.isfinite(value):
+        raise ParameterError(name, f"must be a finite number (got {value})")
+    return value
+
+
+def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSolution:
+    """Static equilibria at the points (input_angle[k] [rad], torque[k] [N*m]) in order, each
+    started from the previous one (the first from the ideal pose at its input angle, or
+    ``q_start``).  Stops at the first point that does not converge; its status is returned."""
+    from ..dynamics import _layout as L
+    from ..dynamics.compliance import effective_modulus
+    from ..dynamics.model import build_model
+    from . import _solver as S
+
+    validate(reducer)
+    angle = np.ascontiguousarray(input_angle, dtype=float)
+    load = np.ascontiguousarray(torque, dtype=float)
+    if not (np.all(np.isfinite(angle)) and np.all(np.isfinite(load))):
+        raise ParameterError("torque", "the input angles and torques must be finite")
+    model = build_model(reducer, 1e-5)
+    P = model.P
+    n, zp = len(angle), reducer.cycloid.pin_count
+    scale = np.ones(L.N_DOF)
+    scale[L.CARRIER] = P[L.CENTRE_DIST]
+    for j in range(2):
+        scale[L.CRANK0 + L.CRANK_STRIDE * j + 4] = P[L.RB2]
+    for d in range(2):
+        scale[L.DISC0 + L.DISC_STRIDE * d + 2] = P[L.RG]
+    tol = TOLERANCE * reducer.rating.rated_torque / P[L.CENTRE_DIST]
+    m = reducer.materials
+    hertz = np.array([effective_modulus(m.cycloid_disc, m.pin), reducer.cycloid.disc_width])
+    if q_start is None:
+        q_start = np.zeros(L.N_DOF)
+        S.kinematic_pose(P, angle[0], model.holes, q_start)
+    out = PathSolution(q=np.zeros((n, L.N_DOF)), pin_forces=np.zeros((n, 2, zp)),
+                       contact_stress=np.zeros((n, 2, zp)),
+                       channels=np.zeros((n, L.N_CHANNELS)), mesh_state=np.zeros((n, 2, 2)),
+                       torsional_stiffness=np.full(n, np.nan),
+                       iterations=np.zeros(n, dtype=np.int64), input_torque=np.zeros(n),
+                       status_codes=np.full(n, -1, dtype=np.int64), status="ok", wall_s=0.0)
+    start = _time.perf_counter()
+    solved = S.sweep(P, hertz, np.asarray(q_start, dtype=float), angle, load, scale, tol,
+                     MAX_ITERATIONS, model.pins, model.holes, model.crank_angles,
+                     model.mesh_phase, out.q, out.pin_forces, out.contact_stress, out.channels,
+                     out.mesh_state, out.torsional_stiffness, out.status_codes, out.iterations,
+                     out.input_torque)
+    out.wall_s = _time.perf_counter() - start
+    worst = int(out.status_codes[solved - 1]) if solved else S.STATUS_NOT_CONVERGED
+    out.status = S.STATUS_TEXT[worst]
+    return out
+
+
+@dataclasses.dataclass
+class LtcaResult:
+    """Loaded tooth contact analysis over an output revolution (SI; contract of issue 9)."""
+
+    input_angle: np.ndarray        # (n,) [rad]
+    output_angle: np.ndarray       # (n,) [rad] carrier at equilibrium
+    te: np.ndarray                 # (n,) [rad] input_angle / ratio - output_angle
+    torque: float                  # [N*m]
+    ratio: float
+    pin_count: int
+    disc_teeth: int
+    pin_forces: np.ndarray         # (n, 2, zp) [N]
+    contact_stress: np.ndarray     # (n, 2, zp) [Pa] maximum Hertz pressure
+    arm_forces: np.ndarray         # (n, 2, 2) [N] (crank, disc)
+    support_forces: np.ndarray     # (n, 2, 2) [N] (crank, lower/upper)
+    mesh_forces: np.ndarray        # (n, 2) [N]
+    mesh_stiffness: np.ndarray     # (n, 2) [N/m]
+    torsional_stiffness: np.ndarray  # (n,) [N*m/rad] local dT/dtheta_out, input held
+    status: str
+    wall_s: float
+    converged: np.ndarray          # (n,) bool
+    iterations: np.ndarray         # (n,) Newton iterations per position
+
+    @property
+    def te_relative(self) -> np.ndarray:
+        """TE relative to the loaded, clearance-taken-up state: te minus its mean [rad] (what a
+        rig that zeroes its encoders while running measures)."""
+        return self.te - np.mean(self.te[self.converged]) if self.converged.any() else self.te
+
+    @property
+    def pins_in_contact(self) -> np.ndarray:
+        """(n, 2) number of loaded pins of each disc."""
+        return np.count_nonzero(self.pin_forces > 0.0, axis=2)
+
+    def summary(self) -> dict:
+        """The issue's JSON keys (TE in arcmin, forces in N, stress in MPa; pins in contact
+        counted per disc; stiffness: mean of the local stiffness over the revolution)."""
+        from ..analysis.catalogue import transmission_error_pp
+
+        ok = self.converged
+        te = self.te[ok] / ARCMIN
+        contacts = self.pins_in_contact[ok]
+        empty = not ok.any()
+        nan = float("nan")
+        return {
+            "te_mean_arcmin": nan if empty else float(np.mean(te)),
+            "te_pp_arcmin": nan if te.size < 2 else transmission_error_pp(te),
+            "max_pin_force_n": nan if empty else float(self.pin_forces[ok].max()),
+            "pins_in_contact_min": -1 if empty else int(contacts.min()),
+            "pins_in_contact_max": -1 if empty else int(contacts.max()),
+            "max_contact_stress_mpa": nan if empty else float(self.contact_stress[ok].max()
+                                                               / 1e6),
+            "torsional_stiffness_nm_per_arcmin": nan if empty else float(
+                np.mean(self.torsional_stiffness[ok]) * ARCMIN),
+            "torque_nm": self.torque,
+            "positions": int(len(self.te)),
+            "wall_s": self.wall_s,
+            "status": self.status,
+        }
+
+    def to_frame(self):
+        """One row per position: angles [rad], TE [rad and arcmin], stiffness, forces."""
+        import pandas as pd
+
+        frame = {
+            "input_angle": self.input_angle, "output_angle": self.output_angle, "te": self.te,
+            "te_arcmin": self.te / ARCMIN, "te_relative_arcmin": self.te_relative / ARCMIN,
+            "torsional_stiffness": self.torsional_stiffness,
+            "pins_in_contact_disc1": self.pins_in_contact[:, 0],
+            "pins_in_contact_disc2": self.pins_in_contact[:, 1],
+            "max_pin_force": self.pin_forces.max(axis=(1, 2)),
+            "max_contact_stress": self.contact_stress.max(axis=(1, 2)),
+        }
+        for j in range(2):
+            frame[f"mesh_force_{j + 1}"] = self.mesh_forces[:, j]
+            frame[f"mesh_stiffness_{j + 1}"] = self.mesh_stiffness[:, j]
+            for d in range(2):
+                frame[f"arm_force_{j + 1}{d + 1}"] = self.arm_forces[:, j, d]
+            for s, name in enumerate(("lower", "upper")):
+                frame[f"support_force_{j + 1}_{name}"] = self.support_forces[:, j, s]
+        frame["converged"] = self.converged
+        return pd.DataFrame(frame)
+
+    def spectrum(self):
+        """Amplitude of the TE against orders of the output revolution [arcmin]."""
+        import pandas as pd
+
+        from ..analysis.catalogue import order_spectrum
+
+        # the nominal output angle: equally spaced over whole revolutions, as order_spectrum
+        # needs (the equilibrium output angle carries the TE itself)
+        orders, amplitude = order_spectrum(self.input_angle / self.ratio, self.te)
+        return pd.DataFrame({"order": orders, "amplitude_arcmin": np.asarray(amplitude)
+                             / ARCMIN})
+
+
+def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
+         revolutions: float = 1.0, raise_on_failure: bool = True) -> LtcaResult:
+    """TE and contact loads at ``positions`` equally spaced input angles over ``revolutions``
+    output revolutions (input from 0 to revolutions * 2 pi * ratio, one direction) under the
+    output ``torque`` [N*m] (default: reducer.operating.load_torque).
+
+    A position that does not converge stops the sweep: with ``raise_on_failure`` (default) a
+    :class:`~rvsim.errors.SimulationError` names it, else the result carries the status and
+    ``converged`` marks the positions solved.
+    """
+    torque = _finite("torque", reducer.operating.load_torque if torque is None else torque)
+    if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
+            or positions < 2:
+        raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
+    revolutions = _finite("revolutions", revolutions)
+    if revolutions <= 0:
+        raise ParameterError("revolutions", f"must be positive (got {revolutions:g})")
+    from ..dynamics import _layout as L
+
+    ratio = reducer.ratio
+    input_angle = np.arange(positions) * (2.0 * math.pi * ratio * revolutions / positions)
+    path = solve_path(reducer, input_angle, np.full(positions, torque))
+    converged = path.status_codes == 0
+    ch = path.channels
+    result = LtcaResult(
+        input_angle=input_angle, output_angle=path.q[:, L.CARRIER].copy(),
+        te=input_angle / ratio - path.q[:, L.CARRIER], torque=torque, ratio=ratio,
+        pin_count=reducer.cycloid.pin_count, disc_teeth=reducer.cycloid.disc_teeth,
+        pin_forces=path.pin_forces, contact_stress=path.contact_stress,
+        arm_forces=ch[:, L.CH_ARM_F00:L.CH_ARM_F11 + 1].reshape(-1, 2, 2),
+        support_forces=ch[:, L.CH_SUP_FL0:L.CH_SUP_FU1 + 1].reshape(-1, 2, 2),
+        mesh_forces=ch[:, L.CH_MESH_F0:L.CH_MESH_F1 + 1].copy(),
+        mesh_stiffness=path.mesh_state[:, :, 0].copy(),
+        torsional_stiffness=path.torsional_stiffness, status=path.status, wall_s=path.wall_s,
+        converged=converged, iterations=path.iterations)
+    result.te[~converged] = np.nan
+    if path.status != "ok" and raise_on_failure:
+        k = int(np.argmax(path.status_codes != 0))
+        raise SimulationError(path.status, f"quasi-static analysis stopped at position {k} "
+                              f"(input angle {input_angle[k]:.6g} rad): "
+                              f"{path.status.replace('_', ' ')}")
+    return result
