@@ -14,10 +14,10 @@ numba's order (``numba.core.caching.CacheImpl``): ``NUMBA_CACHE_DIR`` when set, 
 
 from __future__ import annotations
 
-import hashlib
 from pathlib import Path
 
 from .._files import atomic_write_text
+from .._fingerprint import fingerprint_files
 
 __all__ = ["invalidate_stale_cache", "kernel_cache_folder", "DEPENDENCIES", "STAMP_NAME"]
 
@@ -26,13 +26,6 @@ _KERNEL = _HERE / "_kernel.py"
 #: every source file compiled into the kernel's cached machine code
 DEPENDENCIES = (_HERE / "_layout.py", _HERE.parent / "geometry" / "_curve.py", _KERNEL)
 STAMP_NAME = "rvsim_kernel_dependencies.sha256"
-
-
-def _fingerprint(paths) -> str:
-    digest = hashlib.sha256()
-    for path in paths:
-        digest.update(path.read_bytes())
-    return digest.hexdigest()
 
 
 def _probe() -> None:  # stands for a kernel function: the locators only read its line number
@@ -62,7 +55,7 @@ def invalidate_stale_cache(module: str | Path = _KERNEL) -> None:
         if cache is None:
             return  # numba compiles in memory: nothing stale can be loaded
         stamp = cache / (STAMP_NAME if kernel else f"rvsim_{module.stem}_dependencies.sha256")
-        current = _fingerprint(paths)
+        current = fingerprint_files(list(paths))
         if stamp.exists() and stamp.read_text() == current:
             return
         for pattern in (f"{module.stem}.*.nbi", f"{module.stem}.*.nbc"):
