@@ -254,8 +254,13 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
                  _png(te_plot(histories, first.steady_start)),
                  "<h2>TE spectrum</h2>",
                  f"<p class='note'>{html.escape(next(iter(histories)))}, steady window; orders "
-                 "of the crank rotation relative to the carrier, with the crank, pin-passing "
-                 "and sun-planet mesh orders marked.</p>", _png(spectrum_plot(first))]
+                 "of the crank rotation relative to the carrier, with the crank, pin-passing, "
+                 "sun-planet mesh and load-fluctuation orders marked (the fluctuation acts only "
+                 "in runs with it switched on).</p>",
+                 _png(spectrum_plot(first, pin_count=int(definition.get("pin_count", 40)),
+                                    planet_teeth=int(definition.get("planet_teeth", 54)),
+                                    fluctuation_frequency=definition.get(
+                                        "fluctuation_frequency")))]
     if "error" in analysis:
         body.append(f"<h2>Analysis</h2><p>{html.escape(analysis['error'])}</p>")
     else:

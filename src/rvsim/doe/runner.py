@@ -239,6 +239,9 @@ def _definition(study: Study, time_step: float, first: Reducer) -> dict:
         "reducer": f"{study.base.name} ({study.base.citation})" if study.base.citation
         else study.base.name,
         "steady_start": first.operating.steady_start,   # fixed settings included
+        # what the report's spectrum marks (orders of the crank rotation, the load fluctuation)
+        "pin_count": first.cycloid.pin_count, "planet_teeth": first.gears.planet_teeth,
+        "fluctuation_frequency": first.operating.fluctuation_frequency,
         "factors": [{"label": f.label, "parameter": f.parameter, "levels": list(f.levels),
                      "low": f.low, "high": f.high} for f in study.factors],
         "fixed": [[k, v] for k, v in study.fixed],
