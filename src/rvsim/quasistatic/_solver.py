@@ -218,8 +218,13 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
         total += iterations
         same = True
         for j in range(2):
+            # the flank is switched only where the held one has opened (zero deflection) and
+            # the other one touches: where both touch (a crank pressed towards the sun with
+            # no backlash) the rule's preference for the positive flank is no switch, and
+            # following it would leave the loaded crank free to turn through its mesh
             if mesh_state[j, 2] != hold[j, 0] or (mesh_state[j, 3] != 0.0
-                                                   and mesh_state[j, 3] != hold[j, 1]):
+                                                   and mesh_state[j, 3] != hold[j, 1]
+                                                   and mesh_state[j, 1] <= 0.0):
                 same = False
         if status != STATUS_OK or same:
             break
