@@ -230,7 +230,8 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
             break
         for j in range(2):
             hold[j, 0] = mesh_state[j, 2]
-            hold[j, 1] = mesh_state[j, 3]
+            if mesh_state[j, 1] <= 0.0:      # a loaded flank stays held (see above)
+                hold[j, 1] = mesh_state[j, 3]
     return status, total, torque_in
 
 
