@@ -8,13 +8,13 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
 from pathlib import Path
 
-from ..errors import ParameterError
+from ..errors import InputFileError, ParameterError
 from ..parameters import paper_run_values
-from ._common import add_command, add_reducer_options, print_json, reducer_from_args
+from ._common import (add_command, add_reducer_options, check_output_file, print_json,
+                      reducer_from_args)
 
 __all__ = ["register", "MIN_POSITIONS", "MAX_POSITIONS"]
 
@@ -30,20 +30,23 @@ def _reducer(args: argparse.Namespace):
 
 
 def _output_path(option: str, value: str | None, suffix: str) -> Path | None:
-    """A file the command will write: right suffix, not a folder, in a writable folder."""
+    """A file the command will write: right suffix, not a folder, in a folder where a file can
+    really be created (probed with a temporary file: permission bits say nothing for root, nor
+    for /proc or a read-only mount)."""
     if value is None:
         return None
-    path = Path(value)
-    if path.suffix.lower() != suffix:
+    if Path(value).suffix.lower() != suffix:
         raise ParameterError(option, f"{value}: must be a {suffix} file")
-    if path.is_dir():
-        raise ParameterError(option, f"{value}: is a folder")
-    folder = path.parent if str(path.parent) else Path(".")
-    if not folder.is_dir():
-        raise ParameterError(option, f"{value}: folder {folder} does not exist")
-    if not os.access(folder, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
-        raise ParameterError(option, f"{value}: not writable")
-    return path
+    return check_output_file(value, option)
+
+
+def _write(option: str, path: Path, write) -> None:
+    """Write an output file; a failure that the probe could not foresee (disk full, quota) is
+    the one-line error of that file, and no partial file stays (rvsim._files.atomic_write)."""
+    try:
+        write()
+    except OSError as exc:
+        raise InputFileError(f"{option} {path}: cannot write ({exc.strerror or exc})") from None
 
 
 def _finite(option: str, value: float | None) -> None:
@@ -96,7 +99,7 @@ def _ltca(args: argparse.Namespace) -> int:
     if report:
         from ..report import write_ltca_report
 
-        write_ltca_report(result, reducer, report)
+        _write("--report", report, lambda: write_ltca_report(result, reducer, report))
     summary = result.summary()
     if args.json:
         print_json(summary)
@@ -142,11 +145,12 @@ def _hysteresis(args: argparse.Namespace) -> int:
                               "ltca at rated torque (for --export)")
         if te_run is None:
             return code
-        write_joint_model(export, joint_model(result, te_run, reducer))
+        _write("--export", export,
+               lambda: write_joint_model(export, joint_model(result, te_run, reducer)))
     if report:
         from ..report import write_hysteresis_report
 
-        write_hysteresis_report(result, reducer, report)
+        _write("--report", report, lambda: write_hysteresis_report(result, reducer, report))
     if args.json:
         print_json(summary)
     else:

@@ -205,27 +205,49 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
     and the kernel's one-flank rule where the crank is pressed towards the sun so far that both
     flanks would touch); where the equilibrium lies across a switch, solved again with the
     count and flank found there.  Where they would flip back (the equilibrium sits on the
-    switch, where none exists for either choice), the second choice is kept.  Returns (status,
-    total iterations, input torque)."""
+    switch, where none exists for either choice), the second choice is kept.  A search that
+    fails with an unloaded mesh held on the flank it first touched while crossing a clearance
+    (no equilibrium exists on that flank under the load) is repeated once from the starting
+    pose with that flank turned over.  Returns (status, total iterations, input torque)."""
     hold = np.zeros((2, 2))          # zeros: taken from the starting pose by equilibrium()
     total = 0
     status, torque_in = STATUS_OK, 0.0
-    for attempt in range(2):
+    q_start = q.copy()
+    retried = False
+    attempt = 0
+    while attempt < 2:
         status, iterations, torque_in = equilibrium(
             P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
             mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
             mesh_state, hold)
         total += iterations
+        if status != STATUS_OK and not retried:
+            retried = True
+            turned = False
+            for j in range(2):
+                if hold[j, 1] != 0.0 and mesh_state[j, 1] <= 0.0:
+                    hold[j, 1] = -hold[j, 1]
+                    turned = True
+            if turned:
+                q[:] = q_start
+                continue
         same = True
         for j in range(2):
+            # the flank is switched only where the held one has opened (zero deflection) and
+            # the other one touches: where both touch (a crank pressed towards the sun with
+            # no backlash) the rule's preference for the positive flank is no switch, and
+            # following it would leave the loaded crank free to turn through its mesh
             if mesh_state[j, 2] != hold[j, 0] or (mesh_state[j, 3] != 0.0
-                                                   and mesh_state[j, 3] != hold[j, 1]):
+                                                   and mesh_state[j, 3] != hold[j, 1]
+                                                   and mesh_state[j, 1] <= 0.0):
                 same = False
         if status != STATUS_OK or same:
             break
         for j in range(2):
             hold[j, 0] = mesh_state[j, 2]
-            hold[j, 1] = mesh_state[j, 3]
+            if mesh_state[j, 1] <= 0.0:      # a loaded flank stays held (see above)
+                hold[j, 1] = mesh_state[j, 3]
+        attempt += 1
     return status, total, torque_in
 
 

@@ -17,7 +17,8 @@ from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..units import ARCMIN
 
-__all__ = ["ltca", "LtcaResult", "solve_path", "PathSolution", "TOLERANCE", "MAX_ITERATIONS"]
+__all__ = ["ltca", "LtcaResult", "solve_path", "PathSolution", "TOLERANCE", "MAX_ITERATIONS",
+           "CHUNK"]
 
 #: converged when every residual force (torques over their lever) is below this fraction of
 #: rated torque / centre distance (412 N*m / 45 mm x 1e-7 = 9e-4 N for the RV-40E; the force
@@ -25,6 +26,11 @@ __all__ = ["ltca", "LtcaResult", "solve_path", "PathSolution", "TOLERANCE", "MAX
 TOLERANCE = 1e-7
 #: Newton iterations allowed per position
 MAX_ITERATIONS = 200
+#: points solved per call of the compiled sweep: between calls Python sees a Ctrl-C (a compiled
+#: loop cannot be interrupted), ~0.5 s of work for the RV-40E; a longer path restarts the
+#: contact foot points and the tangent predictor at each chunk (same equilibria, to the
+#: tolerance; paths up to this length are solved in one call)
+CHUNK = 4000
 
 
 @dataclasses.dataclass
@@ -42,6 +48,7 @@ class PathSolution:
     status_codes: np.ndarray       # (n,) 0 ok, -1 not reached
     status: str
     wall_s: float
+    force_resolution: float = 0.0  # [N] the residual tolerance: smaller forces are not resolved
 
 
 def _finite(name: str, value: float) -> float:
@@ -90,12 +97,22 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
                        iterations=np.zeros(n, dtype=np.int64), input_torque=np.zeros(n),
                        status_codes=np.full(n, -1, dtype=np.int64), status="ok", wall_s=0.0)
     start = _time.perf_counter()
-    solved = S.sweep(P, hertz, np.asarray(q_start, dtype=float), angle, load, scale, tol,
-                     MAX_ITERATIONS, model.pins, model.holes, model.crank_angles,
-                     model.mesh_phase, out.q, out.pin_forces, out.contact_stress, out.channels,
-                     out.mesh_state, out.torsional_stiffness, out.status_codes, out.iterations,
-                     out.input_torque)
+    q0 = np.asarray(q_start, dtype=float)
+    solved = 0
+    while solved < n:
+        part = slice(solved, min(solved + CHUNK, n))
+        done = S.sweep(P, hertz, q0, angle[part], load[part], scale, tol, MAX_ITERATIONS,
+                       model.pins, model.holes, model.crank_angles, model.mesh_phase,
+                       out.q[part], out.pin_forces[part], out.contact_stress[part],
+                       out.channels[part], out.mesh_state[part],
+                       out.torsional_stiffness[part], out.status_codes[part],
+                       out.iterations[part], out.input_torque[part])
+        solved += done
+        if done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK:
+            break
+        q0 = out.q[solved - 1].copy()
     out.wall_s = _time.perf_counter() - start
+    out.force_resolution = tol
     worst = int(out.status_codes[solved - 1]) if solved else S.STATUS_NOT_CONVERGED
     out.status = S.STATUS_TEXT[worst]
     return out
@@ -123,6 +140,7 @@ class LtcaResult:
     wall_s: float
     converged: np.ndarray          # (n,) bool
     iterations: np.ndarray         # (n,) Newton iterations per position
+    force_resolution: float = 0.0  # [N] pin forces up to this are below the solver's tolerance
 
     @property
     def te_relative(self) -> np.ndarray:
@@ -132,8 +150,9 @@ class LtcaResult:
 
     @property
     def pins_in_contact(self) -> np.ndarray:
-        """(n, 2) number of loaded pins of each disc."""
-        return np.count_nonzero(self.pin_forces > 0.0, axis=2)
+        """(n, 2) number of loaded pins of each disc: forces above the solver's force
+        resolution (at zero torque the round-off forces of touching pins are no contact)."""
+        return np.count_nonzero(self.pin_forces > self.force_resolution, axis=2)
 
     def summary(self) -> dict:
         """The issue's JSON keys (TE in arcmin, forces in N, stress in MPa; pins in contact
@@ -231,7 +250,8 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         mesh_forces=ch[:, L.CH_MESH_F0:L.CH_MESH_F1 + 1].copy(),
         mesh_stiffness=path.mesh_state[:, :, 0].copy(),
         torsional_stiffness=path.torsional_stiffness, status=path.status, wall_s=path.wall_s,
-        converged=converged, iterations=path.iterations)
+        converged=converged, iterations=path.iterations,
+        force_resolution=path.force_resolution)
     result.te[~converged] = np.nan
     if path.status != "ok" and raise_on_failure:
         k = int(np.argmax(path.status_codes != 0))
