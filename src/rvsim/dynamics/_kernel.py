@@ -22,7 +22,8 @@ from ..geometry._curve import pin_gap, profile_axes
 from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
-                      CONTACT_RATIO, CRANK0, CRANK_STRIDE, DISC0, DISC_STRIDE, DT, E_DISSIPATED,
+                      CONTACT_RATIO, CRANK0, CRANK_COUNT, DISC_COUNT, K_INPUT, OUT_C, OUT_CB,
+                      OUT_CLEAR, OUT_COUNT, OUT_RADIUS, OUT_SLOT0, STAGES, CRANK_STRIDE, DISC0, DISC_STRIDE, DT, E_DISSIPATED,
                       E_INPUT, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
@@ -399,6 +400,72 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle):
 
 
 @numba.njit(cache=True)
+def input_shaft(P, q, v, Q, K, theta_in, omega_in):
+    """Single-stage drive: the input coupling turns the eccentric shaft (crank 0's rotation)
+    through a torsional spring K_INPUT with contact-like damping.  Returns (input torque,
+    energy, dissipated power); ``K`` as in :func:`gear_mesh`."""
+    b = CRANK0 + 4
+    k = P[K_INPUT]
+    twist = theta_in - q[b]
+    rate = omega_in - v[b]
+    torque = k * twist + 2.0 * P[ZETA] * math.sqrt(k * P[J_CRANK]) * rate
+    Q[b] += torque
+    if K.shape[0] > 0:
+        K[b, b] += k
+    return torque, 0.5 * k * twist * twist, (torque - k * twist) * rate
+
+
+@numba.njit(cache=True)
+def output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, force, dist):
+    """Stiffness matrix of an output pin contact (pin (px, py) on the flange, hole centre (lx,
+    ly) from the disc centre): k g g^T + F/dist h h^T + F n . d2r/dq2."""
+    index = (CARRIER, d, d + 1, d + 2)
+    add_rank_one(K, index, (ny * px - nx * py, -nx, -ny, nx * ly - ny * lx), k)
+    add_rank_one(K, index, (nx * px + ny * py, ny, -nx, -nx * lx - ny * ly), force / dist)
+    K[CARRIER, CARRIER] -= force * (nx * px + ny * py)
+    K[d + 2, d + 2] += force * (nx * lx + ny * ly)
+
+
+@numba.njit(cache=True)
+def output_pin(P, q, v, Q, K, disc, m, elastic):
+    """Single-stage drive: output pin m of the flange (the CARRIER coordinate) in its hole of
+    disc ``disc``: a clearance contact that closes when the pin centre is farther than
+    P[OUT_CLEAR] = design a + clearance from the hole centre (docs/model.md section 13).
+
+    ``elastic[disc, OUT_SLOT0 + m]`` carries the elastic force (Newton start; the quasi-static
+    engine reads the pin forces there).  ``K`` as in :func:`arm_bushing`.  Returns (force,
+    energy, dissipated power)."""
+    alpha = 2.0 * math.pi * m / P[OUT_COUNT]
+    x0, y0 = P[OUT_RADIUS] * math.cos(alpha), P[OUT_RADIUS] * math.sin(alpha)
+    cos_c, sin_c = math.cos(q[CARRIER]), math.sin(q[CARRIER])
+    px, py = cos_c * x0 - sin_c * y0, sin_c * x0 + cos_c * y0
+    d = DISC0 + DISC_STRIDE * disc
+    cos_t, sin_t = math.cos(q[d + 2]), math.sin(q[d + 2])
+    lx, ly = cos_t * x0 - sin_t * y0, sin_t * x0 + cos_t * y0
+    rx, ry = px - q[d] - lx, py - q[d + 1] - ly
+    dist = math.sqrt(rx * rx + ry * ry)
+    delta = dist - P[OUT_CLEAR]
+    slot = OUT_SLOT0 + m
+    if delta <= 0.0 or dist < 1e-15:
+        elastic[disc, slot] = 0.0
+        return 0.0, 0.0, 0.0
+    nx, ny = rx / dist, ry / dist
+    wc = v[CARRIER]
+    rate = (nx * (-wc * py - v[d] + v[d + 2] * ly)
+            + ny * (wc * px - v[d + 1] - v[d + 2] * lx))
+    fn, energy, power, elastic[disc, slot], k = contact(delta, rate, P[OUT_C], P[OUT_CB],
+                                                        P[ZETA], P[M_DISC], elastic[disc, slot])
+    if K.shape[0] > 0:
+        output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, elastic[disc, slot], dist)
+    # -fn n on the pin (flange), +fn n on the disc at the hole
+    Q[CARRIER] += fn * (nx * py - ny * px)
+    Q[d] += fn * nx
+    Q[d + 1] += fn * ny
+    Q[d + 2] += fn * (ny * lx - nx * ly)
+    return fn, energy, power
+
+
+@numba.njit(cache=True)
 def kinetic_energy(P, v):
     energy = 0.5 * P[J_CARRIER] * v[CARRIER] ** 2
     # crank node mass matrix: the inverse of [[LL, LU], [LU, UU]]
@@ -437,29 +504,34 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     energy = 0.0
     power = 0.0
     torque_in = 0.0
-    for j in range(2):
-        force, torque, e, pw, stiffness, deflection, natural, rule = gear_mesh(
-            P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
-            mesh_hold[j, 0], mesh_hold[j, 1])
-        channel[CH_MESH_F0 + j] = force
-        mesh_state[j, 0] = stiffness
-        mesh_state[j, 1] = deflection
-        if mesh_state.shape[1] > 3:
-            mesh_state[j, 2] = natural
-            mesh_state[j, 3] = rule
-        torque_in += torque
-        energy += e
-        power += pw
+    single = P[STAGES] == 1.0
+    if single:
+        torque_in, energy, power = input_shaft(P, q, v, Q, K, theta_in, omega_in)
+    else:
+        for j in range(2):
+            force, torque, e, pw, stiffness, deflection, natural, rule = gear_mesh(
+                P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
+                mesh_hold[j, 0], mesh_hold[j, 1])
+            channel[CH_MESH_F0 + j] = force
+            mesh_state[j, 0] = stiffness
+            mesh_state[j, 1] = deflection
+            if mesh_state.shape[1] > 3:
+                mesh_state[j, 2] = natural
+                mesh_state[j, 3] = rule
+            torque_in += torque
+            energy += e
+            power += pw
+    n_discs = int(P[DISC_COUNT])
     worst = 0.0
-    for disc in range(2):
+    for disc in range(n_discs):
         e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
                                   pin_force, pin_elastic)
         energy += e
         power += pw
         if pen > worst:
             worst = pen
-    for j in range(2):
-        for disc in range(2):
+    for j in range(int(P[CRANK_COUNT])):
+        for disc in range(n_discs):
             wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
             wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
             force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, holes[j, 0], holes[j, 1], wl,
@@ -472,6 +544,12 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             channel[CH_SUP_FL0 + 2 * j + upper] = force
             energy += e
             power += pw
+    if single:
+        for disc in range(n_discs):
+            for m in range(int(P[OUT_COUNT])):
+                force, e, pw = output_pin(P, q, v, Q, K, disc, m, arm_elastic)
+                energy += e
+                power += pw
     Q[CARRIER] -= torque_load
     return energy, power, torque_in, worst
 
@@ -495,13 +573,14 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
 COUNT_ROW, COUNT_IN_WINDOW = 0, 1
 
 
-def new_state(n_pins, n_channels):
+def new_state(n_pins, n_channels, n_output_pins=0):
     """Work arrays that :func:`integrate` carries from one call to the next (all zero at t = 0):
     (pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic, mesh_state, channel,
-    counters)."""
+    counters).  ``arm_elastic`` has a column per output pin after the two crank columns."""
     pin_angle = 2.0 * np.pi * np.arange(n_pins) / n_pins
     return (pin_angle, np.zeros((2, n_pins)), np.zeros((2, n_pins), dtype=np.int64),
-            np.zeros((2, n_pins)), np.zeros((2, n_pins)), np.zeros((2, 2)), np.zeros((2, 2)),
+            np.zeros((2, n_pins)), np.zeros((2, n_pins)),
+            np.zeros((2, OUT_SLOT0 + n_output_pins)), np.zeros((2, 2)),
             np.zeros(n_channels), np.zeros(2, dtype=np.int64))
 
 
