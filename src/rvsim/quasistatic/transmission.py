@@ -42,6 +42,7 @@ class PathSolution:
     status_codes: np.ndarray       # (n,) 0 ok, -1 not reached
     status: str
     wall_s: float
+    output_pin_forces: np.ndarray = None  # (n, 2, n_w) single-stage output pins (n_w = 0: RV)
 
 
 def _finite(name: str, value: float) -> float:
@@ -72,12 +73,16 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
     P = model.P
     n, zp = len(angle), reducer.cycloid.pin_count
     scale = np.ones(L.N_DOF)
-    scale[L.CARRIER] = P[L.CENTRE_DIST]
+    # rotations times a length of their body: the crank circle and planet base radius (RV),
+    # the output pin circle and the eccentric's radius (single-stage)
+    single = reducer.layout.single_stage
+    scale[L.CARRIER] = P[L.OUT_RADIUS] if single else P[L.CENTRE_DIST]
     for j in range(2):
-        scale[L.CRANK0 + L.CRANK_STRIDE * j + 4] = P[L.RB2]
+        scale[L.CRANK0 + L.CRANK_STRIDE * j + 4] = (reducer.crank.eccentric_radius if single
+                                                    else P[L.RB2])
     for d in range(2):
         scale[L.DISC0 + L.DISC_STRIDE * d + 2] = P[L.RG]
-    tol = TOLERANCE * reducer.rating.rated_torque / P[L.CENTRE_DIST]
+    tol = TOLERANCE * reducer.rating.rated_torque / scale[L.CARRIER]
     m = reducer.materials
     hertz = np.array([effective_modulus(m.cycloid_disc, m.pin), reducer.cycloid.disc_width])
     if q_start is None:
@@ -88,13 +93,14 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
                        channels=np.zeros((n, L.N_CHANNELS)), mesh_state=np.zeros((n, 2, 2)),
                        torsional_stiffness=np.full(n, np.nan),
                        iterations=np.zeros(n, dtype=np.int64), input_torque=np.zeros(n),
-                       status_codes=np.full(n, -1, dtype=np.int64), status="ok", wall_s=0.0)
+                       status_codes=np.full(n, -1, dtype=np.int64), status="ok", wall_s=0.0,
+                       output_pin_forces=np.zeros((n, 2, int(P[L.OUT_COUNT]))))
     start = _time.perf_counter()
     solved = S.sweep(P, hertz, np.asarray(q_start, dtype=float), angle, load, scale, tol,
                      MAX_ITERATIONS, model.pins, model.holes, model.crank_angles,
                      model.mesh_phase, out.q, out.pin_forces, out.contact_stress, out.channels,
                      out.mesh_state, out.torsional_stiffness, out.status_codes, out.iterations,
-                     out.input_torque)
+                     out.input_torque, out.output_pin_forces)
     out.wall_s = _time.perf_counter() - start
     worst = int(out.status_codes[solved - 1]) if solved else S.STATUS_NOT_CONVERGED
     out.status = S.STATUS_TEXT[worst]
