@@ -284,6 +284,7 @@ def _single_stage_constants(r: Reducer, P: np.ndarray) -> None:
     P[L.OUT_COUNT] = lay.output_pin_count
     P[L.OUT_RADIUS] = lay.output_pin_circle_radius
     P[L.OUT_CLEAR] = output_hole_clearance(r)
-    P[L.OUT_C] = r.contact.bushing_stiffness_factor ** -0.9 * palmgren_coefficient(
-        c.disc_width, m.cycloid_disc, m.pin)
+    # an output pin (roller) on the hole wall is a line contact like a ring pin on the profile
+    # (same law, material pair and length), not a bushing: the bushing factor leaves it alone
+    P[L.OUT_C] = palmgren_coefficient(c.disc_width, m.cycloid_disc, m.pin)
     P[L.OUT_CB] = 0.0

@@ -129,6 +129,8 @@ class LtcaResult:
     wall_s: float
     converged: np.ndarray          # (n,) bool
     iterations: np.ndarray         # (n,) Newton iterations per position
+    #: (n, 2, n_w) [N] output pins in the discs' holes (single-stage drive; n_w = 0: RV)
+    output_pin_forces: np.ndarray = None
 
     @property
     def te_relative(self) -> np.ndarray:
@@ -237,7 +239,8 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         mesh_forces=ch[:, L.CH_MESH_F0:L.CH_MESH_F1 + 1].copy(),
         mesh_stiffness=path.mesh_state[:, :, 0].copy(),
         torsional_stiffness=path.torsional_stiffness, status=path.status, wall_s=path.wall_s,
-        converged=converged, iterations=path.iterations)
+        converged=converged, iterations=path.iterations,
+        output_pin_forces=path.output_pin_forces)
     result.te[~converged] = np.nan
     if path.status != "ok" and raise_on_failure:
         k = int(np.argmax(path.status_codes != 0))
