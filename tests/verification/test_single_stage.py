@@ -26,6 +26,8 @@ import pytest
 from rvsim.cli import main
 from rvsim.dynamics import _layout as L
 from rvsim.dynamics import simulate
+from rvsim.dynamics._kernel import forces_at
+from rvsim.dynamics.model import build_model
 from rvsim.errors import ParameterError
 from rvsim.geometry.layout import output_pins
 from rvsim.parameters import BUILT_IN_SETS, load_toml, with_values
@@ -145,3 +147,57 @@ def test_toml_base_and_set_name_on_the_command_line(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert err == ["rvsim: error: parameter 'paper-run': the paper's runs are runs of the "
                    "RV-40E; 'cycloid-drive' is a single-stage drive"]
+
+
+def _forces(reducer, q, theta_in, torque, want_stiffness):
+    """The kernel's force evaluation at rest (the quasi-static residual) and its matrix."""
+    model = build_model(reducer, 1e-5)
+    zp, n_out = reducer.cycloid.pin_count, reducer.layout.output_pin_count
+    Q = np.zeros(L.N_DOF)
+    K = np.zeros((L.N_DOF, L.N_DOF) if want_stiffness else (0, 0))
+    forces_at(model.P, q, np.zeros(L.N_DOF), theta_in, 0.0, torque, model.pins,
+              2.0 * np.pi * np.arange(zp) / zp, model.holes, model.crank_angles,
+              model.mesh_phase, np.zeros((2, zp)), np.zeros((2, zp), dtype=np.int64), 1,
+              np.zeros((2, zp)), np.zeros((2, zp)), np.zeros((2, L.OUT_SLOT0 + n_out)), Q, K,
+              np.zeros(L.N_CHANNELS), np.zeros((2, 4)), np.zeros((2, 2)))
+    return Q, K
+
+
+@pytest.mark.parametrize("values", [{}, {"layout.output_pin_clearance": 0.01}])
+def test_output_pin_stiffness_is_the_derivative_of_the_forces(values):
+    """The output pins are the only elements on the output flange: the flange's row and column
+    of the stiffness matrix are theirs alone, and equal central differences of -Q."""
+    reducer = with_values(DRIVE, values)
+    path = solve_path(reducer, np.array([-0.3]), np.array([150.0]))
+    q = path.q[0]
+    _, K = _forces(reducer, q, -0.3, 150.0, True)
+    h = 1e-9
+    column = np.zeros(L.N_DOF)
+    row = np.zeros(L.N_DOF)
+    for i in range(L.N_DOF):
+        dq = np.zeros(L.N_DOF)
+        dq[i] = h
+        diff = -(_forces(reducer, q + dq, -0.3, 150.0, False)[0]
+                 - _forces(reducer, q - dq, -0.3, 150.0, False)[0]) / (2.0 * h)
+        row[i] = diff[L.CARRIER]
+        if i == L.CARRIER:
+            column = diff
+    scale = np.abs(K[L.CARRIER]).max()
+    assert np.max(np.abs(K[L.CARRIER] - row)) < 1e-7 * scale     # measured 5.3e-9
+    assert np.max(np.abs(K[:, L.CARRIER] - column)) < 1e-7 * scale  # measured 6.8e-9
+
+
+def test_local_stiffness_is_derivative_of_loaded_te():
+    """As for the RV (tests/verification/test_quasistatic.py), less close: the condensed
+    matrix leaves out the ring pins' profile-curvature terms (docs/model.md, "Quasi-static
+    analysis"), and the disc's rotation, stiff against its translations, amplifies them; the
+    condensed finite-difference matrix gives the finite-difference stiffness exactly."""
+    torque = 150.0
+    step = 1e-3 * torque
+    for angle in (-0.3, -1.1):
+        path = solve_path(DRIVE, np.full(3, angle),
+                          np.array([torque, torque - step, torque + step]))
+        assert path.status == "ok"
+        finite_difference = 2.0 * step / (path.q[1, L.CARRIER] - path.q[2, L.CARRIER])
+        # measured 6.6e-3 and 5.7e-3
+        assert path.torsional_stiffness[0] == pytest.approx(finite_difference, rel=1e-2)
