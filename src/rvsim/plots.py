@@ -116,14 +116,15 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 5
 
 def pin_load_map(result, fig=None):
     """Pin force [N] over one output revolution, one heat map per disc: pin number against
-    the output angle (an LTCA result: ``pin_forces`` (n, 2, zp), ``input_angle``, ``ratio``)."""
+    the output angle (an LTCA result: ``pin_forces`` (n, discs, zp), ``input_angle``,
+    ``ratio``)."""
     plt = _pyplot()
     import numpy as np
 
     forces = np.asarray(result.pin_forces)
     if fig is None:
         fig = plt.figure(figsize=(8, 5.6))
-    axes = fig.subplots(2, 1, sharex=True)
+    axes = fig.subplots(forces.shape[1], 1, sharex=True, squeeze=False)[:, 0]
     out_deg = np.degrees(np.asarray(result.input_angle) / result.ratio)
     step = out_deg[1] - out_deg[0] if out_deg.size > 1 else 1.0
     extent = (out_deg[0], out_deg[-1] + step, 0.5, forces.shape[2] + 0.5)

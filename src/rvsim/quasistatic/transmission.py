@@ -118,8 +118,8 @@ class LtcaResult:
     ratio: float
     pin_count: int
     disc_teeth: int
-    pin_forces: np.ndarray         # (n, 2, zp) [N]
-    contact_stress: np.ndarray     # (n, 2, zp) [Pa] maximum Hertz pressure
+    pin_forces: np.ndarray         # (n, discs, zp) [N] (discs: 2, or 1 for a one-disc drive)
+    contact_stress: np.ndarray     # (n, discs, zp) [Pa] maximum Hertz pressure
     arm_forces: np.ndarray         # (n, 2, 2) [N] (crank, disc)
     support_forces: np.ndarray     # (n, 2, 2) [N] (crank, lower/upper)
     mesh_forces: np.ndarray        # (n, 2) [N]
@@ -129,7 +129,7 @@ class LtcaResult:
     wall_s: float
     converged: np.ndarray          # (n,) bool
     iterations: np.ndarray         # (n,) Newton iterations per position
-    #: (n, 2, n_w) [N] output pins in the discs' holes (single-stage drive; n_w = 0: RV)
+    #: (n, discs, n_w) [N] output pins in the discs' holes (single-stage drive; n_w = 0: RV)
     output_pin_forces: np.ndarray = None
 
     @property
@@ -140,7 +140,7 @@ class LtcaResult:
 
     @property
     def pins_in_contact(self) -> np.ndarray:
-        """(n, 2) number of loaded pins of each disc."""
+        """(n, discs) number of loaded pins of each disc."""
         return np.count_nonzero(self.pin_forces > 0.0, axis=2)
 
     def summary(self) -> dict:
@@ -177,11 +177,13 @@ class LtcaResult:
             "input_angle": self.input_angle, "output_angle": self.output_angle, "te": self.te,
             "te_arcmin": self.te / ARCMIN, "te_relative_arcmin": self.te_relative / ARCMIN,
             "torsional_stiffness": self.torsional_stiffness,
-            "pins_in_contact_disc1": self.pins_in_contact[:, 0],
-            "pins_in_contact_disc2": self.pins_in_contact[:, 1],
-            "max_pin_force": self.pin_forces.max(axis=(1, 2)),
-            "max_contact_stress": self.contact_stress.max(axis=(1, 2)),
         }
+        for d in range(self.pin_forces.shape[1]):
+            frame[f"pins_in_contact_disc{d + 1}"] = self.pins_in_contact[:, d]
+        frame["max_pin_force"] = self.pin_forces.max(axis=(1, 2))
+        frame["max_contact_stress"] = self.contact_stress.max(axis=(1, 2))
+        if self.output_pin_forces is not None and self.output_pin_forces.shape[2]:
+            frame["max_output_pin_force"] = self.output_pin_forces.max(axis=(1, 2))
         for j in range(2):
             frame[f"mesh_force_{j + 1}"] = self.mesh_forces[:, j]
             frame[f"mesh_stiffness_{j + 1}"] = self.mesh_stiffness[:, j]
@@ -224,6 +226,9 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         raise ParameterError("revolutions", f"must be positive (got {revolutions:g})")
     from ..dynamics import _layout as L
 
+    from ..geometry.layout import disc_count
+
+    discs = disc_count(reducer)
     ratio = reducer.ratio
     input_angle = np.arange(positions) * (2.0 * math.pi * ratio * revolutions / positions)
     path = solve_path(reducer, input_angle, np.full(positions, torque))
@@ -233,14 +238,14 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         input_angle=input_angle, output_angle=path.q[:, L.CARRIER].copy(),
         te=input_angle / ratio - path.q[:, L.CARRIER], torque=torque, ratio=ratio,
         pin_count=reducer.cycloid.pin_count, disc_teeth=reducer.cycloid.disc_teeth,
-        pin_forces=path.pin_forces, contact_stress=path.contact_stress,
+        pin_forces=path.pin_forces[:, :discs], contact_stress=path.contact_stress[:, :discs],
         arm_forces=ch[:, L.CH_ARM_F00:L.CH_ARM_F11 + 1].reshape(-1, 2, 2),
         support_forces=ch[:, L.CH_SUP_FL0:L.CH_SUP_FU1 + 1].reshape(-1, 2, 2),
         mesh_forces=ch[:, L.CH_MESH_F0:L.CH_MESH_F1 + 1].copy(),
         mesh_stiffness=path.mesh_state[:, :, 0].copy(),
         torsional_stiffness=path.torsional_stiffness, status=path.status, wall_s=path.wall_s,
         converged=converged, iterations=path.iterations,
-        output_pin_forces=path.output_pin_forces)
+        output_pin_forces=path.output_pin_forces[:, :discs])
     result.te[~converged] = np.nan
     if path.status != "ok" and raise_on_failure:
         k = int(np.argmax(path.status_codes != 0))
