@@ -14,27 +14,29 @@ import numpy as np
 
 from ._cache_guard import invalidate_stale_cache
 
-# numba's on-disk cache is keyed on this file only; the index constants of _layout and the
-# curve functions of geometry._curve are compiled in, so clear the cache when those change
+# numba's on-disk cache is keyed on this file only; the index constants of _layout, the curve
+# functions of geometry._curve, the contact law and the single-stage elements are compiled in,
+# so clear the cache when those change (_cache_guard.DEPENDENCIES)
 invalidate_stale_cache()
 
 from ..geometry._curve import pin_gap, profile_axes
+from ._contact_law import EXPONENT, add_rank_one, contact, spring_force  # noqa: F401
+from ._single_stage import input_shaft, output_pin
 from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
-                      CONTACT_RATIO, CRANK0, CRANK_COUNT, DISC_COUNT, K_INPUT, OUT_C, OUT_CB,
-                      OUT_CLEAR, OUT_COUNT, OUT_RADIUS, OUT_SLOT0, STAGES, CRANK_STRIDE, DISC0, DISC_STRIDE, DT, E_DISSIPATED,
+                      CONTACT_RATIO, CRANK0, CRANK_COUNT, CRANK_STRIDE, DISC0, DISC_COUNT,
+                      DISC_STRIDE, DT, E_DISSIPATED,
                       E_INPUT, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
-                      MINV_UU, MU, N_DOF, PEN_LIMIT, PIN_C, PIN_CB, PIN_RADIUS, PROFILE_OFFSET,
+                      MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C, PIN_CB,
+                      PIN_RADIUS, PROFILE_OFFSET,
                       PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RUNOUT_X0, RUNOUT_X1, RUNOUT_Y0,
-                      RUNOUT_Y1, SIN_AW, STATUS_NONFINITE, STATUS_OK,
+                      RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
                       STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CB, SUP_CLEAR_L, SUP_CLEAR_U,
                       V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA, ZP)
 
-EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
-_INV_EXPONENT = 1.0 / EXPONENT
 MAX_SKIP = 64          # longest skip of an open pin contact [steps]
 
 
@@ -61,62 +63,6 @@ def load_torque(P, t):
     """Output load of Eqs. (20)/(21)."""
     s, _ = step_function(t, P[LOAD_T0], P[LOAD_T1])
     return P[LOAD] * s + P[FLUCT_AMP] * math.sin(2.0 * math.pi * P[FLUCT_FREQ] * t)
-
-
-@numba.njit(cache=True)
-def spring_force(delta, c, cb, guess):
-    """Force of a Palmgren contact in series with a linear compliance, for approach ``delta``.
-
-    delta = c * F**0.9 + cb * F.  ``guess`` is the force of the previous step (0 if none):
-    Newton from it converges in one or two iterations.  Returns (F, tangent stiffness
-    dF/ddelta, stored energy).
-    """
-    if cb == 0.0:
-        f = (delta / c) ** _INV_EXPONENT
-        # c f^0.9 = delta: stiffness f / (0.9 delta), energy 0.9/1.9 delta f
-        return f, f / (EXPONENT * delta), EXPONENT / (1.0 + EXPONENT) * delta * f
-    if guess > 0.0:
-        f = guess
-    else:
-        # secant compliance at the contact-only force: below the root
-        f = (delta / c) ** _INV_EXPONENT
-        f = delta / (c * f ** (EXPONENT - 1.0) + cb)
-    fe = f ** EXPONENT
-    for _ in range(20):
-        # Newton on g(F) = c F^0.9 + cb F - delta (concave, increasing)
-        step = (c * fe + cb * f - delta) / (EXPONENT * c * fe / f + cb)
-        f -= step
-        if f <= 0.0:
-            f = 1e-3 * (f + step)
-        fe = f ** EXPONENT
-        if abs(step) <= 1e-10 * f:
-            break
-    stiffness = 1.0 / (EXPONENT * c * fe / f + cb)
-    energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
-    return f, stiffness, energy
-
-
-@numba.njit(cache=True)
-def contact(delta, rate, c, cb, zeta, mass, guess):
-    """Normal force of a compliant contact with damping that vanishes at first touch.
-
-    Damping is 2 zeta sqrt(k m) at the current tangent stiffness k (zero at delta = 0); the total
-    force never pulls.  Returns (force, stored energy, dissipated power, elastic force,
-    tangent stiffness of the elastic force).
-    """
-    f, k, energy = spring_force(delta, c, cb, guess)
-    fn = f + 2.0 * zeta * math.sqrt(k * mass) * rate
-    if fn < 0.0:
-        fn = 0.0
-    return fn, energy, (fn - f) * rate, f, k
-
-
-@numba.njit(cache=True)
-def add_rank_one(K, index, g, scale):
-    """K[index, index] += scale * g g^T (``index``, ``g``: tuples of one length)."""
-    for a in range(len(index)):
-        for b in range(len(index)):
-            K[index[a], index[b]] += scale * g[a] * g[b]
 
 
 @numba.njit(cache=True)
@@ -396,72 +342,6 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle):
     Q[b] -= fn * nx
     Q[b + 1] -= fn * ny
     Q[CARRIER] += fn * (-nx * by + ny * bx)
-    return fn, energy, power
-
-
-@numba.njit(cache=True)
-def input_shaft(P, q, v, Q, K, theta_in, omega_in):
-    """Single-stage drive: the input coupling turns the eccentric shaft (crank 0's rotation)
-    through a torsional spring K_INPUT with contact-like damping.  Returns (input torque,
-    energy, dissipated power); ``K`` as in :func:`gear_mesh`."""
-    b = CRANK0 + 4
-    k = P[K_INPUT]
-    twist = theta_in - q[b]
-    rate = omega_in - v[b]
-    torque = k * twist + 2.0 * P[ZETA] * math.sqrt(k * P[J_CRANK]) * rate
-    Q[b] += torque
-    if K.shape[0] > 0:
-        K[b, b] += k
-    return torque, 0.5 * k * twist * twist, (torque - k * twist) * rate
-
-
-@numba.njit(cache=True)
-def output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, force, dist):
-    """Stiffness matrix of an output pin contact (pin (px, py) on the flange, hole centre (lx,
-    ly) from the disc centre): k g g^T + F/dist h h^T + F n . d2r/dq2."""
-    index = (CARRIER, d, d + 1, d + 2)
-    add_rank_one(K, index, (ny * px - nx * py, -nx, -ny, nx * ly - ny * lx), k)
-    add_rank_one(K, index, (nx * px + ny * py, ny, -nx, -nx * lx - ny * ly), force / dist)
-    K[CARRIER, CARRIER] -= force * (nx * px + ny * py)
-    K[d + 2, d + 2] += force * (nx * lx + ny * ly)
-
-
-@numba.njit(cache=True)
-def output_pin(P, q, v, Q, K, disc, m, elastic):
-    """Single-stage drive: output pin m of the flange (the CARRIER coordinate) in its hole of
-    disc ``disc``: a clearance contact that closes when the pin centre is farther than
-    P[OUT_CLEAR] = design a + clearance from the hole centre (docs/model.md section 13).
-
-    ``elastic[disc, OUT_SLOT0 + m]`` carries the elastic force (Newton start; the quasi-static
-    engine reads the pin forces there).  ``K`` as in :func:`arm_bushing`.  Returns (force,
-    energy, dissipated power)."""
-    alpha = 2.0 * math.pi * m / P[OUT_COUNT]
-    x0, y0 = P[OUT_RADIUS] * math.cos(alpha), P[OUT_RADIUS] * math.sin(alpha)
-    cos_c, sin_c = math.cos(q[CARRIER]), math.sin(q[CARRIER])
-    px, py = cos_c * x0 - sin_c * y0, sin_c * x0 + cos_c * y0
-    d = DISC0 + DISC_STRIDE * disc
-    cos_t, sin_t = math.cos(q[d + 2]), math.sin(q[d + 2])
-    lx, ly = cos_t * x0 - sin_t * y0, sin_t * x0 + cos_t * y0
-    rx, ry = px - q[d] - lx, py - q[d + 1] - ly
-    dist = math.sqrt(rx * rx + ry * ry)
-    delta = dist - P[OUT_CLEAR]
-    slot = OUT_SLOT0 + m
-    if delta <= 0.0 or dist < 1e-15:
-        elastic[disc, slot] = 0.0
-        return 0.0, 0.0, 0.0
-    nx, ny = rx / dist, ry / dist
-    wc = v[CARRIER]
-    rate = (nx * (-wc * py - v[d] + v[d + 2] * ly)
-            + ny * (wc * px - v[d + 1] - v[d + 2] * lx))
-    fn, energy, power, elastic[disc, slot], k = contact(delta, rate, P[OUT_C], P[OUT_CB],
-                                                        P[ZETA], P[M_DISC], elastic[disc, slot])
-    if K.shape[0] > 0:
-        output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, elastic[disc, slot], dist)
-    # -fn n on the pin (flange), +fn n on the disc at the hole
-    Q[CARRIER] += fn * (nx * py - ny * px)
-    Q[d] += fn * nx
-    Q[d + 1] += fn * ny
-    Q[d + 2] += fn * (ny * lx - nx * ly)
     return fn, energy, power
 
 
