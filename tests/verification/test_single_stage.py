@@ -225,3 +225,12 @@ def test_backlash_of_the_output_pins_is_twice_clearance_over_pin_circle(clearanc
     expected = 2.0 * clearance * 1e-3 / reducer.layout.output_pin_circle_radius
     # measured 3.1e-7 and 1.3e-7 relative
     assert result.summary()["backlash_arcmin"] * ARCMIN == pytest.approx(expected, rel=1e-6)
+
+
+def test_rv_only_parameters_change_nothing_in_a_single_stage_drive():
+    other = with_values(DRIVE, {"gears.planet_teeth": 200, "gears.module": 5.0,
+                                "crank.gear_z": 80.0, "cycloid.pillar_hole_count": 6,
+                                "cycloid.disc_bore_radius": 40.0})
+    a = ltca(DRIVE, torque=150.0, positions=8)
+    b = ltca(other, torque=150.0, positions=8)
+    assert np.array_equal(a.te, b.te) and np.array_equal(a.pin_forces, b.pin_forces)

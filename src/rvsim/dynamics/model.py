@@ -165,7 +165,7 @@ def _station_weights(r: Reducer, z: float) -> tuple[float, float]:
 def build_model(r: Reducer, time_step: float) -> KernelModel:
     """Constant vector, pin and hole positions and the initial (assembled) state."""
     c, k, e, cl, m = r.cycloid, r.crank, r.errors, r.clearances, r.materials
-    gear = gear_geometry(r)
+    gear = None if r.layout.single_stage else gear_geometry(r)
     masses = mass_properties(r)
     P = np.zeros(L.N_PARAMS)
     P[L.DT] = time_step
@@ -179,15 +179,16 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.FLUCT_FREQ] = op.fluctuation_frequency
     P[L.STEADY_START] = op.steady_start
 
-    P[L.RB1] = gear.sun_base_radius
-    P[L.RB2] = gear.planet_base_radius
-    P[L.CENTRE_DIST] = gear.centre_distance
-    P[L.SIN_AW] = math.sin(gear.operating_pressure_angle)
-    P[L.BACKLASH] = r.gears.backlash
-    P[L.BASE_PITCH] = gear.base_pitch
-    P[L.CONTACT_RATIO] = gear.contact_ratio
-    P[L.K_MESH] = gear.single_pair_stiffness
-    P[L.MESH_MASS] = masses.crank_inertia / gear.planet_base_radius ** 2
+    if not r.layout.single_stage:  # the single-stage drive has no involute stage
+        P[L.RB1] = gear.sun_base_radius
+        P[L.RB2] = gear.planet_base_radius
+        P[L.CENTRE_DIST] = gear.centre_distance
+        P[L.SIN_AW] = math.sin(gear.operating_pressure_angle)
+        P[L.BACKLASH] = r.gears.backlash
+        P[L.BASE_PITCH] = gear.base_pitch
+        P[L.CONTACT_RATIO] = gear.contact_ratio
+        P[L.K_MESH] = gear.single_pair_stiffness
+        P[L.MESH_MASS] = masses.crank_inertia / gear.planet_base_radius ** 2
 
     P[L.RG] = c.pin_circle_radius - e.radial_modification
     P[L.A_GEN] = c.eccentricity
@@ -252,10 +253,11 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     if r.layout.single_stage:
         _single_stage_constants(r, P)
     crank_angles = np.array([0.0, math.pi])
-    holes = gear.centre_distance * np.column_stack([np.cos(crank_angles),
-                                                    np.sin(crank_angles)])
     if r.layout.single_stage:
         holes = np.zeros((2, 2))  # the eccentric shaft on the axis (the second row unused)
+    else:
+        holes = gear.centre_distance * np.column_stack([np.cos(crank_angles),
+                                                        np.sin(crank_angles)])
     mesh_phase = (r.gears.sun_teeth * crank_angles / (2.0 * math.pi)) % 1.0
     q0 = np.zeros(L.N_DOF)
     for j in range(2):
