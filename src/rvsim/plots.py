@@ -84,11 +84,12 @@ def te_plot(results: dict, steady_start: float, ax=None):
     return fig
 
 
-def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 54,
+def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int | None = 54,
                   fluctuation_frequency: float | None = None):
     """Amplitude spectrum of the steady TE against orders of the crank rotation relative to
     the carrier (which turns ``pin_count`` times faster than the carrier).  A
-    ``fluctuation_frequency`` [Hz] of the load is marked at its order too."""
+    ``fluctuation_frequency`` [Hz] of the load is marked at its order too; ``planet_teeth``
+    None (a single-stage drive): no sun-planet mesh order."""
     plt = _pyplot()
     fig, ax = (plt.subplots(figsize=(7, 3.2)) if ax is None else (ax.figure, ax))
     from .dynamics.result import crank_frequency, te_spectrum
@@ -97,8 +98,9 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 5
                                     result.steady_start, pin_count)
     ax.plot(orders, amplitude, lw=0.8)
     top = ax.get_ylim()[1]
-    marks = [(1, "crank"), (pin_count - 1, "zc"), (pin_count, "zp, pin passing"),
-             (planet_teeth, "sun-planet mesh")]
+    marks = [(1, "crank"), (pin_count - 1, "zc"), (pin_count, "zp, pin passing")]
+    if planet_teeth is not None:
+        marks.append((planet_teeth, "sun-planet mesh"))
     crank_hz = crank_frequency(result.time, result.omega_out, result.steady_start, pin_count)
     if fluctuation_frequency and crank_hz > 0:
         marks.insert(1, (fluctuation_frequency / crank_hz,
@@ -116,14 +118,15 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int = 5
 
 def pin_load_map(result, fig=None):
     """Pin force [N] over one output revolution, one heat map per disc: pin number against
-    the output angle (an LTCA result: ``pin_forces`` (n, 2, zp), ``input_angle``, ``ratio``)."""
+    the output angle (an LTCA result: ``pin_forces`` (n, discs, zp), ``input_angle``,
+    ``ratio``)."""
     plt = _pyplot()
     import numpy as np
 
     forces = np.asarray(result.pin_forces)
     if fig is None:
         fig = plt.figure(figsize=(8, 5.6))
-    axes = fig.subplots(2, 1, sharex=True)
+    axes = fig.subplots(forces.shape[1], 1, sharex=True, squeeze=False)[:, 0]
     out_deg = np.degrees(np.asarray(result.input_angle) / result.ratio)
     step = out_deg[1] - out_deg[0] if out_deg.size > 1 else 1.0
     extent = (out_deg[0], out_deg[-1] + step, 0.5, forces.shape[2] + 0.5)

@@ -388,7 +388,9 @@ def write_run_report(result, reducer, path: str | Path) -> Path:
     ax.set_ylabel("mean contact force [N]")
     ax.legend()
     fig.tight_layout()
-    body = [f"<h1>RV reducer simulation: {html.escape(reducer.name)}</h1>",
+    single = reducer.layout.single_stage
+    kind = "Single-stage cycloid drive" if single else "RV reducer"
+    body = [f"<h1>{kind} simulation: {html.escape(reducer.name)}</h1>",
             "<h2>Summary</h2>", _table(summary),
             "<h2>Input and output speed (Fig. 4)</h2>", _speed_note(result, reducer),
             _png(speed_plot(result)),
@@ -396,7 +398,7 @@ def write_run_report(result, reducer, path: str | Path) -> Path:
             _png(te_plot({"TE": result}, result.steady_start)),
             "<h2>TE spectrum</h2>",
             _png(spectrum_plot(result, pin_count=reducer.cycloid.pin_count,
-                               planet_teeth=reducer.gears.planet_teeth,
+                               planet_teeth=None if single else reducer.gears.planet_teeth,
                                fluctuation_frequency=(reducer.operating.fluctuation_frequency
                                                       if reducer.operating.load_fluctuation
                                                       else None))),

@@ -328,8 +328,25 @@ def reducer_orders(reducer) -> dict[str, float]:
     (i - 1) z1 / z2 = zp times relative to the carrier (= zc + 1); the load pattern passes the
     zp pins once per crank turn relative to the carrier; the input shaft turns i times; the
     sun meets (i - 1) z1 planet teeth relative to the carrier.  Multiples 2 zc, 2 zp follow.
+
+    Single-stage drive (output pins): the eccentric shaft is the input and turns |i| = zc
+    times per output revolution (in the housing; zp = zc + 1 times relative to the output);
+    the output pins pass a given disc position n_w times per eccentric turn relative to
+    the output.
     """
     g, c = reducer.gears, reducer.cycloid
+    if reducer.layout.single_stage:
+        relative = abs(reducer.ratio) + 1.0
+        return {
+            "output": 1.0,
+            "disc teeth zc": float(c.disc_teeth),
+            "eccentric (rel. output)": float(relative),
+            "pins zp": float(c.pin_count),
+            "2 zc": 2.0 * c.disc_teeth,
+            "2 zp": 2.0 * c.pin_count,
+            "input shaft |i|": float(abs(reducer.ratio)),
+            "output pins": float(reducer.layout.output_pin_count),
+        }
     ratio = reducer.ratio
     crank = (ratio - 1.0) * g.sun_teeth / g.planet_teeth
     return {

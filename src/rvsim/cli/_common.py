@@ -11,8 +11,9 @@ from pathlib import Path
 from typing import Any
 
 from .._json import to_json_safe
-from ..errors import InputFileError, RvsimError
-from ..parameters import RV40E, Reducer, load_toml, parse_assignment, with_values
+from ..errors import InputFileError, ParameterError, RvsimError
+from ..parameters import (BUILT_IN_SETS, RV40E, Reducer, load_toml, parse_assignment,
+                          with_values)
 
 __all__ = ["Parser", "UsageError", "add_command", "add_reducer_options", "reducer_from_args",
            "print_json", "EXAMPLES", "positive_int", "probability", "path_text",
@@ -43,7 +44,8 @@ def add_command(sub, name: str, summary: str, description: str, examples: list[s
 def add_reducer_options(parser: argparse.ArgumentParser) -> None:
     """--params FILE and repeated --set NAME=VALUE."""
     parser.add_argument("--params", metavar="FILE", type=path_text,
-                        help="TOML file describing the reducer (user units, see 'rvsim params')")
+                        help="TOML file describing the reducer (user units, see 'rvsim "
+                             "params'), or the name of a built-in set (RV-40E, cycloid-drive)")
     parser.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
                         dest="assignments",
                         help="override one parameter in its listed unit, e.g. "
@@ -51,12 +53,24 @@ def add_reducer_options(parser: argparse.ArgumentParser) -> None:
 
 
 def reducer_from_args(args: argparse.Namespace, preset: dict | None = None) -> Reducer:
-    """The reducer of --params (built-in RV-40E by default) with ``preset`` values (e.g. a
-    paper run) and then the --set values applied, validated."""
-    reducer = load_toml(args.params) if args.params is not None else RV40E
+    """The reducer of --params (a TOML file, or a built-in set's name when no such file
+    exists; built-in RV-40E by default) with ``preset`` values (a paper run of the RV-40E)
+    and then the --set values applied, validated."""
+    reducer = _reducer_of(args.params)
+    if preset and reducer.layout.single_stage:
+        raise ParameterError("paper-run", f"the paper's runs are runs of the RV-40E; "
+                             f"'{reducer.name}' is a single-stage drive")
     values = dict(preset or {})
     values.update(parse_assignment(a) for a in args.assignments)
     return with_values(reducer, values)
+
+
+def _reducer_of(params: str | None) -> Reducer:
+    if params is None:
+        return RV40E
+    if params in BUILT_IN_SETS and not Path(params).exists():
+        return BUILT_IN_SETS[params]
+    return load_toml(params)
 
 
 def print_json(payload: Any) -> None:

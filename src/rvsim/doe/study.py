@@ -7,7 +7,8 @@ A study is a frozen dataclass; :func:`paper_l36` is the paper's Table 2 / Table 
     design = "L9"             # any orthogonal array, "full", "lhs" or "sobol"
     samples = 32              # lhs / sobol only
     seed = 1
-    params = "my_reducer.toml"   # optional; default: the built-in RV-40E
+    params = "my_reducer.toml"   # optional; default: the built-in RV-40E; or a built-in
+                                 # set's name ("cycloid-drive")
     engine = "quasi-static"   # optional; default "dynamic" (rvsim.doe.engines)
     hysteresis = true         # quasi-static only: add the torque-reversal test
     [set]                     # fixed values for every run (user units)
@@ -34,7 +35,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import InputFileError, ParameterError
-from ..parameters import (RV40E, TABLE2_FACTORS, Reducer, load_toml, resolve_name,
+from ..parameters import (BUILT_IN_SETS, RV40E, TABLE2_FACTORS, Reducer, load_toml, resolve_name,
                           with_values)
 from . import designs
 
@@ -188,7 +189,11 @@ def load_study(path: str | Path) -> Study:
         raise InputFileError(f"{path}: unknown key(s) {', '.join(sorted(extra))}")
     base = RV40E
     if "params" in data:
-        base = load_toml((path.parent / _string(data, "params", path)).resolve())
+        params = _string(data, "params", path)
+        file = (path.parent / params).resolve()
+        # a built-in set's name when no file of that name exists
+        base = (BUILT_IN_SETS[params] if params in BUILT_IN_SETS and not file.exists()
+                else load_toml(file))
     design = _string(data, "design", path, "L36")
     sampling = design in ("lhs", "sobol")
     raw_factors = data.get("factors")

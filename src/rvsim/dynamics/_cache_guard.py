@@ -1,8 +1,9 @@
 """Keep numba's on-disk cache of the kernel consistent with the modules compiled into it.
 
 numba invalidates a cached function when its own source file changes, not when a module it
-imports does.  The kernel compiles in the index constants of ``_layout`` and the curve and gap
-functions of ``geometry._curve``; this guard stores a fingerprint of those files beside the
+imports does.  The kernel compiles in the index constants of ``_layout``, the curve and gap
+functions of ``geometry._curve``, the contact law (``_contact_law``) and the single-stage
+elements (``_single_stage``); this guard stores a fingerprint of those files beside the
 cache and deletes the kernel's cache files when the fingerprint changes.  A module that compiles
 the kernel's functions into its own (the quasi-static solver) calls the guard with its own file:
 its fingerprint covers the kernel's dependencies and that file.
@@ -24,7 +25,8 @@ __all__ = ["invalidate_stale_cache", "kernel_cache_folder", "DEPENDENCIES", "STA
 _HERE = Path(__file__).parent
 _KERNEL = _HERE / "_kernel.py"
 #: every source file compiled into the kernel's cached machine code
-DEPENDENCIES = (_HERE / "_layout.py", _HERE.parent / "geometry" / "_curve.py", _KERNEL)
+DEPENDENCIES = (_HERE / "_layout.py", _HERE.parent / "geometry" / "_curve.py",
+                _HERE / "_contact_law.py", _HERE / "_single_stage.py", _KERNEL)
 STAMP_NAME = "rvsim_kernel_dependencies.sha256"
 
 

@@ -14,26 +14,29 @@ import numpy as np
 
 from ._cache_guard import invalidate_stale_cache
 
-# numba's on-disk cache is keyed on this file only; the index constants of _layout and the
-# curve functions of geometry._curve are compiled in, so clear the cache when those change
+# numba's on-disk cache is keyed on this file only; the index constants of _layout, the curve
+# functions of geometry._curve, the contact law and the single-stage elements are compiled in,
+# so clear the cache when those change (_cache_guard.DEPENDENCIES)
 invalidate_stale_cache()
 
 from ..geometry._curve import pin_gap, profile_axes
+from ._contact_law import EXPONENT, add_rank_one, contact, spring_force  # noqa: F401
+from ._single_stage import input_shaft, output_pin
 from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
-                      CONTACT_RATIO, CRANK0, CRANK_STRIDE, DISC0, DISC_STRIDE, DT, E_DISSIPATED,
+                      CONTACT_RATIO, CRANK0, CRANK_COUNT, CRANK_STRIDE, DISC0, DISC_COUNT,
+                      DISC_STRIDE, DT, E_DISSIPATED,
                       E_INPUT, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
-                      MINV_UU, MU, N_DOF, PEN_LIMIT, PIN_C, PIN_CB, PIN_RADIUS, PROFILE_OFFSET,
+                      MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C, PIN_CB,
+                      PIN_RADIUS, PROFILE_OFFSET,
                       PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RUNOUT_X0, RUNOUT_X1, RUNOUT_Y0,
-                      RUNOUT_Y1, SIN_AW, STATUS_NONFINITE, STATUS_OK,
+                      RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
                       STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CB, SUP_CLEAR_L, SUP_CLEAR_U,
                       V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA, ZP)
 
-EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
-_INV_EXPONENT = 1.0 / EXPONENT
 MAX_SKIP = 64          # longest skip of an open pin contact [steps]
 
 
@@ -60,62 +63,6 @@ def load_torque(P, t):
     """Output load of Eqs. (20)/(21)."""
     s, _ = step_function(t, P[LOAD_T0], P[LOAD_T1])
     return P[LOAD] * s + P[FLUCT_AMP] * math.sin(2.0 * math.pi * P[FLUCT_FREQ] * t)
-
-
-@numba.njit(cache=True)
-def spring_force(delta, c, cb, guess):
-    """Force of a Palmgren contact in series with a linear compliance, for approach ``delta``.
-
-    delta = c * F**0.9 + cb * F.  ``guess`` is the force of the previous step (0 if none):
-    Newton from it converges in one or two iterations.  Returns (F, tangent stiffness
-    dF/ddelta, stored energy).
-    """
-    if cb == 0.0:
-        f = (delta / c) ** _INV_EXPONENT
-        # c f^0.9 = delta: stiffness f / (0.9 delta), energy 0.9/1.9 delta f
-        return f, f / (EXPONENT * delta), EXPONENT / (1.0 + EXPONENT) * delta * f
-    if guess > 0.0:
-        f = guess
-    else:
-        # secant compliance at the contact-only force: below the root
-        f = (delta / c) ** _INV_EXPONENT
-        f = delta / (c * f ** (EXPONENT - 1.0) + cb)
-    fe = f ** EXPONENT
-    for _ in range(20):
-        # Newton on g(F) = c F^0.9 + cb F - delta (concave, increasing)
-        step = (c * fe + cb * f - delta) / (EXPONENT * c * fe / f + cb)
-        f -= step
-        if f <= 0.0:
-            f = 1e-3 * (f + step)
-        fe = f ** EXPONENT
-        if abs(step) <= 1e-10 * f:
-            break
-    stiffness = 1.0 / (EXPONENT * c * fe / f + cb)
-    energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
-    return f, stiffness, energy
-
-
-@numba.njit(cache=True)
-def contact(delta, rate, c, cb, zeta, mass, guess):
-    """Normal force of a compliant contact with damping that vanishes at first touch.
-
-    Damping is 2 zeta sqrt(k m) at the current tangent stiffness k (zero at delta = 0); the total
-    force never pulls.  Returns (force, stored energy, dissipated power, elastic force,
-    tangent stiffness of the elastic force).
-    """
-    f, k, energy = spring_force(delta, c, cb, guess)
-    fn = f + 2.0 * zeta * math.sqrt(k * mass) * rate
-    if fn < 0.0:
-        fn = 0.0
-    return fn, energy, (fn - f) * rate, f, k
-
-
-@numba.njit(cache=True)
-def add_rank_one(K, index, g, scale):
-    """K[index, index] += scale * g g^T (``index``, ``g``: tuples of one length)."""
-    for a in range(len(index)):
-        for b in range(len(index)):
-            K[index[a], index[b]] += scale * g[a] * g[b]
 
 
 @numba.njit(cache=True)
@@ -437,29 +384,34 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     energy = 0.0
     power = 0.0
     torque_in = 0.0
-    for j in range(2):
-        force, torque, e, pw, stiffness, deflection, natural, rule = gear_mesh(
-            P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
-            mesh_hold[j, 0], mesh_hold[j, 1])
-        channel[CH_MESH_F0 + j] = force
-        mesh_state[j, 0] = stiffness
-        mesh_state[j, 1] = deflection
-        if mesh_state.shape[1] > 3:
-            mesh_state[j, 2] = natural
-            mesh_state[j, 3] = rule
-        torque_in += torque
-        energy += e
-        power += pw
+    single = P[STAGES] == 1.0
+    if single:
+        torque_in, energy, power = input_shaft(P, q, v, Q, K, theta_in, omega_in)
+    else:
+        for j in range(2):
+            force, torque, e, pw, stiffness, deflection, natural, rule = gear_mesh(
+                P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
+                mesh_hold[j, 0], mesh_hold[j, 1])
+            channel[CH_MESH_F0 + j] = force
+            mesh_state[j, 0] = stiffness
+            mesh_state[j, 1] = deflection
+            if mesh_state.shape[1] > 3:
+                mesh_state[j, 2] = natural
+                mesh_state[j, 3] = rule
+            torque_in += torque
+            energy += e
+            power += pw
+    n_discs = int(P[DISC_COUNT])
     worst = 0.0
-    for disc in range(2):
+    for disc in range(n_discs):
         e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
                                   pin_force, pin_elastic)
         energy += e
         power += pw
         if pen > worst:
             worst = pen
-    for j in range(2):
-        for disc in range(2):
+    for j in range(int(P[CRANK_COUNT])):
+        for disc in range(n_discs):
             wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
             wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
             force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, holes[j, 0], holes[j, 1], wl,
@@ -472,6 +424,12 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             channel[CH_SUP_FL0 + 2 * j + upper] = force
             energy += e
             power += pw
+    if single:
+        for disc in range(n_discs):
+            for m in range(int(P[OUT_COUNT])):
+                force, e, pw = output_pin(P, q, v, Q, K, disc, m, arm_elastic)
+                energy += e
+                power += pw
     Q[CARRIER] -= torque_load
     return energy, power, torque_in, worst
 
@@ -495,13 +453,14 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
 COUNT_ROW, COUNT_IN_WINDOW = 0, 1
 
 
-def new_state(n_pins, n_channels):
+def new_state(n_pins, n_channels, n_output_pins=0):
     """Work arrays that :func:`integrate` carries from one call to the next (all zero at t = 0):
     (pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic, mesh_state, channel,
-    counters)."""
+    counters).  ``arm_elastic`` has a column per output pin after the two crank columns."""
     pin_angle = 2.0 * np.pi * np.arange(n_pins) / n_pins
     return (pin_angle, np.zeros((2, n_pins)), np.zeros((2, n_pins), dtype=np.int64),
-            np.zeros((2, n_pins)), np.zeros((2, n_pins)), np.zeros((2, 2)), np.zeros((2, 2)),
+            np.zeros((2, n_pins)), np.zeros((2, n_pins)),
+            np.zeros((2, OUT_SLOT0 + n_output_pins)), np.zeros((2, 2)),
             np.zeros(n_channels), np.zeros(2, dtype=np.int64))
 
 

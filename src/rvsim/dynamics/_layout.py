@@ -13,6 +13,9 @@ CRANK_STRIDE = 5
 DISC0 = 11                  # disc k: DISC0 + 3 k + (x, y, theta)
 DISC_STRIDE = 3
 N_DOF = 17
+#: first column of the kernel's ``arm_elastic`` array holding output pins: arm_elastic[disc,
+#: OUT_SLOT0 + m] is output pin m's elastic force in disc ``disc`` (single-stage drive)
+OUT_SLOT0 = 2
 N_CRANKS = 2
 N_DISCS = 2
 
@@ -74,7 +77,17 @@ RUNOUT_X0      = 53
 RUNOUT_Y0      = 54
 RUNOUT_X1      = 55
 RUNOUT_Y1      = 56
-N_PARAMS = 57
+# topology (docs/model.md section 13): RV reducer or single-stage drive
+STAGES         = 57        # 2: RV reducer; 1: single-stage drive (eccentric shaft = input)
+CRANK_COUNT    = 58        # cranks that carry forces (RV: 2; single-stage: 1, on the axis)
+DISC_COUNT     = 59        # discs that carry forces (RV: 2; single-stage: 1 or 2)
+K_INPUT        = 60        # single-stage: torsional stiffness input coupling - eccentric shaft
+OUT_COUNT      = 61        # single-stage: output pins on the flange (RV: 0)
+OUT_RADIUS     = 62        # output pin centre circle radius R_w
+OUT_CLEAR      = 63        # hole radius - pin radius = design a + clearance
+OUT_C          = 64        # Palmgren coefficient of an output pin in its hole
+OUT_CB         = 65        # linear compliance in series (none so far)
+N_PARAMS = 66
 PARAM_NAMES = (
     "DT", "INPUT_SPEED", "RAMP_TIME", "LOAD", "LOAD_T0", "LOAD_T1", "FLUCT_AMP", "FLUCT_FREQ",
     "RB1", "RB2", "CENTRE_DIST", "SIN_AW", "BACKLASH", "BASE_PITCH", "CONTACT_RATIO", "K_MESH",
@@ -83,7 +96,8 @@ PARAM_NAMES = (
     "SUP_CLEAR_L", "SUP_CLEAR_U", "ZETA", "MU", "V_FRIC", "J_CARRIER", "M_DISC", "J_DISC",
     "J_CRANK", "MINV_LL", "MINV_LU", "MINV_UU", "M_NODE", "W_D1_L", "W_D1_U", "W_D2_L",
     "W_D2_U", "W_G_L", "W_G_U", "PEN_LIMIT", "STEADY_START", "RUNOUT_X0", "RUNOUT_Y0",
-    "RUNOUT_X1", "RUNOUT_Y1")
+    "RUNOUT_X1", "RUNOUT_Y1", "STAGES", "CRANK_COUNT", "DISC_COUNT", "K_INPUT", "OUT_COUNT",
+    "OUT_RADIUS", "OUT_CLEAR", "OUT_C", "OUT_CB")
 
 # ---- per-sample output channels (columns of the ``channels`` array) -------------------------
 CH_TIME        = 0

@@ -38,6 +38,8 @@ def _cylinder(radius: float, length: float, density: float) -> float:
 
 def mass_properties(r: Reducer) -> MassProperties:
     """Mass properties from the part sizes (simple solids; docs/model.md)."""
+    if r.layout.single_stage:
+        return _single_stage_masses(r)
     c, k, g = r.cycloid, r.crank, r.gears
     gear = gear_geometry(r)
     rho_disc = r.materials.cycloid_disc.density
@@ -55,33 +57,13 @@ def mass_properties(r: Reducer) -> MassProperties:
                     - c.pillar_hole_count * m_pillar * (0.5 * c.pillar_hole_radius ** 2
                                                         + a_w ** 2))
 
-    rho_crank = r.materials.crankshaft.density
+    # shaft: journal radius from the lower bushing's outer face to the gear, and the eccentrics
+    nodes, crank_mass, crank_inertia = _crank_nodes(
+        r, k.lower_support_z - 0.5 * k.support_bushing_width, k.gear_z, 2)
     span = k.upper_support_z - k.lower_support_z
     weights = lambda z: np.array([(k.upper_support_z - z) / span,  # noqa: E731
                                   (z - k.lower_support_z) / span])
-    nodes = np.zeros((2, 2))
-    # shaft: journal radius from the lower bushing's outer face to the gear, in 40 slices
-    z0 = k.lower_support_z - 0.5 * k.support_bushing_width
-    z1 = k.gear_z
-    slices = np.linspace(z0, z1, 41)
-    shaft_mass = 0.0
-    for za, zb in zip(slices[:-1], slices[1:]):
-        m = _cylinder(k.journal_radius, zb - za, rho_crank)
-        w = weights(0.5 * (za + zb))
-        nodes += m * np.outer(w, w)
-        shaft_mass += m
-    crank_inertia = 0.5 * shaft_mass * k.journal_radius ** 2
-    crank_mass = shaft_mass
     tilt = np.array([[1.0, -1.0], [-1.0, 1.0]]) / span ** 2
-    # eccentrics (the part beyond the journal), at the disc stations
-    for z in (k.disc1_z, k.disc2_z):
-        m = _cylinder(k.eccentric_radius, c.disc_width, rho_crank) - _cylinder(
-            k.journal_radius, c.disc_width, rho_crank)
-        w = weights(z)
-        nodes += m * np.outer(w, w)
-        nodes += m * (3.0 * k.eccentric_radius ** 2 + c.disc_width ** 2) / 12.0 * tilt
-        crank_inertia += m * (0.5 * k.eccentric_radius ** 2 + c.eccentricity ** 2)
-        crank_mass += m
     # planet gear: annulus from the journal to the pitch radius
     rho_gear = r.materials.planet_gear.density
     r_out = 0.5 * g.module * g.planet_teeth
@@ -98,6 +80,67 @@ def mass_properties(r: Reducer) -> MassProperties:
     carrier_inertia = 0.5 * m_carrier * c.carrier_radius ** 2
     return MassProperties(disc_mass, disc_inertia, crank_mass, crank_inertia, nodes,
                           carrier_inertia)
+
+
+def _crank_nodes(r: Reducer, z0: float, z1: float, discs: int):
+    """Node mass matrix, mass and polar inertia of a shaft of journal radius from z0 to z1
+    with ``discs`` eccentrics at the disc stations (slices lumped on the two support nodes)."""
+    c, k = r.cycloid, r.crank
+    rho = r.materials.crankshaft.density
+    span = k.upper_support_z - k.lower_support_z
+    weights = lambda z: np.array([(k.upper_support_z - z) / span,  # noqa: E731
+                                  (z - k.lower_support_z) / span])
+    nodes = np.zeros((2, 2))
+    slices = np.linspace(z0, z1, 41)
+    mass = 0.0
+    for za, zb in zip(slices[:-1], slices[1:]):
+        m = _cylinder(k.journal_radius, zb - za, rho)
+        w = weights(0.5 * (za + zb))
+        nodes += m * np.outer(w, w)
+        mass += m
+    inertia = 0.5 * mass * k.journal_radius ** 2
+    tilt = np.array([[1.0, -1.0], [-1.0, 1.0]]) / span ** 2
+    for z in (k.disc1_z, k.disc2_z)[:discs]:
+        m = _cylinder(k.eccentric_radius, c.disc_width, rho) - _cylinder(
+            k.journal_radius, c.disc_width, rho)
+        w = weights(z)
+        nodes += m * np.outer(w, w)
+        nodes += m * (3.0 * k.eccentric_radius ** 2 + c.disc_width ** 2) / 12.0 * tilt
+        inertia += m * (0.5 * k.eccentric_radius ** 2 + c.eccentricity ** 2)
+        mass += m
+    return nodes, mass, inertia
+
+
+def _single_stage_masses(r: Reducer) -> MassProperties:
+    """Single-stage drive: disc with a central eccentric bore and output-pin holes; the
+    eccentric shaft between its bearings; the output flange (docs/model.md section 13)."""
+    c, k, lay = r.cycloid, r.crank, r.layout
+    rho = r.materials.cycloid_disc.density
+    outer = c.pin_circle_radius - c.pin_radius
+    bore = k.eccentric_radius + k.arm_bushing_thickness
+    hole = lay.output_pin_radius + c.eccentricity + lay.output_pin_clearance
+    m_full = _cylinder(outer, c.disc_width, rho)
+    m_bore = _cylinder(bore, c.disc_width, rho)
+    m_hole = _cylinder(hole, c.disc_width, rho)
+    n = lay.output_pin_count
+    disc_mass = m_full - m_bore - n * m_hole
+    disc_inertia = (0.5 * m_full * outer ** 2 - 0.5 * m_bore * bore ** 2
+                    - n * m_hole * (0.5 * hole ** 2 + lay.output_pin_circle_radius ** 2))
+    z0 = k.lower_support_z - 0.5 * k.support_bushing_width
+    z1 = k.upper_support_z + 0.5 * k.support_bushing_width
+    nodes, crank_mass, crank_inertia = _crank_nodes(r, z0, z1, lay.disc_count)
+    m_flange = _cylinder(c.carrier_radius, c.carrier_thickness, r.materials.carrier.density)
+    return MassProperties(disc_mass, disc_inertia, crank_mass, crank_inertia, nodes,
+                          0.5 * m_flange * c.carrier_radius ** 2)
+
+
+def input_stiffness(r: Reducer) -> float:
+    """Single-stage drive: torsional stiffness of the eccentric shaft between the input
+    coupling and the discs, G J / L with the journal's polar moment over the bearing span
+    (assumed; docs/model.md section 13) [N*m/rad]."""
+    k, mat = r.crank, r.materials.crankshaft
+    shear = mat.elastic_modulus / (2.0 * (1.0 + mat.poisson_ratio))
+    return shear * 0.5 * math.pi * k.journal_radius ** 4 / (k.upper_support_z - k.lower_support_z)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -122,7 +165,7 @@ def _station_weights(r: Reducer, z: float) -> tuple[float, float]:
 def build_model(r: Reducer, time_step: float) -> KernelModel:
     """Constant vector, pin and hole positions and the initial (assembled) state."""
     c, k, e, cl, m = r.cycloid, r.crank, r.errors, r.clearances, r.materials
-    gear = gear_geometry(r)
+    gear = None if r.layout.single_stage else gear_geometry(r)
     masses = mass_properties(r)
     P = np.zeros(L.N_PARAMS)
     P[L.DT] = time_step
@@ -136,15 +179,16 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.FLUCT_FREQ] = op.fluctuation_frequency
     P[L.STEADY_START] = op.steady_start
 
-    P[L.RB1] = gear.sun_base_radius
-    P[L.RB2] = gear.planet_base_radius
-    P[L.CENTRE_DIST] = gear.centre_distance
-    P[L.SIN_AW] = math.sin(gear.operating_pressure_angle)
-    P[L.BACKLASH] = r.gears.backlash
-    P[L.BASE_PITCH] = gear.base_pitch
-    P[L.CONTACT_RATIO] = gear.contact_ratio
-    P[L.K_MESH] = gear.single_pair_stiffness
-    P[L.MESH_MASS] = masses.crank_inertia / gear.planet_base_radius ** 2
+    if not r.layout.single_stage:  # the single-stage drive has no involute stage
+        P[L.RB1] = gear.sun_base_radius
+        P[L.RB2] = gear.planet_base_radius
+        P[L.CENTRE_DIST] = gear.centre_distance
+        P[L.SIN_AW] = math.sin(gear.operating_pressure_angle)
+        P[L.BACKLASH] = r.gears.backlash
+        P[L.BASE_PITCH] = gear.base_pitch
+        P[L.CONTACT_RATIO] = gear.contact_ratio
+        P[L.K_MESH] = gear.single_pair_stiffness
+        P[L.MESH_MASS] = masses.crank_inertia / gear.planet_base_radius ** 2
 
     P[L.RG] = c.pin_circle_radius - e.radial_modification
     P[L.A_GEN] = c.eccentricity
@@ -203,9 +247,17 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     pins = pin_centres(r)
     P[L.RUNOUT_X0], P[L.RUNOUT_Y0] = profile_offset(r, 0)
     P[L.RUNOUT_X1], P[L.RUNOUT_Y1] = profile_offset(r, 1)
+    P[L.STAGES] = r.layout.stages
+    P[L.CRANK_COUNT] = 2
+    P[L.DISC_COUNT] = 2
+    if r.layout.single_stage:
+        _single_stage_constants(r, P)
     crank_angles = np.array([0.0, math.pi])
-    holes = gear.centre_distance * np.column_stack([np.cos(crank_angles),
-                                                    np.sin(crank_angles)])
+    if r.layout.single_stage:
+        holes = np.zeros((2, 2))  # the eccentric shaft on the axis (the second row unused)
+    else:
+        holes = gear.centre_distance * np.column_stack([np.cos(crank_angles),
+                                                        np.sin(crank_angles)])
     mesh_phase = (r.gears.sun_teeth * crank_angles / (2.0 * math.pi)) % 1.0
     q0 = np.zeros(L.N_DOF)
     for j in range(2):
@@ -216,3 +268,25 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
         q0[d] = P[L.ECC] * math.cos(kd * math.pi)
         q0[d + 1] = P[L.ECC] * math.sin(kd * math.pi)
     return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses)
+
+
+def _single_stage_constants(r: Reducer, P: np.ndarray) -> None:
+    """Constants of the single-stage drive (docs/model.md section 13): one eccentric shaft on
+    the axis, input on it (the input turns so that the output turns forwards, ratio < 0),
+    input bearings with their clearance, output pins in the discs' holes."""
+    from ..geometry.layout import output_hole_clearance
+
+    c, lay, m = r.cycloid, r.layout, r.materials
+    P[L.INPUT_SPEED] = -r.operating.input_speed
+    P[L.CRANK_COUNT] = 1
+    P[L.DISC_COUNT] = lay.disc_count
+    P[L.CENTRE_DIST] = 0.0
+    P[L.SUP_CLEAR_L] = P[L.SUP_CLEAR_U] = lay.input_bearing_clearance
+    P[L.K_INPUT] = input_stiffness(r)
+    P[L.OUT_COUNT] = lay.output_pin_count
+    P[L.OUT_RADIUS] = lay.output_pin_circle_radius
+    P[L.OUT_CLEAR] = output_hole_clearance(r)
+    # an output pin (roller) on the hole wall is a line contact like a ring pin on the profile
+    # (same law, material pair and length), not a bushing: the bushing factor leaves it alone
+    P[L.OUT_C] = palmgren_coefficient(c.disc_width, m.cycloid_disc, m.pin)
+    P[L.OUT_CB] = 0.0

@@ -86,7 +86,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     energy = np.zeros(L.N_ENERGY)
     q = model.q0.copy()
     v = np.zeros(L.N_DOF)
-    state = new_state(reducer.cycloid.pin_count, L.N_CHANNELS)
+    state = new_state(reducer.cycloid.pin_count, L.N_CHANNELS, int(model.P[L.OUT_COUNT]))
     bar = _progress_bar(duration) if progress else None
     start = _time.perf_counter()
     step = 0
@@ -188,7 +188,10 @@ def decompose_te(reducer: Reducer, **options) -> dict[str, float]:
     from ..parameters import Clearances, Errors
 
     total = simulate(reducer, **options).metrics["te_mean_arcmin"]
-    perfect = dataclasses.replace(reducer, errors=Errors(), clearances=Clearances())
+    layout = dataclasses.replace(reducer.layout, output_pin_clearance=0.0,
+                                 input_bearing_clearance=0.0)  # single-stage clearances
+    perfect = dataclasses.replace(reducer, errors=Errors(), clearances=Clearances(),
+                                  layout=layout)
     elastic = simulate(perfect, **options).metrics["te_mean_arcmin"]
     return {"te_mean_arcmin": total, "te_elastic_arcmin": elastic,
             "te_lost_motion_arcmin": total - elastic}

@@ -68,17 +68,15 @@ def _pin_overlaps(reducer: Reducer) -> list[Overlap]:
 
 
 def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
-    from .involute import gear_geometry
+    from .layout import crank_holes, disc_count
 
     cl = reducer.clearances
-    centre = gear_geometry(reducer).centre_distance
+    single = reducer.layout.single_stage
     arm_clearance = cl.crank_arm_bushing + cl.disc_arm_bushing
     eccentric = reducer.cycloid.eccentricity - reducer.errors.eccentricity
     result = []
-    for crank in range(2):
-        hole_angle = crank * math.pi
-        hole = centre * np.array([math.cos(hole_angle), math.sin(hole_angle)])
-        for disc in range(2):
+    for crank, hole in enumerate(crank_holes(reducer)):
+        for disc in range(disc_count(reducer)):
             # eccentric of crank ``crank`` for disc ``disc`` (crank centred, phase 0) ...
             phase = disc * math.pi
             pin = hole + eccentric * np.array([math.cos(phase), math.sin(phase)])
@@ -91,24 +89,45 @@ def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
                                   f"disc {disc + 1}",
                                   float(np.linalg.norm(pin - bore)) - arm_clearance))
         # the crank's support journals start on their bore centres
-        for name, clearance in (("lower (flange)", cl.crank_support_bushing + cl.support_flange),
-                                ("upper (carrier)",
-                                 cl.crank_support_bushing + cl.support_carrier)):
+        supports = ((("input shaft", reducer.layout.input_bearing_clearance),) if single else
+                    (("lower (flange)", cl.crank_support_bushing + cl.support_flange),
+                     ("upper (carrier)", cl.crank_support_bushing + cl.support_carrier)))
+        for name, clearance in supports:
             result.append(Overlap(f"crank {crank + 1} overlaps its {name} support bushing",
                                   0.0 - clearance))
+    return result
+
+
+def _output_pin_overlaps(reducer: Reducer) -> list[Overlap]:
+    """Single-stage drive: each output pin in its hole of each disc (flange at angle 0)."""
+    from .layout import disc_count, output_hole_clearance, output_pins
+
+    clearance = output_hole_clearance(reducer)
+    result = []
+    for disc in range(disc_count(reducer)):
+        x, y, angle = nominal_disc_pose(reducer, 0.0, disc)
+        cos_t, sin_t = math.cos(angle), math.sin(angle)
+        for m, pin in enumerate(output_pins(reducer)):
+            hole = np.array([x + cos_t * pin[0] - sin_t * pin[1],
+                             y + sin_t * pin[0] + cos_t * pin[1]])
+            result.append(Overlap(f"output pin {m} overlaps its hole in disc {disc + 1}",
+                                  float(np.linalg.norm(pin - hole)) - clearance))
     return result
 
 
 def _mesh_overlaps(reducer: Reducer) -> list[Overlap]:
     # input, carrier and crank phases are zero: the mesh deflection along the line of action
     # is zero, so the approach is minus half the normal backlash (kernel gear_mesh)
+    if reducer.layout.single_stage:
+        return []
     return [Overlap(f"planet {crank + 1} overlaps the sun", 0.0 - 0.5 * reducer.gears.backlash)
             for crank in range(2)]
 
 
 def assembly_overlaps(reducer: Reducer) -> list[Overlap]:
     """Approach of every pin, bushing and mesh at the assembled pose (positive = overlap)."""
-    return _pin_overlaps(reducer) + _bushing_overlaps(reducer) + _mesh_overlaps(reducer)
+    return (_pin_overlaps(reducer) + _bushing_overlaps(reducer) + _mesh_overlaps(reducer)
+            + _output_pin_overlaps(reducer))
 
 
 def _closing_parameters(reducer: Reducer) -> str:

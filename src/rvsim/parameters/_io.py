@@ -19,6 +19,7 @@ from ..errors import InputFileError, ParameterError
 from ..units import TO_SI
 from ._schema import FieldSpec, field_specs
 from ._types import Reducer
+from .cycloid_drive import CYCLOID_DRIVE
 from .rv40e import RV40E, TABLE2_FACTORS
 
 __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assignment",
@@ -28,7 +29,7 @@ __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assign
 SPECS: dict[str, FieldSpec] = {s.name: s for s in field_specs(Reducer)}
 
 #: named parameter sets shipped with rvsim
-BUILT_IN_SETS: dict[str, Reducer] = {"RV-40E": RV40E}
+BUILT_IN_SETS: dict[str, Reducer] = {"RV-40E": RV40E, "cycloid-drive": CYCLOID_DRIVE}
 
 _TRUE = {"true", "yes", "y", "1", "on"}
 _FALSE = {"false", "no", "n", "0", "off"}
@@ -204,6 +205,9 @@ def _check_consistency(r: Reducer) -> None:
     if c.pin_count != c.disc_teeth + 1:
         raise ParameterError("cycloid.pin_count", f"must equal disc_teeth + 1 = "
                              f"{c.disc_teeth + 1} for a cycloid drive (got {c.pin_count})")
+    if r.layout.stages not in (1, 2):
+        raise ParameterError("layout.stages", f"must be 2 (RV reducer) or 1 (single-stage "
+                             f"cycloid drive) (got {r.layout.stages})")
     if r.gears.planet_count != 2:
         raise ParameterError("gears.planet_count", "the dynamic model has exactly 2 crankshafts")
     if e.eccentricity >= c.eccentricity:
@@ -217,29 +221,72 @@ def _check_consistency(r: Reducer) -> None:
         raise ParameterError("operating.load_ramp_end", "must be later than load_start")
     if op.steady_start >= op.duration:
         raise ParameterError("operating.steady_start", "must be earlier than duration")
-    _check_clearances(r)
     from ..geometry.cycloid import check_profile
-    from ..geometry.involute import check_gear_stage
 
     check_profile(r)
-    check_gear_stage(r)
     hole = k.eccentric_radius + k.arm_bushing_thickness
     root = c.pin_circle_radius - c.pin_radius - c.eccentricity
-    from ..geometry.involute import gear_geometry
+    if r.layout.single_stage:
+        _check_single_stage(r, hole, root)
+    else:
+        _check_rv_layout(r, hole, root)
+    _check_clearances(r)
+    from ..geometry.assembly import check_assembly
 
+    check_assembly(r)  # every pin, bushing and mesh at the pose the dynamic model starts from
+
+
+def _check_rv_layout(r: Reducer, hole: float, root: float) -> None:
+    c = r.cycloid
+    if r.layout.disc_count != 2:
+        raise ParameterError("layout.disc_count", "the RV reducer model has 2 discs")
+    from ..geometry.involute import check_gear_stage, gear_geometry
+
+    check_gear_stage(r)
     crank_circle = gear_geometry(r).centre_distance
     if crank_circle + hole + c.eccentricity >= root:
         raise ParameterError("crank.eccentric_radius", "the crank holes cut through the disc's "
                              "tooth root (crank circle + hole radius >= root radius)")
-    from ..geometry.assembly import check_assembly
 
-    check_assembly(r)  # every pin, bushing and mesh at the pose the dynamic model starts from
+
+#: RV-only clearances that the single-stage drive replaces by layout.input_bearing_clearance
+_RV_ONLY_CLEARANCES = ("support_flange", "support_carrier", "crank_support_bushing")
+
+
+def _check_single_stage(r: Reducer, hole: float, root: float) -> None:
+    """Geometry of the single-stage drive: central eccentric bore, output-pin holes between
+    it and the tooth root, bridges between neighbouring holes (docs/model.md section 13)."""
+    c, lay = r.cycloid, r.layout
+    if lay.disc_count not in (1, 2):
+        raise ParameterError("layout.disc_count", f"must be 1 or 2 (got {lay.disc_count})")
+    for name in _RV_ONLY_CLEARANCES:
+        if getattr(r.clearances, name) != 0.0:
+            raise ParameterError(f"clearances.{name}", "does not apply to the single-stage "
+                                 "drive (use layout.input_bearing_clearance)")
+    out_hole = lay.output_pin_radius + c.eccentricity + lay.output_pin_clearance
+    if lay.output_pin_circle_radius + out_hole >= root:
+        raise ParameterError("layout.output_pin_circle_radius", "the output-pin holes cut "
+                             "through the disc's tooth root (R_w + hole radius >= root radius)")
+    if lay.output_pin_circle_radius - out_hole <= hole:
+        raise ParameterError("layout.output_pin_circle_radius", "the output-pin holes cut "
+                             "into the central eccentric bore (R_w - hole radius <= bore)")
+    pitch = 2.0 * lay.output_pin_circle_radius * math.sin(math.pi / lay.output_pin_count)
+    if pitch <= 2.0 * out_hole:
+        raise ParameterError("layout.output_pin_count", "neighbouring output-pin holes "
+                             "overlap (2 R_w sin(pi / n) <= 2 x hole radius)")
 
 
 def _check_clearances(r: Reducer) -> None:
     """The bushing clearances between a disc and the housing must stay below the cycloid tooth
     height 2a: with that much play a disc can slip over the pins (docs/parameters.md)."""
     cl = r.clearances
+    if r.layout.single_stage:
+        play = cl.crank_arm_bushing + cl.disc_arm_bushing + r.layout.input_bearing_clearance
+        if play >= 2.0 * r.cycloid.eccentricity:
+            raise ParameterError("layout.input_bearing_clearance", f"the play of a disc, K + M "
+                                 f"+ input bearing = {play * 1e3:g} mm, reaches the cycloid "
+                                 f"tooth height 2a = {2e3 * r.cycloid.eccentricity:g} mm")
+        return
     chain = {"clearances.crank_arm_bushing": cl.crank_arm_bushing,
              "clearances.disc_arm_bushing": cl.disc_arm_bushing,
              "clearances.crank_support_bushing": cl.crank_support_bushing,

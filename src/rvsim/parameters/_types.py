@@ -15,8 +15,12 @@ from ._schema import count, flag, quantity
 
 __all__ = [
     "Material", "Materials", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances",
-    "Flexibility", "Operating", "ContactModel", "Rating", "Reducer",
+    "Flexibility", "Operating", "ContactModel", "Rating", "Layout", "Reducer",
 ]
+
+#: ``layout.stages`` of the RV reducer (involute + cycloid stage) and of the single-stage drive
+RV_STAGES = 2
+SINGLE_STAGE = 1
 
 _MM = 1e-3
 _DEG = math.pi / 180.0
@@ -227,6 +231,40 @@ class Rating:
 
 
 @dataclasses.dataclass(frozen=True)
+class Layout:
+    """Topology of the drive (docs/model.md section 13, docs/decisions.md).
+
+    ``stages`` = 2: the RV reducer (involute stage, two crankshafts; the other fields here are
+    ignored).  ``stages`` = 1: the single-stage cycloid drive: the input shaft is the eccentric
+    shaft on the housing axis, the output flange carries output pins (rollers) that run in
+    holes of the discs; the involute stage (``gears.*``) and the RV's crank axial station
+    ``crank.gear_z`` are ignored, and the support clearances L, N, O are replaced by
+    ``layout.input_bearing_clearance``.
+    """
+
+    stages: int = count(2, "2: RV reducer (involute + cycloid stage); 1: single-stage "
+                        "cycloid drive with output pins", minimum=1)
+    disc_count: int = count(2, "cycloid discs (single-stage: 1, or 2 at 180 deg; the RV "
+                            "model has 2)", minimum=1)
+    output_pin_count: int = count(8, "single-stage: output pins (rollers) on the output "
+                                  "flange", minimum=3)
+    output_pin_radius: float = quantity(5.0 * _MM, "mm", "single-stage: output pin (roller) "
+                                        "outer radius r_w", positive=True)
+    output_pin_circle_radius: float = quantity(36.0 * _MM, "mm", "single-stage: output pin "
+                                               "centre circle radius R_w", positive=True)
+    output_pin_clearance: float = quantity(0.0, "mm", "single-stage: radial clearance of "
+                                           "each output pin in its disc hole (hole radius = "
+                                           "r_w + a + this)")
+    input_bearing_clearance: float = quantity(0.0, "mm", "single-stage: radial clearance of "
+                                              "the input (eccentric) shaft's two bearings "
+                                              "in the housing")
+
+    @property
+    def single_stage(self) -> bool:
+        return self.stages == SINGLE_STAGE
+
+
+@dataclasses.dataclass(frozen=True)
 class Reducer:
     """A complete RV reducer: geometry, materials, errors and operating point."""
 
@@ -242,10 +280,21 @@ class Reducer:
     operating: Operating = dataclasses.field(default_factory=Operating)
     contact: ContactModel = dataclasses.field(default_factory=ContactModel)
     rating: Rating = dataclasses.field(default_factory=Rating)
+    layout: Layout = dataclasses.field(default_factory=Layout)
 
     @property
     def ratio(self) -> float:
-        """Ideal speed ratio i = 1 + (z2/z1) * zp (fixed housing, carrier output)."""
+        """Ideal signed speed ratio input angle / output angle (fixed housing).
+
+        RV reducer: i = 1 + (z2/z1) * zp (carrier output, same sense as the input).  Single-stage
+        drive with output pins: i = -zc / (zp - zc), negative because the output turns against
+        the eccentric shaft; the transmission error theta_in / i - theta_out then has the same
+        sign convention in both (positive: the output lags behind its ideal angle in its
+        direction of motion; docs/model.md section 13).
+        """
+        if self.layout.single_stage:
+            c = self.cycloid
+            return -c.disc_teeth / (c.pin_count - c.disc_teeth)
         g = self.gears
         return 1.0 + g.planet_teeth / g.sun_teeth * self.cycloid.pin_count
 

@@ -37,7 +37,8 @@ invalidate_stale_cache(__file__)
 
 from ..dynamics._kernel import forces_at  # noqa: E402
 from ..dynamics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
-                                DISC_STRIDE, ECC, N_CHANNELS, N_DOF, PEN_LIMIT, PIN_RADIUS,
+                                DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
+                                PEN_LIMIT, PIN_RADIUS, STAGES,
                                 PROFILE_OFFSET, PROFILE_ROT, RB1, RB2, RG, ZC, ZP)
 from ..geometry._curve import curvature  # noqa: E402
 
@@ -254,10 +255,15 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
 @numba.njit(cache=True)
 def kinematic_pose(P, theta_in, holes, q):
     """The ideal (rigid, error-free) pose at input angle ``theta_in`` into ``q``; returns the
-    eccentric angle beta (docs/model.md section 1)."""
-    ratio = 1.0 + P[RB2] / P[RB1] * P[ZP]
-    theta_c = theta_in / ratio
-    beta = theta_c - P[RB1] / P[RB2] * (theta_in - theta_c)
+    eccentric angle beta (docs/model.md sections 1 and 13)."""
+    if P[STAGES] == 1.0:
+        # single-stage: the input turns the eccentric; the disc and output turn by -beta / zc
+        beta = theta_in
+        theta_c = -theta_in * (P[ZP] - P[ZC]) / P[ZC]
+    else:
+        ratio = 1.0 + P[RB2] / P[RB1] * P[ZP]
+        theta_c = theta_in / ratio
+        beta = theta_c - P[RB1] / P[RB2] * (theta_in - theta_c)
     q[CARRIER] = theta_c
     cos_c, sin_c = math.cos(theta_c), math.sin(theta_c)
     for j in range(2):
@@ -316,7 +322,7 @@ def condensed_stiffness(K, scale):
 @numba.njit(cache=True)
 def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes, crank_angles,
           mesh_phase, q_out, pin_out, stress_out, channel_out, mesh_out, stiffness_out,
-          status_out, iterations_out, torque_in_out):
+          status_out, iterations_out, torque_in_out, output_pin_out):
     """Equilibria along a path of (input angle, output torque) pairs, each started from the
     previous one (continuation); the first from ``q_start``.
 
@@ -324,7 +330,8 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     forces, maximum Hertz pressure per pin, the force channels, mesh (stiffness, deflection),
     local torsional stiffness, status, iterations and input torque.  Stops at the first point
     that fails (its status stored; the later ones keep status -1).  Returns the number of points
-    solved.
+    solved.  ``output_pin_out`` (points x 2 discs x output pins) receives the output pins'
+    forces of the single-stage drive.
     """
     n_points = theta_in.shape[0]
     zp = pins.shape[0]
@@ -333,7 +340,8 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     next_eval = np.zeros((2, zp), dtype=np.int64)
     pin_force = np.zeros((2, zp))
     pin_elastic = np.zeros((2, zp))
-    arm_elastic = np.zeros((2, 2))
+    n_out = int(P[OUT_COUNT])
+    arm_elastic = np.zeros((2, OUT_SLOT0 + n_out))
     mesh_state = np.zeros((2, 4))
     channel = np.zeros(N_CHANNELS)
     Q = np.zeros(N_DOF)
@@ -368,6 +376,9 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
         torque_in_out[k] = torque_in
         q_out[k, :] = q
         pin_out[k, :, :] = pin_force
+        for m in range(n_out):
+            output_pin_out[k, 0, m] = arm_elastic[0, OUT_SLOT0 + m]
+            output_pin_out[k, 1, m] = arm_elastic[1, OUT_SLOT0 + m]
         channel_out[k, :] = channel
         mesh_out[k, :, :] = mesh_state[:, :2]
         stiffness_out[k] = condensed_stiffness(K, scale)

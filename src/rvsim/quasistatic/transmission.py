@@ -49,6 +49,7 @@ class PathSolution:
     status: str
     wall_s: float
     force_resolution: float = 0.0  # [N] the residual tolerance: smaller forces are not resolved
+    output_pin_forces: np.ndarray = None  # (n, 2, n_w) single-stage output pins (n_w = 0: RV)
 
 
 def _finite(name: str, value: float) -> float:
@@ -79,12 +80,16 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
     P = model.P
     n, zp = len(angle), reducer.cycloid.pin_count
     scale = np.ones(L.N_DOF)
-    scale[L.CARRIER] = P[L.CENTRE_DIST]
+    # rotations times a length of their body: the crank circle and planet base radius (RV),
+    # the output pin circle and the eccentric's radius (single-stage)
+    single = reducer.layout.single_stage
+    scale[L.CARRIER] = P[L.OUT_RADIUS] if single else P[L.CENTRE_DIST]
     for j in range(2):
-        scale[L.CRANK0 + L.CRANK_STRIDE * j + 4] = P[L.RB2]
+        scale[L.CRANK0 + L.CRANK_STRIDE * j + 4] = (reducer.crank.eccentric_radius if single
+                                                    else P[L.RB2])
     for d in range(2):
         scale[L.DISC0 + L.DISC_STRIDE * d + 2] = P[L.RG]
-    tol = TOLERANCE * reducer.rating.rated_torque / P[L.CENTRE_DIST]
+    tol = TOLERANCE * reducer.rating.rated_torque / scale[L.CARRIER]
     m = reducer.materials
     hertz = np.array([effective_modulus(m.cycloid_disc, m.pin), reducer.cycloid.disc_width])
     if q_start is None:
@@ -95,7 +100,8 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
                        channels=np.zeros((n, L.N_CHANNELS)), mesh_state=np.zeros((n, 2, 2)),
                        torsional_stiffness=np.full(n, np.nan),
                        iterations=np.zeros(n, dtype=np.int64), input_torque=np.zeros(n),
-                       status_codes=np.full(n, -1, dtype=np.int64), status="ok", wall_s=0.0)
+                       status_codes=np.full(n, -1, dtype=np.int64), status="ok", wall_s=0.0,
+                       output_pin_forces=np.zeros((n, 2, int(P[L.OUT_COUNT]))))
     start = _time.perf_counter()
     q0 = np.asarray(q_start, dtype=float)
     solved = 0
@@ -106,7 +112,8 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
                        out.q[part], out.pin_forces[part], out.contact_stress[part],
                        out.channels[part], out.mesh_state[part],
                        out.torsional_stiffness[part], out.status_codes[part],
-                       out.iterations[part], out.input_torque[part])
+                       out.iterations[part], out.input_torque[part],
+                       out.output_pin_forces[part])
         solved += done
         if done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK:
             break
@@ -129,8 +136,8 @@ class LtcaResult:
     ratio: float
     pin_count: int
     disc_teeth: int
-    pin_forces: np.ndarray         # (n, 2, zp) [N]
-    contact_stress: np.ndarray     # (n, 2, zp) [Pa] maximum Hertz pressure
+    pin_forces: np.ndarray         # (n, discs, zp) [N] (discs: 2, or 1 for a one-disc drive)
+    contact_stress: np.ndarray     # (n, discs, zp) [Pa] maximum Hertz pressure
     arm_forces: np.ndarray         # (n, 2, 2) [N] (crank, disc)
     support_forces: np.ndarray     # (n, 2, 2) [N] (crank, lower/upper)
     mesh_forces: np.ndarray        # (n, 2) [N]
@@ -141,6 +148,8 @@ class LtcaResult:
     converged: np.ndarray          # (n,) bool
     iterations: np.ndarray         # (n,) Newton iterations per position
     force_resolution: float = 0.0  # [N] pin forces up to this are below the solver's tolerance
+    #: (n, discs, n_w) [N] output pins in the discs' holes (single-stage drive; n_w = 0: RV)
+    output_pin_forces: np.ndarray = None
 
     @property
     def te_relative(self) -> np.ndarray:
@@ -150,7 +159,7 @@ class LtcaResult:
 
     @property
     def pins_in_contact(self) -> np.ndarray:
-        """(n, 2) number of loaded pins of each disc: forces above the solver's force
+        """(n, discs) number of loaded pins of each disc: forces above the solver's force
         resolution (at zero torque the round-off forces of touching pins are no contact)."""
         return np.count_nonzero(self.pin_forces > self.force_resolution, axis=2)
 
@@ -188,11 +197,13 @@ class LtcaResult:
             "input_angle": self.input_angle, "output_angle": self.output_angle, "te": self.te,
             "te_arcmin": self.te / ARCMIN, "te_relative_arcmin": self.te_relative / ARCMIN,
             "torsional_stiffness": self.torsional_stiffness,
-            "pins_in_contact_disc1": self.pins_in_contact[:, 0],
-            "pins_in_contact_disc2": self.pins_in_contact[:, 1],
-            "max_pin_force": self.pin_forces.max(axis=(1, 2)),
-            "max_contact_stress": self.contact_stress.max(axis=(1, 2)),
         }
+        for d in range(self.pin_forces.shape[1]):
+            frame[f"pins_in_contact_disc{d + 1}"] = self.pins_in_contact[:, d]
+        frame["max_pin_force"] = self.pin_forces.max(axis=(1, 2))
+        frame["max_contact_stress"] = self.contact_stress.max(axis=(1, 2))
+        if self.output_pin_forces is not None and self.output_pin_forces.shape[2]:
+            frame["max_output_pin_force"] = self.output_pin_forces.max(axis=(1, 2))
         for j in range(2):
             frame[f"mesh_force_{j + 1}"] = self.mesh_forces[:, j]
             frame[f"mesh_stiffness_{j + 1}"] = self.mesh_stiffness[:, j]
@@ -235,6 +246,9 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         raise ParameterError("revolutions", f"must be positive (got {revolutions:g})")
     from ..dynamics import _layout as L
 
+    from ..geometry.layout import disc_count
+
+    discs = disc_count(reducer)
     ratio = reducer.ratio
     input_angle = np.arange(positions) * (2.0 * math.pi * ratio * revolutions / positions)
     path = solve_path(reducer, input_angle, np.full(positions, torque))
@@ -244,14 +258,15 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         input_angle=input_angle, output_angle=path.q[:, L.CARRIER].copy(),
         te=input_angle / ratio - path.q[:, L.CARRIER], torque=torque, ratio=ratio,
         pin_count=reducer.cycloid.pin_count, disc_teeth=reducer.cycloid.disc_teeth,
-        pin_forces=path.pin_forces, contact_stress=path.contact_stress,
+        pin_forces=path.pin_forces[:, :discs], contact_stress=path.contact_stress[:, :discs],
         arm_forces=ch[:, L.CH_ARM_F00:L.CH_ARM_F11 + 1].reshape(-1, 2, 2),
         support_forces=ch[:, L.CH_SUP_FL0:L.CH_SUP_FU1 + 1].reshape(-1, 2, 2),
         mesh_forces=ch[:, L.CH_MESH_F0:L.CH_MESH_F1 + 1].copy(),
         mesh_stiffness=path.mesh_state[:, :, 0].copy(),
         torsional_stiffness=path.torsional_stiffness, status=path.status, wall_s=path.wall_s,
         converged=converged, iterations=path.iterations,
-        force_resolution=path.force_resolution)
+        force_resolution=path.force_resolution,
+        output_pin_forces=path.output_pin_forces[:, :discs])
     result.te[~converged] = np.nan
     if path.status != "ok" and raise_on_failure:
         k = int(np.argmax(path.status_codes != 0))

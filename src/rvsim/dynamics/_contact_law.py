@@ -1,0 +1,76 @@
+"""Contact law shared by every force element of the kernel (numba; docs/model.md section 5).
+
+Palmgren line contact in series with a linear compliance, damping that vanishes at first touch,
+and the rank-one update of a stiffness matrix.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+
+from ._cache_guard import invalidate_stale_cache
+
+invalidate_stale_cache(__file__)
+
+__all__ = ["EXPONENT", "spring_force", "contact", "add_rank_one"]
+
+EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
+_INV_EXPONENT = 1.0 / EXPONENT
+
+
+@numba.njit(cache=True)
+def spring_force(delta, c, cb, guess):
+    """Force of a Palmgren contact in series with a linear compliance, for approach ``delta``.
+
+    delta = c * F**0.9 + cb * F.  ``guess`` is the force of the previous step (0 if none):
+    Newton from it converges in one or two iterations.  Returns (F, tangent stiffness
+    dF/ddelta, stored energy).
+    """
+    if cb == 0.0:
+        f = (delta / c) ** _INV_EXPONENT
+        # c f^0.9 = delta: stiffness f / (0.9 delta), energy 0.9/1.9 delta f
+        return f, f / (EXPONENT * delta), EXPONENT / (1.0 + EXPONENT) * delta * f
+    if guess > 0.0:
+        f = guess
+    else:
+        # secant compliance at the contact-only force: below the root
+        f = (delta / c) ** _INV_EXPONENT
+        f = delta / (c * f ** (EXPONENT - 1.0) + cb)
+    fe = f ** EXPONENT
+    for _ in range(20):
+        # Newton on g(F) = c F^0.9 + cb F - delta (concave, increasing)
+        step = (c * fe + cb * f - delta) / (EXPONENT * c * fe / f + cb)
+        f -= step
+        if f <= 0.0:
+            f = 1e-3 * (f + step)
+        fe = f ** EXPONENT
+        if abs(step) <= 1e-10 * f:
+            break
+    stiffness = 1.0 / (EXPONENT * c * fe / f + cb)
+    energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
+    return f, stiffness, energy
+
+
+@numba.njit(cache=True)
+def contact(delta, rate, c, cb, zeta, mass, guess):
+    """Normal force of a compliant contact with damping that vanishes at first touch.
+
+    Damping is 2 zeta sqrt(k m) at the current tangent stiffness k (zero at delta = 0); the total
+    force never pulls.  Returns (force, stored energy, dissipated power, elastic force,
+    tangent stiffness of the elastic force).
+    """
+    f, k, energy = spring_force(delta, c, cb, guess)
+    fn = f + 2.0 * zeta * math.sqrt(k * mass) * rate
+    if fn < 0.0:
+        fn = 0.0
+    return fn, energy, (fn - f) * rate, f, k
+
+
+@numba.njit(cache=True)
+def add_rank_one(K, index, g, scale):
+    """K[index, index] += scale * g g^T (``index``, ``g``: tuples of one length)."""
+    for a in range(len(index)):
+        for b in range(len(index)):
+            K[index[a], index[b]] += scale * g[a] * g[b]
