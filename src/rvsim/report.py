@@ -258,7 +258,7 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
                  "sun-planet mesh and load-fluctuation orders marked (the fluctuation acts only "
                  "in runs with it switched on).</p>",
                  _png(spectrum_plot(first, pin_count=int(definition.get("pin_count", 40)),
-                                    planet_teeth=int(definition.get("planet_teeth", 54)),
+                                    planet_teeth=definition.get("planet_teeth", 54),
                                     fluctuation_frequency=definition.get(
                                         "fluctuation_frequency")))]
     if "error" in analysis:

@@ -240,7 +240,8 @@ def _definition(study: Study, time_step: float, first: Reducer) -> dict:
         else study.base.name,
         "steady_start": first.operating.steady_start,   # fixed settings included
         # what the report's spectrum marks (orders of the crank rotation, the load fluctuation)
-        "pin_count": first.cycloid.pin_count, "planet_teeth": first.gears.planet_teeth,
+        "pin_count": first.cycloid.pin_count,
+        "planet_teeth": first.gears.planet_teeth if first.layout.stages == 2 else None,
         "fluctuation_frequency": first.operating.fluctuation_frequency,
         "factors": [{"label": f.label, "parameter": f.parameter, "levels": list(f.levels),
                      "low": f.low, "high": f.high} for f in study.factors],
