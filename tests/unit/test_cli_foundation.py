@@ -76,9 +76,8 @@ def test_set_values_win_over_a_paper_run():
     import argparse
 
     from rvsim.cli._common import reducer_from_args
-    from rvsim.parameters import paper_run_values
 
-    args = argparse.Namespace(params=None, assignments=["H=0.05"])
-    reducer = reducer_from_args(args, paper_run_values(2))
+    args = argparse.Namespace(params=None, assignments=["H=0.05"], paper_run=2)
+    reducer = reducer_from_args(args)
     assert reducer.errors.pin_circle_radius == pytest.approx(5e-5)       # from --set
     assert reducer.errors.equidistant_modification == pytest.approx(3.2e-5)  # from run 2

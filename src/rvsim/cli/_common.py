@@ -41,8 +41,12 @@ def add_command(sub, name: str, summary: str, description: str, examples: list[s
                           formatter_class=argparse.RawDescriptionHelpFormatter)
 
 
-def add_reducer_options(parser: argparse.ArgumentParser) -> None:
-    """--params FILE and repeated --set NAME=VALUE."""
+def add_reducer_options(parser: argparse.ArgumentParser, *, paper_run: bool = False) -> None:
+    """--params FILE, repeated --set NAME=VALUE and, with ``paper_run``, --paper-run N."""
+    if paper_run:
+        parser.add_argument("--paper-run", type=int, metavar="N",
+                            help="apply row N (1..36) of the paper's L36 scheme (Table 3 with "
+                                 "Table 2 levels); --set values override it")
     parser.add_argument("--params", metavar="FILE", type=path_text,
                         help="TOML file describing the reducer (user units, see 'rvsim "
                              "params'), or the name of a built-in set (RV-40E, cycloid-drive)")
@@ -52,10 +56,14 @@ def add_reducer_options(parser: argparse.ArgumentParser) -> None:
                              "errors.pin_circle_radius=0.02 or H=0.02 (repeatable)")
 
 
-def reducer_from_args(args: argparse.Namespace, preset: dict | None = None) -> Reducer:
+def reducer_from_args(args: argparse.Namespace) -> Reducer:
     """The reducer of --params (a TOML file, or a built-in set's name when no such file
-    exists; built-in RV-40E by default) with ``preset`` values (a paper run of the RV-40E)
-    and then the --set values applied, validated."""
+    exists; built-in RV-40E by default) with the --paper-run row (a run of the RV-40E), if
+    the command has one, and then the --set values applied (they win), validated."""
+    from ..parameters import paper_run_values
+
+    run = getattr(args, "paper_run", None)
+    preset = paper_run_values(run) if run is not None else None
     reducer = _reducer_of(args.params)
     if preset and reducer.layout.single_stage:
         raise ParameterError("paper-run", f"the paper's runs are runs of the RV-40E; "

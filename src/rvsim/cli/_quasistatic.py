@@ -12,7 +12,6 @@ import sys
 from pathlib import Path
 
 from ..errors import InputFileError, ParameterError
-from ..parameters import paper_run_values
 from ._common import (add_command, add_reducer_options, check_output_file, print_json,
                       reducer_from_args)
 
@@ -23,10 +22,6 @@ __all__ = ["register", "MIN_POSITIONS", "MAX_POSITIONS"]
 MIN_POSITIONS = 8
 MAX_POSITIONS = 100_000
 
-
-def _reducer(args: argparse.Namespace):
-    preset = paper_run_values(args.paper_run) if args.paper_run is not None else None
-    return reducer_from_args(args, preset)
 
 
 def _output_path(option: str, value: str | None, suffix: str) -> Path | None:
@@ -89,7 +84,7 @@ def _ltca(args: argparse.Namespace) -> int:
         raise ParameterError("--positions", f"must be {MIN_POSITIONS} to {MAX_POSITIONS} "
                              f"(got {args.positions})")
     report = _output_path("--report", args.report, ".html")
-    reducer = _reducer(args)
+    reducer = reducer_from_args(args)
     from ..quasistatic import ltca
 
     result, code = _solve(lambda: ltca(reducer, torque=args.torque, positions=args.positions),
@@ -122,7 +117,7 @@ def _hysteresis(args: argparse.Namespace) -> int:
         raise ParameterError("--rated-torque", f"must be positive (got {args.rated_torque:g})")
     report = _output_path("--report", args.report, ".html")
     export = _output_path("--export", args.export, ".json")
-    reducer = _reducer(args)
+    reducer = reducer_from_args(args)
     from ..quasistatic import hysteresis, ltca
 
     result, code = _solve(lambda: hysteresis(reducer, rated_torque=args.rated_torque), args,
@@ -164,9 +159,7 @@ def _hysteresis(args: argparse.Namespace) -> int:
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    add_reducer_options(p)
-    p.add_argument("--paper-run", type=int, metavar="N",
-                   help="apply row N (1..36) of the paper's L36 scheme; --set values override it")
+    add_reducer_options(p, paper_run=True)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--report", metavar="FILE.html", help="write a self-contained HTML report")
 

@@ -6,17 +6,11 @@ import argparse
 import sys
 
 from ..errors import ParameterError, SimulationError
-from ..parameters import paper_run_values
 from ._common import (add_command, add_reducer_options, check_output_file, path_text,
                       print_json, reducer_from_args)
 
 __all__ = ["register"]
 
-
-def _reducer(args: argparse.Namespace):
-    # the paper row first, --set values win over it
-    preset = paper_run_values(args.paper_run) if args.paper_run is not None else None
-    return reducer_from_args(args, preset)
 
 
 def _simulate(args: argparse.Namespace) -> int:
@@ -29,7 +23,7 @@ def _simulate(args: argparse.Namespace) -> int:
     for option, path in (("--save", args.save), ("--report", args.report)):
         if path is not None:
             check_output_file(path, option)     # before the run, not after it
-    reducer = _reducer(args)
+    reducer = reducer_from_args(args)
     try:
         # a progress bar only for a person watching (stderr is a terminal)
         result = simulate(reducer, duration=args.duration,
@@ -68,10 +62,7 @@ def register(sub) -> None:
                     ["rvsim simulate --json",
                     "rvsim simulate --paper-run 2 --save run2.npz",
                     "rvsim simulate --set E=400 --set H=0.02 --json"])
-    add_reducer_options(p)
-    p.add_argument("--paper-run", type=int, metavar="N",
-                   help="apply row N (1..36) of the paper's L36 scheme (Table 3 with Table 2 "
-                        "levels); --set values override it")
+    add_reducer_options(p, paper_run=True)
     p.add_argument("--save", metavar="FILE.npz", type=path_text,
                    help="write the time histories (numpy .npz)")
     p.add_argument("--report", metavar="FILE.html", type=path_text,
