@@ -18,7 +18,8 @@ __all__ = ["main", "build_parser"]
 
 def build_parser() -> argparse.ArgumentParser:
     parser = Parser(prog="rvsim", description="Transmission error of RV reducers: geometry, "
-                    "analytical error model, contact dynamics and designs of experiments.",
+                    "analytical error model, contact dynamics, quasi-static loaded contact analysis "
+                    "and the catalogue tests, designs of experiments.",
                     epilog=EXAMPLES + "rvsim params\n  rvsim sensitivity --json\n  "
                     "rvsim profile --out disc.dxf\n  rvsim simulate --paper-run 2 --json",
                     formatter_class=argparse.RawDescriptionHelpFormatter)

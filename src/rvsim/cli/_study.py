@@ -115,7 +115,7 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_report)
 
-    p = add_command(sub, "study", "run a design of experiments on the dynamic model",
+    p = add_command(sub, "study", "run a design of experiments (dynamic or quasi-static engine)",
                     "Run every row of a study (built in: paper-l36, the paper's "
                     "Table 2 factors on its L36 array; or a TOML study file) in parallel, "
                     "store each result as it finishes (re-running skips finished rows), "
