@@ -139,8 +139,11 @@ def test_report_command_rewrites_the_report(tmp_path, small_study, cli):
     out = tmp_path / "out"
     assert cli("study", str(small_study), "--out", str(out), "--no-report").code == 0
     assert not (out / "report.html").exists()
+    before = sorted(p.name for p in out.iterdir())
     res = cli("report", str(out), "--alpha", "0.05", "--json")
     assert res.code == 0, res.err
+    # the report reads the store without writing beside it (no -wal / -shm files)
+    assert sorted(p.name for p in out.iterdir()) == sorted(before + ["report.html"])
     assert json.loads(res.out)["report"].endswith("report.html")
     assert "alpha = 0.05" in (out / "report.html").read_text()
 
@@ -156,3 +159,15 @@ def test_sampling_study_lhs(tmp_path, cli):
     assert (results["status"] == "ok").all()
     # TE grows with both clearances: rank correlation with H + I/... is positive
     assert results["te_mean_arcmin"].corr(results["H"] * 0.68 + results["I"]) > 0.9
+
+
+def test_run_length_is_checked_before_any_run(tmp_path, cli):
+    """Regression (hostile review): a [set] duration whose histories cannot fit in memory
+    ran every row into an error, then exited 2 with a misleading line, leaving files."""
+    path = tmp_path / "long.toml"
+    path.write_text('name = "long"\ndesign = "L4"\n[set]\n"operating.duration" = 1e9\n'
+                    '[factors.H]\nparameter = "H"\nlevels = [0.0, 0.02]\n')
+    res = cli("study", str(path), "--out", str(tmp_path / "out"), "--no-progress")
+    assert res.code == 2 and len(res.err.strip().splitlines()) == 1
+    assert "'duration'" in res.err and "study run 1" in res.err
+    assert not (tmp_path / "out").exists()

@@ -193,3 +193,33 @@ def test_analyze_cli_on_the_paper_table_minus_one_run(tmp_path, cli):
     assert any("unbalanced" in note for note in out["notes"])
     text = cli("analyze", str(path), "--response", "te_arcmin")
     assert text.code == 0 and "note: unbalanced table" in text.out
+
+
+def test_analyze_leaves_failed_runs_out(tmp_path, cli):
+    """Regression (hostile review): `rvsim analyze` on a study's results.csv used the numbers
+    of runs that ended in a failure status."""
+    import json
+
+    rows = ["run,A,B,te_mean_arcmin,status"]
+    for run, (a, b, y) in enumerate([(1, 1, 1.0), (1, 2, 2.0), (2, 1, 3.0), (2, 2, 4.5),
+                                     (1, 1, 1.1), (1, 2, 2.2), (2, 1, 900.0), (2, 2, -50.0)],
+                                    start=1):
+        rows.append(f"{run},{a},{b},{y},{'energy_imbalance' if run > 6 else 'ok'}")
+    path = tmp_path / "results.csv"
+    path.write_text("\n".join(rows) + "\n")
+    res = cli("analyze", str(path), "--json")
+    assert res.code == 0, res.err
+    out = json.loads(res.out)
+    assert any("2 run(s)" in note for note in out["notes"])
+    # k of A's level 2 from the two ok rows at level 2 only: (3.0 + 4.5) / 2
+    assert out["range"]["A"]["k"][1] == pytest.approx(3.75)
+
+
+@pytest.mark.parametrize("levels", [(-1, 1), (0, 1), (1e300, 1)])
+def test_levels_must_be_positive_level_numbers(tmp_path, cli, levels):
+    """Regression (hostile review): levels -1, 0 or 1e300 gave a column k-9223372036854775808."""
+    rows = ["A,B,y"] + [f"{levels[i % 2]},{1 + i // 2 % 2},{1.0 + i}" for i in range(8)]
+    path = tmp_path / "t.csv"
+    path.write_text("\n".join(rows) + "\n")
+    res = cli("analyze", str(path), "--response", "y")
+    assert res.code == 2 and "factor column 'A'" in res.err and len(res.err.splitlines()) == 1

@@ -6,8 +6,8 @@ import pandas as pd
 
 from ..errors import InputFileError
 
-__all__ = ["check_design_table", "factor_columns", "read_table", "is_balanced",
-           "UNBALANCED_NOTE"]
+__all__ = ["check_design_table", "drop_failed_runs", "factor_columns", "read_table",
+           "is_balanced", "UNBALANCED_NOTE", "MAX_LEVEL"]
 
 #: largest response magnitude analysed: sums of squares of larger values overflow doubles
 _LARGEST_RESPONSE = 1e150
@@ -79,6 +79,19 @@ def is_balanced(data: pd.DataFrame, factors: list[str]) -> bool:
     return all(data[f].value_counts().nunique() == 1 for f in factors)
 
 
+#: largest level number a design table may use (level numbers index a factor's levels)
+MAX_LEVEL = 1000
+
+
+def drop_failed_runs(table: pd.DataFrame) -> tuple[pd.DataFrame, int]:
+    """The rows of a study's results table whose run finished ``ok`` (a table without a
+    ``status`` column is returned whole), and how many rows were left out."""
+    if "status" not in table.columns:
+        return table, 0
+    ok = table["status"].astype(str).str.strip() == "ok"
+    return table[ok].reset_index(drop=True), int((~ok).sum())
+
+
 def check_design_table(table: pd.DataFrame, response: str, factors: list[str]) -> pd.DataFrame:
     """Validate levels and response; return a clean copy (integer levels, float response).
 
@@ -117,8 +130,10 @@ def check_design_table(table: pd.DataFrame, response: str, factors: list[str]) -
         if isinstance(out[f], pd.DataFrame):
             raise InputFileError(f"factor column '{f}' appears more than once")
         levels = pd.to_numeric(out[f], errors="coerce")
-        if levels.isna().any() or (levels != levels.round()).any():
-            raise InputFileError(f"factor column '{f}': levels must be whole numbers 1, 2, 3, ...")
+        if levels.isna().any() or (levels != levels.round()).any() or (levels < 1).any() \
+                or (levels > MAX_LEVEL).any():
+            raise InputFileError(f"factor column '{f}': levels must be whole numbers 1, 2, 3, "
+                                 f"... (at most {MAX_LEVEL})")
         levels = levels.astype(int)
         if levels.nunique() < 2:
             raise InputFileError(f"factor column '{f}': needs at least two levels")

@@ -72,13 +72,17 @@ def _study(args: argparse.Namespace) -> int:
 
 def _analyze(args: argparse.Namespace) -> int:
     from ..analysis import analyze_table, anova, range_analysis
-    from ..analysis._table import read_table
+    from ..analysis._table import drop_failed_runs, read_table
 
-    table = read_table(args.table)
+    # a failed run's numbers are no response (rvsim study leaves them out the same way)
+    table, failed = drop_failed_runs(read_table(args.table))
     factors = args.factors.split(",") if args.factors else None
     pool = tuple(p for p in args.pool.split(",") if p) if args.pool else ()
     response = _response_column(table, args.response)
     result = analyze_table(table, response, factors, pool=pool, alpha=args.alpha)
+    if failed:
+        result.setdefault("notes", []).insert(0, f"{failed} run(s) whose status is not 'ok' "
+                                              "left out")
     if args.json:
         print_json(result)
         return 0

@@ -21,7 +21,9 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
     Everything is computed before the first file is written; each file is written atomically.
     """
     folder = Path(folder)
-    ok = results[results["status"] == "ok"]
+    from ..analysis._table import drop_failed_runs
+
+    ok, _ = drop_failed_runs(results)
     figure = None
     try:
         analysis = analyze_table(ok, "te_mean_arcmin", factors, alpha=alpha)

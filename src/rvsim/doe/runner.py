@@ -23,7 +23,7 @@ import pandas as pd
 
 from .._files import atomic_write_text
 from ..dynamics import DEFAULT_TIME_STEP
-from ..errors import InputFileError
+from ..errors import InputFileError, ParameterError
 from ..parameters import Reducer
 from ._workers import evaluate_task, run_workers
 from .folder import check_same_study, held_lock_fds, lock_folder
@@ -133,6 +133,14 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
     if scheduler:
         _check_scheduler(scheduler)          # before anything is written
     time_step = study.time_step or DEFAULT_TIME_STEP
+    if study.engine == "dynamic":             # run length and step, also before anything runs
+        from ..dynamics.simulate import check_run_options
+
+        for number, reducer in enumerate(reducers, start=1):
+            try:
+                check_run_options(reducer, time_step=time_step)
+            except ParameterError as exc:
+                raise ParameterError(exc.field, f"{exc.reason} (study run {number})") from None
     definition = _definition(study, time_step, reducers[0])
     # the engine is part of a run's identity: a dynamic and a quasi-static result of the same
     # reducer are different rows

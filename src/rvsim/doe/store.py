@@ -57,8 +57,10 @@ class ResultStore:
             raise InputFileError(f"{self.path}: not found")
         try:
             if readonly:
-                self._db = sqlite3.connect(f"{self.path.resolve().as_uri()}?mode=ro", uri=True,
-                                           timeout=_OPEN_TIMEOUT)
+                # immutable: a reader creates no -wal / -shm file beside the store (the WAL is
+                # checkpointed after every commit, so the main file holds every finished run)
+                self._db = sqlite3.connect(f"{self.path.resolve().as_uri()}?mode=ro&immutable=1",
+                                           uri=True, timeout=_OPEN_TIMEOUT)
             else:
                 self._db = sqlite3.connect(self.path, timeout=_OPEN_TIMEOUT)
         except sqlite3.Error as exc:

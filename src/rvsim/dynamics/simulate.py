@@ -15,7 +15,7 @@ from .model import build_model
 from .result import Result
 
 __all__ = ["simulate", "decompose_te", "DEFAULT_TIME_STEP", "DEFAULT_SAMPLE_RATE",
-           "MAX_TIME_STEP", "CHUNK_STEPS", "MAX_HISTORY_BYTES", "ENERGY_RESIDUAL_LIMIT", "SPEED_RATIO_LIMIT"]
+           "check_run_options", "MAX_TIME_STEP", "CHUNK_STEPS", "MAX_HISTORY_BYTES", "ENERGY_RESIDUAL_LIMIT", "SPEED_RATIO_LIMIT"]
 
 #: integration step [s]; docs/model.md and the convergence test justify it
 DEFAULT_TIME_STEP = 1e-5
@@ -36,8 +36,13 @@ ENERGY_RESIDUAL_LIMIT = 1e-2
 SPEED_RATIO_LIMIT = 0.05
 
 
-def _check_run_options(reducer: Reducer, duration: float, time_step: float,
-                       sample_rate: float) -> None:
+def check_run_options(reducer: Reducer, duration: float | None = None,
+                      time_step: float = DEFAULT_TIME_STEP,
+                      sample_rate: float = DEFAULT_SAMPLE_RATE) -> None:
+    """ParameterError unless :func:`simulate` can run ``reducer`` with these options (step,
+    sampling, a finite duration past the steady window whose histories fit in memory); a
+    study checks every run with it before anything is simulated."""
+    duration = float(reducer.operating.duration if duration is None else duration)
     if not 0 < time_step <= MAX_TIME_STEP:
         raise ParameterError("time_step", f"must be in (0, {MAX_TIME_STEP:g}] s (got "
                              f"{time_step:g})")
@@ -76,7 +81,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     """
     validate(reducer)
     duration = float(reducer.operating.duration if duration is None else duration)
-    _check_run_options(reducer, duration, time_step, sample_rate)
+    check_run_options(reducer, duration, time_step, sample_rate)
     model = build_model(reducer, time_step)
     n_steps = int(round(duration / time_step))
     sample_every = max(1, int(round(1.0 / (sample_rate * time_step))))
