@@ -24,9 +24,11 @@ __all__ = ["invalidate_stale_cache", "kernel_cache_folder", "DEPENDENCIES", "STA
 
 _HERE = Path(__file__).parent
 _KERNEL = _HERE / "_kernel.py"
-#: every source file compiled into the kernel's cached machine code
-DEPENDENCIES = (_HERE / "_layout.py", _HERE.parent / "geometry" / "_curve.py",
-                _HERE / "_contact_law.py", _HERE / "_single_stage.py", _KERNEL)
+#: every source file compiled into the kernel's cached machine code: the compiled curve
+#: functions and every private module of this package (the force elements, the layout; a new
+#: element module is covered without being listed)
+DEPENDENCIES = (_HERE.parent / "geometry" / "_curve.py",) + tuple(
+    sorted(p for p in _HERE.glob("_*.py") if p.name not in ("__init__.py", "_cache_guard.py")))
 STAMP_NAME = "rvsim_kernel_dependencies.sha256"
 
 

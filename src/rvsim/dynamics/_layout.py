@@ -19,6 +19,8 @@ OUT_SLOT0 = 2
 N_CRANKS = 2
 N_DISCS = 2
 
+_BEFORE_P = set(globals()) | {"_BEFORE_P"}
+
 # ---- constants vector P (model.build_model fills it; docs/model.md gives the meaning) ------
 DT             = 0
 INPUT_SPEED    = 1
@@ -87,17 +89,32 @@ OUT_RADIUS     = 62        # output pin centre circle radius R_w
 OUT_CLEAR      = 63        # hole radius - pin radius = design a + clearance
 OUT_C          = 64        # Palmgren coefficient of an output pin in its hole
 OUT_CB         = 65        # linear compliance in series (none so far)
-N_PARAMS = 66
-PARAM_NAMES = (
-    "DT", "INPUT_SPEED", "RAMP_TIME", "LOAD", "LOAD_T0", "LOAD_T1", "FLUCT_AMP", "FLUCT_FREQ",
-    "RB1", "RB2", "CENTRE_DIST", "SIN_AW", "BACKLASH", "BASE_PITCH", "CONTACT_RATIO", "K_MESH",
-    "MESH_MASS", "RG", "A_GEN", "ZP", "ZC", "PROFILE_OFFSET", "PIN_RADIUS", "ECC",
-    "PROFILE_ROT", "PIN_C", "PIN_CB", "ARM_C", "ARM_CB", "ARM_CLEAR", "SUP_C", "SUP_CB",
-    "SUP_CLEAR_L", "SUP_CLEAR_U", "ZETA", "MU", "V_FRIC", "J_CARRIER", "M_DISC", "J_DISC",
-    "J_CRANK", "MINV_LL", "MINV_LU", "MINV_UU", "M_NODE", "W_D1_L", "W_D1_U", "W_D2_L",
-    "W_D2_U", "W_G_L", "W_G_U", "PEN_LIMIT", "STEADY_START", "RUNOUT_X0", "RUNOUT_Y0",
-    "RUNOUT_X1", "RUNOUT_Y1", "STAGES", "CRANK_COUNT", "DISC_COUNT", "K_INPUT", "OUT_COUNT",
-    "OUT_RADIUS", "OUT_CLEAR", "OUT_C", "OUT_CB")
+# Index blocks reserved for work in progress, so that parallel additions merge cleanly: add
+# constants inside your block only (PARAM_NAMES is built from the names defined here).
+# ---- bearings (rolling bearings, conforming bushings): 66-85 ----------------------------
+
+
+# ---- friction and efficiency: 86-99 ------------------------------------------------------
+
+
+# ---- per-part manufacturing errors (tolerances): 100-119 ---------------------------------
+
+
+# ---- mesh, variants: 120-129 -------------------------------------------------------------
+
+
+# ---- finite-element bodies: 130-139 ------------------------------------------------------
+
+
+_P_INDEX = {name: value for name, value in dict(globals()).items()
+            if name not in _BEFORE_P and name.isupper()}
+N_PARAMS = 140
+assert len(set(_P_INDEX.values())) == len(_P_INDEX), "two constants share one slot of P"
+assert all(0 <= value < N_PARAMS for value in _P_INDEX.values()), "raise N_PARAMS"
+_NAME_OF = {value: name for name, value in _P_INDEX.items()}
+#: name of every slot of P ("" for a slot not in use)
+PARAM_NAMES = tuple(_NAME_OF.get(i, "") for i in range(N_PARAMS))
+del _BEFORE_P, _P_INDEX, _NAME_OF
 
 # ---- per-sample output channels (columns of the ``channels`` array) -------------------------
 CH_TIME        = 0
