@@ -390,6 +390,8 @@ def write_run_report(result, reducer, path: str | Path) -> Path:
     fig.tight_layout()
     single = reducer.layout.single_stage
     kind = "Single-stage cycloid drive" if single else "RV reducer"
+    if single and reducer.layout.ring_output:
+        kind += " (pin ring output)"
     body = [f"<h1>{kind} simulation: {html.escape(reducer.name)}</h1>",
             "<h2>Summary</h2>", _table(summary),
             "<h2>Input and output speed (Fig. 4)</h2>", _speed_note(result, reducer),

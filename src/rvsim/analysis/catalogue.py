@@ -332,9 +332,22 @@ def reducer_orders(reducer) -> dict[str, float]:
     Single-stage drive (output pins): the eccentric shaft is the input and turns |i| = zc
     times per output revolution (in the housing; zp = zc + 1 times relative to the output);
     the output pins pass a given disc position n_w times per eccentric turn relative to
-    the output.
+    the output.  With the pin ring as output the eccentric turns i - 1 = zc / (zp - zc) times
+    per output revolution relative to the ring.
     """
     g, c = reducer.gears, reducer.cycloid
+    if reducer.layout.single_stage and reducer.layout.ring_output:
+        # the pin ring is the output: the eccentric turns i - 1 = zc / (zp - zc) times per
+        # ring revolution relative to it; the output pins stand still
+        return {
+            "output": 1.0,
+            "disc teeth zc": float(c.disc_teeth),
+            "eccentric (rel. output)": float(reducer.ratio - 1.0),
+            "pins zp": float(c.pin_count),
+            "2 zc": 2.0 * c.disc_teeth,
+            "2 zp": 2.0 * c.pin_count,
+            "input shaft i": float(reducer.ratio),
+        }
     if reducer.layout.single_stage:
         relative = abs(reducer.ratio) + 1.0
         return {

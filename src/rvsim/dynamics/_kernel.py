@@ -21,7 +21,7 @@ invalidate_stale_cache()
 
 from ..geometry._curve import pin_gap, profile_axes
 from ._contact_law import EXPONENT, add_rank_one, contact, spring_force  # noqa: F401
-from ._single_stage import input_shaft, output_pin
+from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
@@ -32,8 +32,8 @@ from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CAR
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
                       MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C, PIN_CB,
                       PIN_RADIUS, PROFILE_OFFSET,
-                      PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RUNOUT_X0, RUNOUT_X1, RUNOUT_Y0,
-                      RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
+                      PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RING_OUTPUT, RUNOUT_X0, RUNOUT_X1,
+                      RUNOUT_Y0, RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
                       STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CB, SUP_CLEAR_L, SUP_CLEAR_U,
                       V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA, ZP)
 
@@ -403,9 +403,16 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             power += pw
     n_discs = int(P[DISC_COUNT])
     worst = 0.0
+    ring = single and P[RING_OUTPUT] == 1.0
     for disc in range(n_discs):
-        e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
-                                  pin_force, pin_elastic)
+        if ring:  # the pins turn with the output: contacts found in the ring's axes
+            qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
+            e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
+                                      step, pin_force, pin_elastic)
+            ring_forces(q, qr, Qr, Kr, Q, K, disc)
+        else:
+            e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
+                                      pin_force, pin_elastic)
         energy += e
         power += pw
         if pen > worst:

@@ -101,6 +101,8 @@ OUT_CB         = 65        # linear compliance in series (none so far)
 
 
 # ---- mesh, variants: 120-129 -------------------------------------------------------------
+RING_OUTPUT    = 120       # single-stage: 1.0 = the pin ring is the output (CARRIER turns the
+                           # ring pins), the output pins are fixed to the frame; 0.0 = pins
 
 
 # ---- finite-element bodies: 130-139 ------------------------------------------------------

@@ -1,11 +1,14 @@
 """Force elements of the single-stage cycloid drive only (numba; docs/model.md section 13):
-the input coupling on the eccentric shaft and the output pins in the discs' holes."""
+the input coupling on the eccentric shaft, the output pins in the discs' holes, and the change
+of frame that lets the kernel's pin contacts act on a turning pin ring (``layout.ring_output``).
+"""
 
 from __future__ import annotations
 
 import math
 
 import numba
+import numpy as np
 
 from ._cache_guard import invalidate_stale_cache
 
@@ -14,9 +17,10 @@ invalidate_stale_cache(__file__)
 
 from ._contact_law import add_rank_one, contact  # noqa: E402
 from ._layout import (CARRIER, CRANK0, DISC0, DISC_STRIDE, J_CRANK, K_INPUT,  # noqa: E402
-                      M_DISC, OUT_C, OUT_CB, OUT_CLEAR, OUT_COUNT, OUT_RADIUS, OUT_SLOT0, ZETA)
+                      M_DISC, N_DOF, OUT_C, OUT_CB, OUT_CLEAR, OUT_COUNT, OUT_RADIUS,
+                      OUT_SLOT0, RING_OUTPUT, ZETA)
 
-__all__ = ["input_shaft", "output_pin", "output_pin_stiffness"]
+__all__ = ["input_shaft", "output_pin", "output_pin_stiffness", "ring_frame", "ring_forces"]
 
 
 @numba.njit(cache=True)
@@ -36,13 +40,15 @@ def input_shaft(P, q, v, Q, K, theta_in, omega_in):
 
 
 @numba.njit(cache=True)
-def output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, force, dist):
+def output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, force, dist, free):
     """Stiffness matrix of an output pin contact (pin (px, py) on the flange, hole centre (lx,
-    ly) from the disc centre): k g g^T + F/dist h h^T + F n . d2r/dq2."""
+    ly) from the disc centre): k g g^T + F/dist h h^T + F n . d2r/dq2; ``free`` = 0 when the
+    flange is fixed (ring output), 1 when it is the CARRIER coordinate."""
     index = (CARRIER, d, d + 1, d + 2)
-    add_rank_one(K, index, (ny * px - nx * py, -nx, -ny, nx * ly - ny * lx), k)
-    add_rank_one(K, index, (nx * px + ny * py, ny, -nx, -nx * lx - ny * ly), force / dist)
-    K[CARRIER, CARRIER] -= force * (nx * px + ny * py)
+    add_rank_one(K, index, (free * (ny * px - nx * py), -nx, -ny, nx * ly - ny * lx), k)
+    add_rank_one(K, index, (free * (nx * px + ny * py), ny, -nx, -nx * lx - ny * ly),
+                 force / dist)
+    K[CARRIER, CARRIER] -= free * force * (nx * px + ny * py)
     K[d + 2, d + 2] += force * (nx * lx + ny * ly)
 
 
@@ -52,12 +58,16 @@ def output_pin(P, q, v, Q, K, disc, m, elastic):
     disc ``disc``: a clearance contact that closes when the pin centre is farther than
     P[OUT_CLEAR] = design a + clearance from the hole centre (docs/model.md section 13).
 
+    With the pin ring as output (P[RING_OUTPUT] = 1) the flange is fixed to the frame at angle 0
+    and takes no part in the CARRIER coordinate.
+
     ``elastic[disc, OUT_SLOT0 + m]`` carries the elastic force (Newton start; the quasi-static
     engine reads the pin forces there).  ``K`` as in :func:`arm_bushing`.  Returns (force,
     energy, dissipated power)."""
     alpha = 2.0 * math.pi * m / P[OUT_COUNT]
     x0, y0 = P[OUT_RADIUS] * math.cos(alpha), P[OUT_RADIUS] * math.sin(alpha)
-    cos_c, sin_c = math.cos(q[CARRIER]), math.sin(q[CARRIER])
+    free = 1.0 - P[RING_OUTPUT]
+    cos_c, sin_c = math.cos(free * q[CARRIER]), math.sin(free * q[CARRIER])
     px, py = cos_c * x0 - sin_c * y0, sin_c * x0 + cos_c * y0
     d = DISC0 + DISC_STRIDE * disc
     cos_t, sin_t = math.cos(q[d + 2]), math.sin(q[d + 2])
@@ -70,16 +80,79 @@ def output_pin(P, q, v, Q, K, disc, m, elastic):
         elastic[disc, slot] = 0.0
         return 0.0, 0.0, 0.0
     nx, ny = rx / dist, ry / dist
-    wc = v[CARRIER]
+    wc = free * v[CARRIER]
     rate = (nx * (-wc * py - v[d] + v[d + 2] * ly)
             + ny * (wc * px - v[d + 1] - v[d + 2] * lx))
     fn, energy, power, elastic[disc, slot], k = contact(delta, rate, P[OUT_C], P[OUT_CB],
                                                         P[ZETA], P[M_DISC], elastic[disc, slot])
     if K.shape[0] > 0:
-        output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, elastic[disc, slot], dist)
+        output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, elastic[disc, slot], dist, free)
     # -fn n on the pin (flange), +fn n on the disc at the hole
-    Q[CARRIER] += fn * (nx * py - ny * px)
+    Q[CARRIER] += free * fn * (nx * py - ny * px)
     Q[d] += fn * nx
     Q[d + 1] += fn * ny
     Q[d + 2] += fn * (ny * lx - nx * ly)
     return fn, energy, power
+
+
+@numba.njit(cache=True)
+def ring_frame(q, v, K, disc):
+    """Pin ring as output: copies of ``q`` and ``v`` with disc ``disc``'s pose and velocity
+    expressed in the axes of the ring (turned by the CARRIER coordinate theta_r), and zeroed
+    force and stiffness arrays (0 x 0 if ``K`` is), for the kernel's pin contacts, which hold
+    the pins fixed (docs/model.md section 13):
+
+        O' = R(-theta_r) O,  theta' = theta - theta_r,  v' = d/dt of those.
+    """
+    d = DISC0 + DISC_STRIDE * disc
+    c, s = math.cos(q[CARRIER]), math.sin(q[CARRIER])
+    wr = v[CARRIER]
+    qr = q.copy()
+    vr = v.copy()
+    x, y = q[d], q[d + 1]
+    qr[d], qr[d + 1] = c * x + s * y, -s * x + c * y
+    qr[d + 2] = q[d + 2] - q[CARRIER]
+    vr[d] = c * v[d] + s * v[d + 1] + wr * qr[d + 1]
+    vr[d + 1] = -s * v[d] + c * v[d + 1] - wr * qr[d]
+    vr[d + 2] = v[d + 2] - wr
+    n = N_DOF if K.shape[0] > 0 else 0
+    return qr, vr, np.zeros(N_DOF), np.zeros((n, n))
+
+
+@numba.njit(cache=True)
+def ring_forces(q, qr, Qr, Kr, Q, K, disc):
+    """Add the pin contacts' forces ``Qr`` and stiffness ``Kr``, found in the ring's axes by
+    :func:`ring_frame`, to ``Q`` and ``K`` of the fixed-frame coordinates: Q = J^T Q' and
+    K = J^T K' J - sum_k Q'_k d2q'_k/dq2, J = dq'/dq over (x, y, theta, theta_r).  The ring
+    receives minus the disc's moment of the pin forces about the axis."""
+    d = DISC0 + DISC_STRIDE * disc
+    c, s = math.cos(q[CARRIER]), math.sin(q[CARRIER])
+    xr, yr = qr[d], qr[d + 1]
+    fx, fy, ft = Qr[d], Qr[d + 1], Qr[d + 2]
+    Q[d] += c * fx - s * fy
+    Q[d + 1] += s * fx + c * fy
+    Q[d + 2] += ft
+    Q[CARRIER] += yr * fx - xr * fy - ft
+    if K.shape[0] == 0:
+        return
+    # J rows: x' = (c, s, 0, y'), y' = (-s, c, 0, -x'), theta' = (0, 0, 1, -1)
+    J = np.zeros((3, 4))
+    J[0, 0], J[0, 1], J[0, 3] = c, s, yr
+    J[1, 0], J[1, 1], J[1, 3] = -s, c, -xr
+    J[2, 2], J[2, 3] = 1.0, -1.0
+    index = (d, d + 1, d + 2, CARRIER)
+    for a in range(4):
+        for b in range(4):
+            total = 0.0
+            for i in range(3):
+                for j in range(3):
+                    total += J[i, a] * Kr[d + i, d + j] * J[j, b]
+            K[index[a], index[b]] += total
+    # curvature of the change of frame (x', y' turn with theta_r)
+    K[CARRIER, CARRIER] += fx * xr + fy * yr
+    cross_x = fx * s + fy * c
+    cross_y = -fx * c + fy * s
+    K[d, CARRIER] += cross_x
+    K[CARRIER, d] += cross_x
+    K[d + 1, CARRIER] += cross_y
+    K[CARRIER, d + 1] += cross_y

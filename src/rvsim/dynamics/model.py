@@ -129,9 +129,27 @@ def _single_stage_masses(r: Reducer) -> MassProperties:
     z0 = k.lower_support_z - 0.5 * k.support_bushing_width
     z1 = k.upper_support_z + 0.5 * k.support_bushing_width
     nodes, crank_mass, crank_inertia = _crank_nodes(r, z0, z1, lay.disc_count)
+    if lay.ring_output:
+        return MassProperties(disc_mass, disc_inertia, crank_mass, crank_inertia, nodes,
+                              ring_inertia(r))
     m_flange = _cylinder(c.carrier_radius, c.carrier_thickness, r.materials.carrier.density)
     return MassProperties(disc_mass, disc_inertia, crank_mass, crank_inertia, nodes,
                           0.5 * m_flange * c.carrier_radius ** 2)
+
+
+def ring_inertia(r: Reducer) -> float:
+    """Single-stage drive with the pin ring as output: polar inertia of the turning housing, a
+    ring from the pin circle radius out to the pin circle radius plus one pin diameter (its
+    wall; assumed, docs/model.md section 13) over the discs' width, plus the pins (solid
+    cylinders on the pin circle) [kg m^2]."""
+    c, lay, m = r.cycloid, r.layout, r.materials
+    length = lay.disc_count * c.disc_width
+    inner, outer = c.pin_circle_radius, c.pin_circle_radius + 2.0 * c.pin_radius
+    m_ring = _cylinder(outer, length, m.carrier.density) - _cylinder(inner, length,
+                                                                    m.carrier.density)
+    m_pin = _cylinder(c.pin_radius, length, m.pin.density)
+    return (0.5 * m_ring * (inner ** 2 + outer ** 2)
+            + c.pin_count * m_pin * (0.5 * c.pin_radius ** 2 + c.pin_circle_radius ** 2))
 
 
 def input_stiffness(r: Reducer) -> float:
@@ -201,7 +219,11 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
 
     P[L.PIN_C] = palmgren_coefficient(c.disc_width, m.cycloid_disc, m.pin)
     # the pin load that carries the rated torque at the largest lever arm
-    pin_load = r.rating.rated_torque / (2.0 * c.eccentricity * c.disc_teeth)
+    # (the pin ring as output carries zp / zc times the torque that the disc would carry)
+    disc_torque = r.rating.rated_torque * (c.disc_teeth / c.pin_count
+                                           if r.layout.single_stage and r.layout.ring_output
+                                           else 1.0)
+    pin_load = disc_torque / (2.0 * c.eccentricity * c.disc_teeth)
     root_radius = c.pin_circle_radius - c.pin_radius - c.eccentricity
     body = 0.0
     if r.flexibility.cycloid_disc:
@@ -272,12 +294,14 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
 
 def _single_stage_constants(r: Reducer, P: np.ndarray) -> None:
     """Constants of the single-stage drive (docs/model.md section 13): one eccentric shaft on
-    the axis, input on it (the input turns so that the output turns forwards, ratio < 0),
-    input bearings with their clearance, output pins in the discs' holes."""
+    the axis, input on it (the input turns so that the output turns forwards: ratio < 0 with
+    the output pins as output, > 0 with the pin ring), input bearings with their clearance,
+    output pins in the discs' holes (on the output flange, or fixed to the frame)."""
     from ..geometry.layout import output_hole_clearance
 
     c, lay, m = r.cycloid, r.layout, r.materials
-    P[L.INPUT_SPEED] = -r.operating.input_speed
+    P[L.INPUT_SPEED] = math.copysign(r.operating.input_speed, r.ratio)
+    P[L.RING_OUTPUT] = 1.0 if lay.ring_output else 0.0
     P[L.CRANK_COUNT] = 1
     P[L.DISC_COUNT] = lay.disc_count
     P[L.CENTRE_DIST] = 0.0

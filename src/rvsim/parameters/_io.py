@@ -240,6 +240,9 @@ def _check_rv_layout(r: Reducer, hole: float, root: float) -> None:
     c = r.cycloid
     if r.layout.disc_count != 2:
         raise ParameterError("layout.disc_count", "the RV reducer model has 2 discs")
+    if r.layout.ring_output:
+        raise ParameterError("layout.ring_output", "applies to the single-stage drive only "
+                             "(layout.stages = 1); the RV reducer's output is the carrier")
     from ..geometry.involute import check_gear_stage, gear_geometry
 
     check_gear_stage(r)

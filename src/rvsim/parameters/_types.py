@@ -239,7 +239,8 @@ class Layout:
     shaft on the housing axis, the output flange carries output pins (rollers) that run in
     holes of the discs; the involute stage (``gears.*``) and the RV's crank axial station
     ``crank.gear_z`` are ignored, and the support clearances L, N, O are replaced by
-    ``layout.input_bearing_clearance``.
+    ``layout.input_bearing_clearance``.  With ``ring_output`` the output pins are fixed to the
+    frame (the discs only wobble) and the pin ring turns as the output.
     """
 
     stages: int = count(2, "2: RV reducer (involute + cycloid stage); 1: single-stage "
@@ -258,6 +259,10 @@ class Layout:
     input_bearing_clearance: float = quantity(0.0, "mm", "single-stage: radial clearance of "
                                               "the input (eccentric) shaft's two bearings "
                                               "in the housing")
+    ring_output: bool = flag(False, "single-stage: the pin ring (housing) is the output and "
+                             "the output pins are fixed to the frame, holding the discs "
+                             "against rotation (ratio +zp / (zp - zc)); off: output through "
+                             "the pins (ratio -zc / (zp - zc))")
 
     @property
     def single_stage(self) -> bool:
@@ -288,12 +293,15 @@ class Reducer:
 
         RV reducer: i = 1 + (z2/z1) * zp (carrier output, same sense as the input).  Single-stage
         drive with output pins: i = -zc / (zp - zc), negative because the output turns against
-        the eccentric shaft; the transmission error theta_in / i - theta_out then has the same
-        sign convention in both (positive: the output lags behind its ideal angle in its
+        the eccentric shaft; with the pin ring as output (``layout.ring_output``, the output
+        pins fixed): i = +zp / (zp - zc); the transmission error theta_in / i - theta_out
+        then has the same sign convention in all (positive: the output lags behind its ideal angle in its
         direction of motion; docs/model.md section 13).
         """
         if self.layout.single_stage:
             c = self.cycloid
+            if self.layout.ring_output:
+                return c.pin_count / (c.pin_count - c.disc_teeth)
             return -c.disc_teeth / (c.pin_count - c.disc_teeth)
         g = self.gears
         return 1.0 + g.planet_teeth / g.sun_teeth * self.cycloid.pin_count

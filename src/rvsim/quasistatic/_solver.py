@@ -38,7 +38,7 @@ invalidate_stale_cache(__file__)
 from ..dynamics._kernel import forces_at  # noqa: E402
 from ..dynamics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
                                 DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
-                                PEN_LIMIT, PIN_RADIUS, STAGES,
+                                PEN_LIMIT, PIN_RADIUS, RING_OUTPUT, STAGES,
                                 PROFILE_OFFSET, PROFILE_ROT, RB1, RB2, RG, ZC, ZP)
 from ..geometry._curve import curvature  # noqa: E402
 
@@ -256,7 +256,13 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
 def kinematic_pose(P, theta_in, holes, q):
     """The ideal (rigid, error-free) pose at input angle ``theta_in`` into ``q``; returns the
     eccentric angle beta (docs/model.md sections 1 and 13)."""
-    if P[STAGES] == 1.0:
+    disc_angle = -1.0        # the discs turn with the output (RV, single-stage output pins)
+    if P[STAGES] == 1.0 and P[RING_OUTPUT] == 1.0:
+        # single-stage, pin ring output: the discs are held, the ring turns by beta (zp-zc)/zp
+        beta = theta_in
+        theta_c = theta_in * (P[ZP] - P[ZC]) / P[ZP]
+        disc_angle = 0.0
+    elif P[STAGES] == 1.0:
         # single-stage: the input turns the eccentric; the disc and output turn by -beta / zc
         beta = theta_in
         theta_c = -theta_in * (P[ZP] - P[ZC]) / P[ZC]
@@ -276,7 +282,7 @@ def kinematic_pose(P, theta_in, holes, q):
         d = DISC0 + DISC_STRIDE * disc
         q[d] = P[ECC] * math.cos(beta + disc * math.pi)
         q[d + 1] = P[ECC] * math.sin(beta + disc * math.pi)
-        q[d + 2] = theta_c
+        q[d + 2] = theta_c if disc_angle < 0.0 else disc_angle
     return beta
 
 
@@ -396,6 +402,8 @@ def _hertz(P, hertz, q, u, pin_angle, pin_force, out):
     offset = P[PROFILE_OFFSET]
     for disc in range(2):
         angle = q[DISC0 + DISC_STRIDE * disc + 2] - disc * math.pi / P[ZC] + P[PROFILE_ROT]
+        if P[STAGES] == 1.0 and P[RING_OUTPUT] == 1.0:
+            angle -= q[CARRIER]          # the disc's angle relative to the turning pin ring
         for i in range(pin_force.shape[1]):
             f = pin_force[disc, i]
             if f <= 0.0:

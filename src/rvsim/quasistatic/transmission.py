@@ -81,9 +81,11 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
     n, zp = len(angle), reducer.cycloid.pin_count
     scale = np.ones(L.N_DOF)
     # rotations times a length of their body: the crank circle and planet base radius (RV),
-    # the output pin circle and the eccentric's radius (single-stage)
+    # the output pin circle (the pin circle with the ring as output) and the eccentric's
+    # radius (single-stage)
     single = reducer.layout.single_stage
-    scale[L.CARRIER] = P[L.OUT_RADIUS] if single else P[L.CENTRE_DIST]
+    scale[L.CARRIER] = ((P[L.RG] if reducer.layout.ring_output else P[L.OUT_RADIUS]) if single
+                        else P[L.CENTRE_DIST])
     for j in range(2):
         scale[L.CRANK0 + L.CRANK_STRIDE * j + 4] = (reducer.crank.eccentric_radius if single
                                                     else P[L.RB2])
