@@ -84,19 +84,27 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
 
 @numba.njit(cache=True)
 def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank):
-    """Sun-planet mesh j: returns (force, input torque, energy, dissipated power, stiffness,
-    deflection, number of tooth pairs at the roll position, flank the rule picks).
+    """Sun-planet mesh j: returns (normal force, input torque, energy, dissipated power,
+    stiffness, deflection, number of tooth pairs at the roll position, loaded flank).
 
-    The mesh acts on one flank: the positive one if it is engaged, else the negative one (the
-    rule; 0 returned for "none").  ``pairs`` > 0 holds the number of tooth pairs in contact and
-    ``flank`` = +-1 the flank (the quasi-static solver keeps both during one equilibrium search:
-    the rectangular-wave stiffness and the rule are discontinuous in q, the rule where the crank
-    is pressed towards the sun so far that both flanks would touch); 0 takes them from the roll
-    position and the rule.
+    Both flanks are contacts of their own (docs/model.md section 3): the positive flank closes
+    when rot - radial > backlash / 2, the negative one when -rot - radial > backlash / 2, rot
+    the rotational approach along the line of action and radial the centre-distance change
+    times sin(alpha_w).  A crank pressed towards the sun by more than half the backlash touches
+    both (the tooth wedges into the gap): each carries its own force, the difference turns the
+    gears, the sum pushes the planet out.  The returned force is the sum of the two normal
+    forces, the torque on the input the difference times rb1, the deflection
+    sqrt(delta_+^2 + delta_-^2) (so that 0.5 k deflection^2 is the mesh energy, zero when
+    open), the flank +1 / -1 the one with the larger force (0: open).
+
+    ``pairs`` > 0 holds the number of tooth pairs in contact (the quasi-static solver keeps it
+    during one equilibrium search: the rectangular-wave stiffness is discontinuous in q); 0
+    takes it from the roll position.  ``flank`` is no longer used (both flanks act; kept so
+    that the callers' arrays stay as they are).
 
     ``K`` (17 x 17, or 0 x 0: not wanted) accumulates the stiffness matrix -dQ/dq of the
-    elastic force (material term k g g^T; the curvature of the line-of-centres angle is left
-    out: docs/model.md, "Quasi-static analysis")."""
+    elastic force (material term k g g^T per flank; the curvature of the line-of-centres angle
+    is left out: docs/model.md, "Quasi-static analysis")."""
     px, py, pvx, pvy = crank_point(q, v, j, P[W_G_L], P[W_G_U])
     r2 = px * px + py * py
     r = math.sqrt(r2)
@@ -118,40 +126,43 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
     frac = roll - math.floor(roll)
     natural = 2.0 if frac < P[CONTACT_RATIO] - 1.0 else 1.0
     stiffness = P[K_MESH] * (pairs if pairs > 0.0 else natural)
+    damping = 2.0 * P[ZETA] * math.sqrt(stiffness * P[MESH_MASS])
     half = 0.5 * P[BACKLASH]
-    force = 0.0
-    sign = 0.0
-    delta = 0.0
-    rate = 0.0
-    rule = 0.0
-    if rot - radial - half > 0.0:
-        rule = 1.0
-    elif -rot - radial - half > 0.0:
-        rule = -1.0
-    chosen = rule if flank == 0.0 else flank
-    if chosen > 0.0 and rot - radial - half > 0.0:
-        sign, delta, rate = 1.0, rot - radial - half, rot_rate - radial_rate
-    elif chosen < 0.0 and -rot - radial - half > 0.0:
-        sign, delta, rate = -1.0, -rot - radial - half, -rot_rate - radial_rate
+    total = 0.0
+    net = 0.0
     energy = 0.0
     power = 0.0
-    if sign != 0.0:
-        damping = 2.0 * P[ZETA] * math.sqrt(stiffness * P[MESH_MASS])
+    squares = 0.0
+    largest = 0.0
+    loaded = 0.0
+    wl, wu = P[W_G_L], P[W_G_U]
+    for side in range(2):
+        sign = 1.0 if side == 0 else -1.0
+        delta = sign * rot - radial - half
+        if delta <= 0.0:
+            continue
+        rate = sign * rot_rate - radial_rate
         force = stiffness * delta + damping * rate
         if force < 0.0:
             force = 0.0
-        energy = 0.5 * stiffness * delta * delta
-        power = (force - stiffness * delta) * rate
+        energy += 0.5 * stiffness * delta * delta
+        power += (force - stiffness * delta) * rate
+        squares += delta * delta
+        total += force
+        net += sign * force
+        if force > largest or loaded == 0.0:
+            largest = force
+            loaded = sign
         # generalised forces: Q = -F d(delta)/dq
         gx = sign * (-(rb1 + rb2) * dbeta_x) - P[SIN_AW] * dr_x
         gy = sign * (-(rb1 + rb2) * dbeta_y) - P[SIN_AW] * dr_y
-        add_crank_force(Q, j, P[W_G_L], P[W_G_U], -force * gx, -force * gy)
+        add_crank_force(Q, j, wl, wu, -force * gx, -force * gy)
         Q[b + 4] -= force * sign * rb2
         if K.shape[0] > 0:
-            wl, wu = P[W_G_L], P[W_G_U]
             add_rank_one(K, (b, b + 1, b + 2, b + 3, b + 4),
                          (wl * gx, wl * gy, wu * gx, wu * gy, sign * rb2), stiffness)
-    return force, force * sign * rb1, energy, power, stiffness, delta, natural, rule
+    return (total, net * rb1, energy, power, stiffness, math.sqrt(squares), natural,
+            loaded)
 
 
 @numba.njit(cache=True)
@@ -373,9 +384,9 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
 
     Fills the force channels and ``mesh_state`` (stiffness, deflection of each mesh); with a
     17 x 17 ``K`` (zeroed by the caller) it also accumulates the stiffness matrix -dQ/dq of the
-    elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_hold[j]`` = (pairs, flank) held for mesh
-    j (zeros: from the roll position and the flank rule, see :func:`gear_mesh`); with four
-    columns, ``mesh_state`` also receives the pairs at the roll position and the rule's flank.
+    elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_hold[j]`` = (pairs, unused) held for
+    mesh j (zero: from the roll position, see :func:`gear_mesh`); with four columns,
+    ``mesh_state`` also receives the pairs at the roll position and the loaded flank.
     Returns (potential energy, dissipated power,
     input torque, max pin penetration).
     """

@@ -81,10 +81,9 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
                 Q, K, channel, mesh_state, mesh_hold):
     """Move ``q`` to the static equilibrium at input angle ``theta_in`` under ``torque``, each
-    mesh j with ``mesh_hold[j]`` = (tooth pairs, flank) held (zeros: those of the starting
-    pose, stored into ``mesh_hold``; a mesh open there gets the flank it first engages with).
-    ``mesh_state`` has four columns (stiffness, deflection, pairs at the roll position, flank
-    of the kernel's rule).
+    mesh j with its number of tooth pairs ``mesh_hold[j, 0]`` held (zero: that of the starting
+    pose, stored into ``mesh_hold``).  ``mesh_state`` has four columns (stiffness, deflection,
+    pairs at the roll position, loaded flank).
 
     ``scale[i]`` is the length that turns coordinate i into metres (1 for translations, a
     radius for rotations).  Returns (status, iterations, input torque); on return Q, K and the
@@ -102,8 +101,6 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
     for j in range(2):
         if mesh_hold[j, 0] == 0.0:
             mesh_hold[j, 0] = mesh_state[j, 2]
-        if mesh_hold[j, 1] == 0.0:
-            mesh_hold[j, 1] = mesh_state[j, 3]
     mu = MU_MIN
     trust = TRUST_START
     for iteration in range(max_iter + 1):
@@ -171,10 +168,6 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 accepted = True
                 for i in range(n):
                     q[i] = q_trial[i]
-                for j in range(2):
-                    # a mesh open so far: hold the flank it engages with
-                    if mesh_hold[j, 1] == 0.0:
-                        mesh_hold[j, 1] = mesh_state[j, 3]
                 pi = pi_trial
                 if drop >= 0.75 * predicted and clipped:
                     trust = min(2.0 * trust, TRUST_MAX)
@@ -201,54 +194,30 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
 def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                  crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
                  Q, K, channel, mesh_state):
-    """:func:`equilibrium` with each mesh's number of tooth pairs and engaged flank held at
-    those of the starting pose (both are discontinuous in q: the rectangular-wave stiffness,
-    and the kernel's one-flank rule where the crank is pressed towards the sun so far that both
-    flanks would touch); where the equilibrium lies across a switch, solved again with the
-    count and flank found there.  Where they would flip back (the equilibrium sits on the
-    switch, where none exists for either choice), the second choice is kept.  A search that
-    fails with an unloaded mesh held on the flank it first touched while crossing a clearance
-    (no equilibrium exists on that flank under the load) is repeated once from the starting
-    pose with that flank turned over.  Returns (status, total iterations, input torque)."""
+    """:func:`equilibrium` with each mesh's number of tooth pairs held at that of the starting
+    pose (the rectangular-wave stiffness is discontinuous in q); where the equilibrium lies
+    across a switch, solved again with the count found there.  Where it would flip back (the
+    equilibrium sits on the switch, where none exists for either count), the second count is
+    kept.  Both flanks of a mesh are contacts of their own (:func:`rvsim.dynamics._kernel.
+    gear_mesh`), continuous in q: no flank is held.  Returns (status, total iterations, input
+    torque)."""
     hold = np.zeros((2, 2))          # zeros: taken from the starting pose by equilibrium()
     total = 0
     status, torque_in = STATUS_OK, 0.0
-    q_start = q.copy()
-    retried = False
-    attempt = 0
-    while attempt < 2:
+    for attempt in range(2):
         status, iterations, torque_in = equilibrium(
             P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
             mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
             mesh_state, hold)
         total += iterations
-        if status != STATUS_OK and not retried:
-            retried = True
-            turned = False
-            for j in range(2):
-                if hold[j, 1] != 0.0 and mesh_state[j, 1] <= 0.0:
-                    hold[j, 1] = -hold[j, 1]
-                    turned = True
-            if turned:
-                q[:] = q_start
-                continue
         same = True
         for j in range(2):
-            # the flank is switched only where the held one has opened (zero deflection) and
-            # the other one touches: where both touch (a crank pressed towards the sun with
-            # no backlash) the rule's preference for the positive flank is no switch, and
-            # following it would leave the loaded crank free to turn through its mesh
-            if mesh_state[j, 2] != hold[j, 0] or (mesh_state[j, 3] != 0.0
-                                                   and mesh_state[j, 3] != hold[j, 1]
-                                                   and mesh_state[j, 1] <= 0.0):
+            if mesh_state[j, 2] != hold[j, 0]:
                 same = False
         if status != STATUS_OK or same:
             break
         for j in range(2):
             hold[j, 0] = mesh_state[j, 2]
-            if mesh_state[j, 1] <= 0.0:      # a loaded flank stays held (see above)
-                hold[j, 1] = mesh_state[j, 3]
-        attempt += 1
     return status, total, torque_in
 
 
