@@ -31,8 +31,8 @@ import math
 from .parameters import Reducer
 from .units import ARCMIN, MM
 
-__all__ = ["ErrorTerm", "SensitivityTable", "PAPER_TABLE1_ERRORS", "sensitivity_table",
-           "k_n"]
+__all__ = ["ErrorTerm", "SensitivityTable", "PAPER_TABLE1_ERRORS", "TABLE1_PARAMETERS",
+           "reducer_errors", "sensitivity_table", "k_n"]
 
 #: error values of the paper's Table 1 [m], by symbol
 PAPER_TABLE1_ERRORS: dict[str, float] = {
@@ -46,6 +46,31 @@ PAPER_TABLE1_ERRORS: dict[str, float] = {
     "Delta_F_P": 0.015 * MM,
     "delta_a": 0.005 * MM,
 }
+
+#: the reducer parameter behind a Table 1 symbol (the other three rows have none)
+TABLE1_PARAMETERS: dict[str, str] = {
+    "delta_r_p": "errors.pin_circle_radius",
+    "delta_r_rp": "errors.pin_radius",
+    "Delta_r_rp": "errors.equidistant_modification",
+    "Delta_r_p": "errors.radial_modification",
+    "Delta_F_t1": "errors.disc_runout",
+    "delta_a": "errors.eccentricity",
+}
+
+
+def reducer_errors(reducer: Reducer) -> dict[str, float]:
+    """The reducer's own error values [m] for the Table 1 symbols that have a parameter, where
+    that parameter is non-zero (a zero, as in the built-in sets, keeps Table 1's value:
+    docs/analytical.md)."""
+    from .parameters import get_value
+
+    values = {}
+    for symbol, name in TABLE1_PARAMETERS.items():
+        value = get_value(reducer, name, user_units=False)
+        if value != 0.0:
+            values[symbol] = float(value)
+    return values
+
 
 _NAMES = {
     "delta_r_p": "circle center radius error of pin gear",
@@ -74,6 +99,8 @@ class ErrorTerm:
     """Eq. (15): coefficient / coefficient of delta_r_p"""
     te: float
     """the term's transmission error [rad]"""
+    source: str = "Table 1"
+    """where the error value comes from: "Table 1" or the reducer parameter"""
 
     @property
     def te_arcmin(self) -> float:
@@ -102,7 +129,8 @@ class SensitivityTable:
                 "terms": [{"symbol": t.symbol, "name": t.name, "error_mm": t.error / MM,
                            "coefficient": t.coefficient,
                            "sensitivity_index": t.sensitivity_index,
-                           "te_arcmin": t.te_arcmin} for t in self.terms],
+                           "te_arcmin": t.te_arcmin, "source": t.source}
+                          for t in self.terms],
                 "mean_te_arcmin": self.mean_te_arcmin}
 
     def to_df(self):
@@ -150,7 +178,10 @@ def sensitivity_table(reducer: Reducer, errors: dict[str, float] | None = None
         "delta_a": -kn * (c.eccentricity / MM) * c.disc_teeth,
     }
     reference = coefficients["delta_r_p"]
+    given = errors or {}
     terms = tuple(ErrorTerm(symbol, _NAMES[symbol], values[symbol], coef, coef / reference,
-                            coef * scale * values[symbol])
+                            coef * scale * values[symbol],
+                            TABLE1_PARAMETERS.get(symbol, "") if symbol in given
+                            else "Table 1")
                   for symbol, coef in coefficients.items())
     return SensitivityTable(k1, terms)

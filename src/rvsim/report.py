@@ -83,7 +83,7 @@ def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict) -
     table = results.set_index("run")[factors + ["te_mean_arcmin"]].copy()
     table = table.astype(object)
     table.index = table.index.astype(str)
-    order = analysis["order"].split(">")
+    order = analysis["order"].split(">") if analysis.get("order") else []
 
     def levels(f: str) -> list:   # analysis.json of older versions has no "levels"
         k = analysis["range"][f]["k"]
@@ -95,7 +95,7 @@ def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict) -
         extra[f"k{lv}"] = [analysis["range"][f]["k"][levels(f).index(lv)] if lv in levels(f)
                            else float("nan") for f in factors] + [""]
     extra["R"] = [analysis["range"][f]["R"] for f in factors] + [""]
-    extra["rank"] = [order.index(f) + 1 for f in factors] + [""]
+    extra["rank"] = [order.index(f) + 1 if f in order else "-" for f in factors] + [""]
     extra["optimal level"] = [analysis["optimum"][f] for f in factors] + [""]
     for name, values in extra.items():
         table.loc[name] = values
@@ -267,7 +267,9 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
         ok = results[results["status"] == "ok"]
         body += ["<h2>Results and range analysis (Table 3 layout)</h2>",
                  _table(_results_layout(ok, factors, analysis)),
-                 f"<p>Factor order by range: <b>{html.escape(analysis['order'])}</b>. "
+                 "<p>Factor order by range: <b>"
+                 + html.escape(analysis["order"] or "none (the response is constant)")
+                 + "</b>. "
                  "Optimum (smaller is better): " + html.escape(" ".join(
                      f"{f}{lvl}" for f, lvl in analysis["optimum"].items())) + "</p>"]
         anova = pd.DataFrame(analysis["anova"]).T.astype(float)   # null -> NaN

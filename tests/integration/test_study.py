@@ -46,6 +46,18 @@ def test_study_cli_writes_outputs_and_rerun_skips(tmp_path, small_study, cli):
     assert _stored(out) == first  # nothing re-evaluated
 
 
+def test_a_study_whose_runs_all_fail_exits_1_with_one_line(tmp_path, cli):
+    path = write_study(tmp_path, factors=factors(
+        S=("contact.bushing_stiffness_factor", [1e5, 1e6]), H=("H", [0.0, 0.01]),
+        E=("E", [100, 200])))
+    out = tmp_path / "out"
+    res = cli("study", str(path), "--out", str(out), "--workers", "1", "--no-report")
+    assert res.code == 1 and res.out == ""
+    assert res.err.startswith("rvsim: error: study: all 4 runs failed (run 1: ")
+    assert res.err.count("\n") == 1
+    assert len(pd.read_csv(out / "results.csv")) == 4      # the failed rows are kept
+
+
 def test_failed_row_is_stored_and_does_not_stop_the_study(tmp_path):
     path = write_study(tmp_path, factors=factors(
         S=("contact.bushing_stiffness_factor", [1.0, 1e6]), H=("H", [0.0, 0.01]),
@@ -63,6 +75,11 @@ def test_failed_row_is_stored_and_does_not_stop_the_study(tmp_path):
     ('[factors.H]\nparameter = "clearances.support_carrier"\nlevels = [0.0, -0.01]\n',
      "negative"),
     ('[factors.H]\nparameter = "H"\nlevels = [0.0]\n', "at least 2"),
+    ('[factors." "]\nparameter = "H"\nlevels = [0.0, 0.01]\n',
+     "parameter 'factors': a factor's label is blank (' ')"),
+    ('[factors.""]\nparameter = "H"\nlevels = [0.0, 0.01]\n',
+     "parameter 'factors': a factor's label is empty ('')"),
+    ('[factors." H"]\nparameter = "H"\nlevels = [0.0, 0.01]\n', "start or end with a space"),
 ])
 def test_study_input_errors_before_any_run(tmp_path, cli, factors, words):
     path = write_study(tmp_path, factors=factors)

@@ -148,6 +148,46 @@ def test_a_run_that_kills_its_worker_twice_is_stored_as_failed(tmp_path, monkeyp
     results = run(study, tmp_path / "out", workers=2, progress=False)
     assert list(results["status"]) == ["ok", "worker_died", "ok", "ok"]
     assert results.loc[1, "error"] == "worker process died twice (signal 9)"
+    # resumed without the fault: the worker_died row is run again, the others are kept
+    monkeypatch.delenv(TEST_KILL_ENV)
+    before = _rows(tmp_path / "out")
+    results = run(study, tmp_path / "out", workers=2, progress=False)
+    assert list(results["status"]) == ["ok", "ok", "ok", "ok"]
+    after = _rows(tmp_path / "out")
+    assert {k: v for k, v in after.items() if k != doomed} == \
+        {k: v for k, v in before.items() if k != doomed}
+
+
+def test_a_worker_that_cannot_be_started_is_one_line_and_keeps_finished_runs(
+        tmp_path, monkeypatch, capsys):
+    """The first worker starts (a real process); every later fork fails as under a process
+    limit: the study stops with one line and exit 1, the runs that finished are stored."""
+    import multiprocessing.process
+
+    real_start = multiprocessing.process.BaseProcess.start
+    started = []
+
+    def start(self):
+        if started:
+            raise BlockingIOError(11, "Resource temporarily unavailable")
+        started.append(self)
+        return real_start(self)
+
+    monkeypatch.setattr(multiprocessing.process.BaseProcess, "start", start)
+    study = load_study(write_study(tmp_path))
+    doomed = run_key(study.reducers()[1], study.time_step or DEFAULT_TIME_STEP)
+    monkeypatch.setenv(TEST_KILL_ENV, doomed[:16])   # run 2 kills the one worker
+    from rvsim.cli import main
+
+    code = main(["study", str(tmp_path / "study.toml"), "--out", str(tmp_path / "out"),
+                 "--workers", "1", "--no-progress"])
+    assert code == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("rvsim: error: study: cannot start a worker "
+                                               "process (BlockingIOError: ")
+    assert "3 run(s) not evaluated; finished runs are kept in" in err[0]
+    rows = _rows(tmp_path / "out")
+    assert list(rows.values()) == ["ok"]          # run 1 finished before the worker died
 
 
 def test_a_folder_of_another_study_is_refused(tmp_path, small_study, cli):

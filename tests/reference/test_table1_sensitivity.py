@@ -61,3 +61,29 @@ def test_row_9_is_computed_from_the_printed_formula():
     kn = 0.016 / (1.5 ** 2 * 39) - (39 / (1.5 * 82 ** 2 * root) + root / (1.5 ** 2 * 39)) * 0.026
     assert term.coefficient == pytest.approx(-kn * 1.5 * 39)
     assert term.coefficient != pytest.approx(TABLE1.iloc[8].coefficient, abs=1e-5)
+
+
+def test_sensitivity_command_takes_the_reducers_error_values(cli):
+    """`rvsim sensitivity --set H=... --set I=...` uses those values for their rows (Table 1's
+    for the rest, and for every row without --set)."""
+    import json
+
+    from rvsim.analytical import PAPER_TABLE1_ERRORS
+
+    res = cli("sensitivity", "--json")
+    assert res.code == 0
+    rows = {r["symbol"]: r for r in json.loads(res.out)["terms"]}
+    assert all(r["source"] == "Table 1" for r in rows.values())
+    assert rows["delta_r_p"]["error_mm"] == pytest.approx(PAPER_TABLE1_ERRORS["delta_r_p"] * 1e3)
+    res = cli("sensitivity", "--set", "H=0.01", "--set", "I=0.032", "--json")
+    assert res.code == 0
+    rows = {r["symbol"]: r for r in json.loads(res.out)["terms"]}
+    assert rows["delta_r_p"]["error_mm"] == pytest.approx(0.01)
+    assert rows["delta_r_p"]["source"] == "errors.pin_circle_radius"
+    assert rows["Delta_r_rp"]["error_mm"] == pytest.approx(0.032)
+    assert rows["Delta_r_rp"]["source"] == "errors.equidistant_modification"
+    assert rows["delta_r_rp"]["source"] == "Table 1"
+    # the term is the coefficient times 2 / (a zc) times the value given
+    term = _terms()["delta_r_p"]
+    assert rows["delta_r_p"]["te_arcmin"] == pytest.approx(term.te_arcmin * 0.01 / 0.025,
+                                                           rel=1e-12)

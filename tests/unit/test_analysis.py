@@ -149,6 +149,18 @@ def test_no_significance_from_round_off(table3, scale):
     assert out["significant"] == []
     assert any("round-off" in note for note in out["notes"])
     assert all(np.isnan(out["anova"][f]["f"]) for f in "ABCDEFGHIJKLMNO")
+    assert out["order"] is None and out["constant_response"] is True
+
+
+def test_analyze_says_a_constant_response_has_no_factor_order(table3, tmp_path, capsys):
+    from rvsim.cli import main
+
+    path = tmp_path / "flat.csv"
+    table3.assign(te_arcmin=2.5).to_csv(path, index=False)
+    assert main(["analyze", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "order: none: the response 'te_arcmin' is constant" in out
+    assert "order: A" not in out and ">" not in out.split("order:")[1].splitlines()[0]
 
 
 def test_a_factor_without_effect_is_not_significant_in_an_exact_fit():

@@ -19,7 +19,8 @@ __all__ = ["RangeAnalysis", "range_analysis", "AnovaTable", "anova", "predict_op
 
 def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
                   alpha: float = 0.1) -> dict:
-    """Everything ``rvsim analyze --json`` prints, as one dict."""
+    """Everything ``rvsim analyze --json`` prints, as one dict (``order`` is None, and
+    ``constant_response`` true, when the response is constant to round-off)."""
     from .anova import anova, predict_optimum, sn_response_table
     from .range_analysis import range_analysis
 
@@ -30,6 +31,12 @@ def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
     out["significant"] = table_anova.significant(alpha)
     out["alpha"] = alpha
     out["prediction"] = predict_optimum(table, table_anova, response, alpha=alpha)
+    from .anova import CONSTANT_NOTE
+
+    if CONSTANT_NOTE in table_anova.notes:
+        # the ranges are round-off: no order of the factors (docs/decisions.md)
+        out["order"] = None
+        out["constant_response"] = True
     notes = list(dict.fromkeys(list(ra.notes) + list(table_anova.notes)))
     if notes:
         out["notes"] = notes

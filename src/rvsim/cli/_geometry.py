@@ -62,18 +62,19 @@ def _profile(args: argparse.Namespace) -> int:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
-    from ..analytical import sensitivity_table
+    from ..analytical import reducer_errors, sensitivity_table
 
-    table = sensitivity_table(reducer_from_args(args))
+    reducer = reducer_from_args(args)
+    table = sensitivity_table(reducer, reducer_errors(reducer))
     if args.json:
         print_json(table.to_dict())
         return 0
     print(f"K1 = {table.curtate_ratio:.4f}")
     print(f"{'symbol':<14}{'error [mm]':>11}{'coefficient':>13}{'sensitivity':>13}"
-          f"{'TE [arcmin]':>13}  error")
+          f"{'TE [arcmin]':>13}  {'value from':<33}error")
     for t in table.terms:
         print(f"{t.symbol:<14}{t.error * 1e3:>11.4f}{t.coefficient:>13.5g}"
-              f"{t.sensitivity_index:>13.5g}{t.te_arcmin:>13.4f}  {t.name}")
+              f"{t.sensitivity_index:>13.5g}{t.te_arcmin:>13.4f}  {t.source:<33}{t.name}")
     print(f"mean TE, Eq. (11): {table.mean_te_arcmin:.4f} arcmin")
     return 0
 
@@ -107,9 +108,12 @@ def register(sub) -> None:
 
     p = add_command(sub, "sensitivity", "the paper's analytical error model (Table 1)",
                     "Error terms of Eqs. (2)-(10), their sensitivity indices "
-                    "(Eq. 15) and the mean transmission error of Eq. (11), with the error "
-                    "values of the paper's Table 1.",
+                    "(Eq. 15) and the mean transmission error of Eq. (11).  Each error "
+                    "value is the reducer's own where its parameter is set (non-zero: H, F, "
+                    "I, J, errors.disc_runout, G), else the paper's Table 1 value; the "
+                    "'value from' column says which.",
                     ["rvsim sensitivity",
+                    "rvsim sensitivity --set H=0.01 --set I=0.032",
                     "rvsim sensitivity --json"])
     add_reducer_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")

@@ -45,6 +45,7 @@ def _study(args: argparse.Namespace) -> int:
 
             write_study_report(folder, study=study)
 
+    from ..doe._workers import WorkerStartError
     from ..doe.runner import StudyTerminated
 
     try:
@@ -57,15 +58,28 @@ def _study(args: argparse.Namespace) -> int:
     except KeyboardInterrupt:
         print(f"rvsim: interrupted; finished runs are kept in {folder}", file=sys.stderr)
         return 130
+    except WorkerStartError as exc:
+        print(f"rvsim: error: {exc}; finished runs are kept in {folder}", file=sys.stderr)
+        return 1
     analysis = summary["analysis"]
     failed = int((results["status"] != "ok").sum())
+    if len(results) and failed == len(results):
+        # nothing to analyse: a failure of the study, not a result (exit 1, one line)
+        first = results.iloc[0]
+        reason = f"{first['status']}" + (f": {first['error']}" if first["error"] else "")
+        print(f"rvsim: error: study: all {len(results)} runs failed (run {int(first['run'])}: "
+              f"{reason.splitlines()[0][:300]}); their rows are in {folder}/results.csv",
+              file=sys.stderr)
+        return 1
     if args.json:
         print_json({"folder": str(folder), "runs": int(len(results)), "failed": failed,
                     "analysis": analysis})
     else:
         print(f"{study.name}: {len(results)} runs, {failed} failed -> {folder}/results.csv, "
               f"analysis.json" + ("" if args.no_report else ", report.html"))
-        if "order" in analysis:
+        if analysis.get("constant_response"):
+            print("factor order by range: none (the response is constant)")
+        elif "order" in analysis:
             print(f"factor order by range: {analysis['order']}")
     return 0
 
@@ -88,7 +102,11 @@ def _analyze(args: argparse.Namespace) -> int:
         return 0
     ra = range_analysis(table, response, factors)
     print(ra.to_df().round(4).to_string())
-    print(f"\norder: {result['order']}")
+    if result.get("constant_response"):
+        print(f"\norder: none: the response '{response}' is constant (to round-off), so the "
+              "factors cannot be ranked")
+    else:
+        print(f"\norder: {result['order']}")
     print("\nANOVA (main effects)")
     print(anova(table, response, factors, pool=pool).to_df().round(4).to_string())
     print(f"\nsignificant at alpha = {args.alpha}: {', '.join(result['significant']) or 'none'}")

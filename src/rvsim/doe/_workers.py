@@ -18,12 +18,19 @@ import sys
 from multiprocessing.connection import wait
 from typing import Callable
 
-__all__ = ["run_workers", "evaluate_task", "TEST_KILL_ENV", "MAX_ATTEMPTS"]
+from ..errors import RvsimError
+
+__all__ = ["run_workers", "evaluate_task", "TEST_KILL_ENV", "MAX_ATTEMPTS", "WorkerStartError"]
 
 #: test-only hook: a worker given a run whose key starts with this value SIGKILLs itself
 TEST_KILL_ENV = "RVSIM_TEST_KILL_RUN"
 #: worker deaths a run may cause before it is stored as failed
 MAX_ATTEMPTS = 2
+
+
+class WorkerStartError(RvsimError):
+    """No worker process could be started (fork / spawn failed: process or memory limit) while
+    runs were still waiting; the finished ones are stored."""
 
 
 def evaluate_task(key: str, reducer, time_step: float, engine: str = "dynamic",
@@ -112,6 +119,23 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
     queue = collections.deque(tasks)
     attempts: collections.Counter = collections.Counter()
     pool: list[_Worker] = []
+    start_failure: list[str] = []
+
+    def spawn() -> _Worker | None:
+        """A new worker, or None when the system refuses one (the study carries on with the
+        workers it has; with none left, :class:`WorkerStartError`)."""
+        try:
+            worker = _Worker(context, fds)
+        except OSError as exc:
+            start_failure.append(f"{type(exc).__name__}: {exc}")
+            return None
+        pool.append(worker)
+        return worker
+
+    def give_up_if_stuck() -> None:
+        if queue and not any(w.task is not None for w in pool) and start_failure:
+            raise WorkerStartError(f"study: cannot start a worker process ({start_failure[-1]})"
+                                   f"; {len(queue)} run(s) not evaluated")
 
     def dispatch(worker: _Worker) -> None:
         while queue:
@@ -139,15 +163,19 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
             else:
                 queue.appendleft(held)
         if queue:
-            fresh = _Worker(context, fds)
-            pool.append(fresh)
-            dispatch(fresh)
+            fresh = spawn()
+            if fresh is not None:
+                dispatch(fresh)
+            else:
+                give_up_if_stuck()
 
     try:
         for _ in range(min(workers, len(queue))):
-            pool.append(_Worker(context, fds))
+            if spawn() is None:
+                break
         for worker in list(pool):
             dispatch(worker)
+        give_up_if_stuck()
         while busy := [w for w in pool if w.task is not None]:
             ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy]))
             for worker in busy:
@@ -162,6 +190,7 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
                     dispatch(worker)
                 elif worker.process.sentinel in ready:
                     replace(worker, worker.task)
+        give_up_if_stuck()
     finally:
         for worker in pool:
             worker.stop()

@@ -156,7 +156,10 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
             check_same_study(folder, definition, bool(done))
             atomic_write_text(folder / "study.json", json.dumps(definition, indent=2,
                                                                 default=str))
-            todo = {k: r for k, r in zip(keys, reducers) if k not in done}
+            # a run whose worker died (killed from outside, out of memory) is a fault of the
+            # process, not a result: a resumed study runs it again (docs/decisions.md)
+            todo = {k: r for k, r in zip(keys, reducers)
+                    if k not in done or done[k]["status"] == RETRIED_ON_RESUME}
             bar = _progress(len(set(keys)), len(set(keys)) - len(todo), progress)
             with bar:
                 def store_result(key: str, outcome: dict) -> None:
@@ -174,6 +177,10 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
         if finish is not None:
             finish(results)
     return results
+
+
+#: stored status that a resumed study evaluates again
+RETRIED_ON_RESUME = "worker_died"
 
 
 def _run_local(todo: dict, options: tuple, workers: int | None, store_result) -> None:

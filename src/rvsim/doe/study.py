@@ -82,7 +82,14 @@ class Study:
         seen_labels: set[str] = set()
         by_parameter: dict[str, str] = {}
         for f in self.factors:
-            if not f.label or f.label.lower() in RESULT_COLUMNS or \
+            if not f.label.strip():
+                kind = "blank" if f.label else "empty"
+                raise ParameterError("factors", f"a factor's label is {kind} ({f.label!r}): "
+                                     "give it a name, e.g. [factors.H]")
+            if f.label != f.label.strip() or "," in f.label:
+                raise ParameterError(f"factors.{f.label}", "a label must not start or end with "
+                                     "a space or contain a comma (it is a column name)")
+            if f.label.lower() in RESULT_COLUMNS or \
                     f.label.lower().startswith("te_"):
                 raise ParameterError(f"factors.{f.label}", "this label is a column of "
                                      "results.csv (run, status, key, te_..., ...): choose "
