@@ -295,8 +295,8 @@ class Reducer:
         drive with output pins: i = -zc / (zp - zc), negative because the output turns against
         the eccentric shaft; with the pin ring as output (``layout.ring_output``, the output
         pins fixed): i = +zp / (zp - zc); the transmission error theta_in / i - theta_out
-        then has the same sign convention in all (positive: the output lags behind its ideal angle in its
-        direction of motion; docs/model.md section 13).
+        then has the same sign convention in all (positive: the output lags behind its ideal
+        angle in its direction of motion; docs/model.md section 13).
         """
         if self.layout.single_stage:
             c = self.cycloid
