@@ -63,9 +63,11 @@ ROUNDOFF_FACTOR = 1e3
 @numba.njit(cache=True)
 def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
               next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
-              mesh_hold):
+              mesh_hold, f_ext):
     """Residual Q, stiffness K and potential energy Pi at q (every pin evaluated); returns
-    (Pi, the size of its terms, input torque, max pin penetration)."""
+    (Pi, the size of its terms, input torque, max pin penetration).  ``f_ext`` is a constant
+    generalised force added to Q (the friction forces held during one search), its potential
+    -f_ext . q added to Pi."""
     K[:, :] = 0.0
     next_eval[:, :] = 0
     energy, _, torque_in, worst = forces_at(
@@ -73,13 +75,17 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
         next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
         mesh_hold)
     work = torque * q[CARRIER]
-    return energy + work, abs(energy) + abs(work), torque_in, worst
+    held = 0.0
+    for i in range(N_DOF):
+        Q[i] += f_ext[i]
+        held -= f_ext[i] * q[i]
+    return energy + work + held, abs(energy) + abs(work) + abs(held), torque_in, worst
 
 
 @numba.njit(cache=True)
 def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
-                Q, K, channel, mesh_state, mesh_hold):
+                Q, K, channel, mesh_state, mesh_hold, f_ext):
     """Move ``q`` to the static equilibrium at input angle ``theta_in`` under ``torque``, each
     mesh j with ``mesh_hold[j]`` = (tooth pairs, flank) held (zeros: those of the starting
     pose, stored into ``mesh_hold``; a mesh open there gets the flank it first engages with).
@@ -87,7 +93,8 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
     of the kernel's rule).
 
     ``scale[i]`` is the length that turns coordinate i into metres (1 for translations, a
-    radius for rotations).  Returns (status, iterations, input torque); on return Q, K and the
+    radius for rotations).  ``f_ext``: a constant generalised force (held friction, see
+    :func:`_evaluate`).  Returns (status, iterations, input torque); on return Q, K and the
     work arrays hold the state at q.
     """
     n = N_DOF
@@ -98,7 +105,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
     pi, size, torque_in, worst = _evaluate(P, q, theta_in, torque, pins, pin_angle, holes,
                                            crank_angles, mesh_phase, u, next_eval, pin_force,
                                            pin_elastic, arm_elastic, Q, K, channel,
-                                           mesh_state, v, mesh_hold)
+                                           mesh_state, v, mesh_hold, f_ext)
     for j in range(2):
         if mesh_hold[j, 0] == 0.0:
             mesh_hold[j, 0] = mesh_state[j, 2]
@@ -158,7 +165,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             pi_trial, size, torque_in, worst = _evaluate(
                 P, q_trial, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                 u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
-                mesh_hold)
+                mesh_hold, f_ext)
             drop = pi - pi_trial
             # below round-off of Pi's terms the energy cannot rank the points: the residual does
             flat = abs(drop) <= 1e-12 * size + 1e-18
@@ -186,7 +193,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 pi, size, torque_in, worst = _evaluate(
                     P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                     u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-                    mesh_state, v, mesh_hold)
+                    mesh_state, v, mesh_hold, f_ext)
                 if trust < 1e-16 or mu > 1e16:
                     # no step left above the round-off of the positions (1e-16 m): converged
                     # as far as double precision goes if the residual is near tol (very stiff
@@ -200,7 +207,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
 @numba.njit(cache=True)
 def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                  crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
-                 Q, K, channel, mesh_state):
+                 Q, K, channel, mesh_state, f_ext):
     """:func:`equilibrium` with each mesh's number of tooth pairs and engaged flank held at
     those of the starting pose (both are discontinuous in q: the rectangular-wave stiffness,
     and the kernel's one-flank rule where the crank is pressed towards the sun so far that both
@@ -220,7 +227,7 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
         status, iterations, torque_in = equilibrium(
             P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
             mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-            mesh_state, hold)
+            mesh_state, hold, f_ext)
         total += iterations
         if status != STATUS_OK and not retried:
             retried = True
@@ -320,9 +327,111 @@ def condensed_stiffness(K, scale):
 
 
 @numba.njit(cache=True)
+def virtual_velocity(P, q, theta_in, omega, carrier_rate, K, scale, holes, out):
+    """The direction of travel as a velocity field: ``omega`` [rad/s] times the kinematic
+    motion per input radian (the ideal pose's derivative) plus ``carrier_rate`` [rad/s] times
+    the elastic motion per output radian with the input held (the tangent K^-1 e_c, scaled to
+    a unit carrier rotation; K from the last search)."""
+    for i in range(N_DOF):
+        out[i] = 0.0
+    if omega != 0.0:
+        h = 1e-6
+        ahead = np.empty(N_DOF)
+        behind = np.empty(N_DOF)
+        kinematic_pose(P, theta_in + h, holes, ahead)
+        kinematic_pose(P, theta_in - h, holes, behind)
+        for i in range(N_DOF):
+            out[i] += omega * (ahead[i] - behind[i]) / (2.0 * h)
+    if carrier_rate != 0.0:
+        A = np.empty((N_DOF, N_DOF))
+        for i in range(N_DOF):
+            for j in range(N_DOF):
+                A[i, j] = K[i, j] / (scale[i] * scale[j])
+            A[i, i] += MU_MIN
+        e = np.zeros(N_DOF)
+        e[CARRIER] = 1.0
+        x = np.linalg.solve(A, e)
+        for i in range(N_DOF):
+            out[i] += carrier_rate * (x[i] / scale[i]) / (x[CARRIER] / scale[CARRIER])
+
+
+@numba.njit(cache=True)
+def friction_forces(P_fric, q, v, theta_in, omega, torque, pins, pin_angle, holes,
+                    crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic,
+                    arm_elastic, channel, mesh_state, mesh_hold, out):
+    """Generalised friction forces at q for the virtual velocity ``v`` (input speed ``omega``)
+    into ``out``: the kernel's forces at (q, v) minus those at (q, 0), with ``P_fric`` (damping
+    off, friction velocity of the quasi-static engine).  Returns the input torque at (q, v)
+    (the elastic mesh torque plus the mesh friction's)."""
+    K0 = np.zeros((0, 0))
+    Q0 = np.empty(N_DOF)
+    still = np.zeros(N_DOF)
+    next_eval[:, :] = 0
+    forces_at(P_fric, q, still, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles,
+              mesh_phase, u, next_eval, 1, pin_force, pin_elastic, arm_elastic, Q0, K0,
+              channel, mesh_state, mesh_hold)
+    next_eval[:, :] = 0
+    _, _, torque_in, _ = forces_at(P_fric, q, v, theta_in, omega, torque, pins, pin_angle,
+                                   holes, crank_angles, mesh_phase, u, next_eval, 1, pin_force,
+                                   pin_elastic, arm_elastic, out, K0, channel, mesh_state,
+                                   mesh_hold)
+    for i in range(N_DOF):
+        out[i] -= Q0[i]
+    return torque_in
+
+
+#: most friction updates per position (each a search with the friction forces held)
+FRICTION_ITERATIONS = 30
+
+
+@numba.njit(cache=True)
+def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, scale, tol,
+                         max_iter, pins, pin_angle, holes, crank_angles, mesh_phase, u,
+                         next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
+                         mesh_state, f_ext):
+    """Equilibrium with friction that follows the direction of travel: searches with the
+    friction forces ``f_ext`` held (from the previous position first), each followed by the
+    friction at the new pose, until they change by less than ``tol`` (fixed point; friction
+    coefficients well below 1 make it contract).  Returns (status, iterations, input torque
+    with the mesh friction); ``f_ext`` holds the friction forces of the equilibrium."""
+    v = np.empty(N_DOF)
+    f_new = np.empty(N_DOF)
+    hold = np.zeros((2, 2))
+    total = 0
+    torque_in = 0.0
+    for _ in range(FRICTION_ITERATIONS):
+        status, iterations, torque_in = _solve_point(
+            P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
+            mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
+            mesh_state, f_ext)
+        total += iterations
+        if status != STATUS_OK:
+            return status, total, torque_in
+        virtual_velocity(P, q, theta_in, omega, carrier_rate, K, scale, holes, v)
+        for j in range(2):
+            hold[j, 0] = mesh_state[j, 2]
+            hold[j, 1] = mesh_state[j, 3] if mesh_state[j, 1] > 0.0 else 0.0
+        torque_in = friction_forces(P_fric, q, v, theta_in, omega, torque, pins, pin_angle,
+                                    holes, crank_angles, mesh_phase, u, next_eval, pin_force,
+                                    pin_elastic, arm_elastic, channel, mesh_state, hold, f_new)
+        change = 0.0
+        for i in range(N_DOF):
+            change = max(change, abs(f_new[i] - f_ext[i]) / scale[i])
+            f_ext[i] = f_new[i]
+        if change <= tol:
+            # the pose and the work arrays of the last search: residual Q + f_ext
+            _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
+                         crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic,
+                         arm_elastic, Q, K, channel, mesh_state, f_ext)
+            return STATUS_OK, total, torque_in
+    return STATUS_NOT_CONVERGED, total, torque_in
+
+
+@numba.njit(cache=True)
 def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes, crank_angles,
           mesh_phase, q_out, pin_out, stress_out, channel_out, mesh_out, stiffness_out,
-          status_out, iterations_out, torque_in_out, output_pin_out):
+          status_out, iterations_out, torque_in_out, output_pin_out, P_fric, omega,
+          carrier_rate, friction_out):
     """Equilibria along a path of (input angle, output torque) pairs, each started from the
     previous one (continuation); the first from ``q_start``.
 
@@ -332,6 +441,11 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     that fails (its status stored; the later ones keep status -1).  Returns the number of points
     solved.  ``output_pin_out`` (points x 2 discs x output pins) receives the output pins'
     forces of the single-stage drive.
+
+    ``P_fric`` (None: frictionless) evaluates the friction at each point's virtual velocity
+    (:func:`virtual_velocity` with ``omega[k]``, ``carrier_rate[k]``); the friction forces of
+    each equilibrium go to ``friction_out`` (points x 17) and the input torque includes the
+    mesh friction.
     """
     n_points = theta_in.shape[0]
     zp = pins.shape[0]
@@ -348,6 +462,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     K = np.zeros((N_DOF, N_DOF))
     A = np.empty((N_DOF, N_DOF))
     q = q_start.copy()
+    f_ext = np.zeros(N_DOF)
     for k in range(n_points):
         status_out[k] = -1
     for k in range(n_points):
@@ -367,10 +482,17 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
                 factor = 1.0 if largest <= TRUST_START else TRUST_START / largest
                 for i in range(N_DOF):
                     q[i] += factor * dx[i] / scale[i]
-        status, iterations, torque_in = _solve_point(
-            P, q, theta_in[k], torque[k], scale, tol, max_iter, pins, pin_angle, holes,
-            crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K,
-            channel, mesh_state)
+        if P_fric is None:
+            status, iterations, torque_in = _solve_point(
+                P, q, theta_in[k], torque[k], scale, tol, max_iter, pins, pin_angle, holes,
+                crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q,
+                K, channel, mesh_state, f_ext)
+        else:
+            status, iterations, torque_in = _solve_with_friction(
+                P, P_fric, q, theta_in[k], torque[k], omega[k], carrier_rate[k], scale, tol,
+                max_iter, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval,
+                pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, f_ext)
+            friction_out[k, :] = f_ext
         status_out[k] = status
         iterations_out[k] = iterations
         torque_in_out[k] = torque_in
