@@ -356,20 +356,14 @@ def virtual_velocity(P, q, theta_in, omega, carrier_rate, K, scale, holes, out):
 
 
 @numba.njit(cache=True)
-def friction_forces(P_fric, q, v, theta_in, omega, torque, pins, pin_angle, holes,
+def friction_forces(P_fric, q, v, Q0, theta_in, omega, torque, pins, pin_angle, holes,
                     crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic,
                     arm_elastic, channel, mesh_state, mesh_hold, out):
     """Generalised friction forces at q for the virtual velocity ``v`` (input speed ``omega``)
-    into ``out``: the kernel's forces at (q, v) minus those at (q, 0), with ``P_fric`` (damping
-    off, friction velocity of the quasi-static engine).  Returns the input torque at (q, v)
-    (the elastic mesh torque plus the mesh friction's)."""
+    into ``out``: the kernel's forces at (q, v) minus ``Q0``, those at (q, 0), with ``P_fric``
+    (damping off, friction velocity of the quasi-static engine).  Returns the input torque at
+    (q, v) (the elastic mesh torque plus the mesh friction's)."""
     K0 = np.zeros((0, 0))
-    Q0 = np.empty(N_DOF)
-    still = np.zeros(N_DOF)
-    next_eval[:, :] = 0
-    forces_at(P_fric, q, still, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles,
-              mesh_phase, u, next_eval, 1, pin_force, pin_elastic, arm_elastic, Q0, K0,
-              channel, mesh_state, mesh_hold)
     next_eval[:, :] = 0
     _, _, torque_in, _ = forces_at(P_fric, q, v, theta_in, omega, torque, pins, pin_angle,
                                    holes, crank_angles, mesh_phase, u, next_eval, 1, pin_force,
@@ -396,6 +390,7 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
     with the mesh friction); ``f_ext`` holds the friction forces of the equilibrium."""
     v = np.empty(N_DOF)
     f_new = np.empty(N_DOF)
+    Q0 = np.empty(N_DOF)
     hold = np.zeros((2, 2))
     total = 0
     torque_in = 0.0
@@ -411,18 +406,21 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
         for j in range(2):
             hold[j, 0] = mesh_state[j, 2]
             hold[j, 1] = mesh_state[j, 3] if mesh_state[j, 1] > 0.0 else 0.0
-        torque_in = friction_forces(P_fric, q, v, theta_in, omega, torque, pins, pin_angle,
-                                    holes, crank_angles, mesh_phase, u, next_eval, pin_force,
-                                    pin_elastic, arm_elastic, channel, mesh_state, hold, f_new)
+        for i in range(N_DOF):
+            Q0[i] = Q[i] - f_ext[i]         # the search's residual holds f_ext
+        torque_in = friction_forces(P_fric, q, v, Q0, theta_in, omega, torque, pins,
+                                    pin_angle, holes, crank_angles, mesh_phase, u, next_eval,
+                                    pin_force, pin_elastic, arm_elastic, channel, mesh_state,
+                                    hold, f_new)
         change = 0.0
         for i in range(N_DOF):
             change = max(change, abs(f_new[i] - f_ext[i]) / scale[i])
             f_ext[i] = f_new[i]
         if change <= tol:
-            # the pose and the work arrays of the last search: residual Q + f_ext
-            _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
-                         crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic,
-                         arm_elastic, Q, K, channel, mesh_state, f_ext)
+            # q is the equilibrium to the tolerance; K, the forces and the channels are those
+            # of q (friction changes no normal force); Q is its residual with the new friction
+            for i in range(N_DOF):
+                Q[i] = Q0[i] + f_ext[i]
             return STATUS_OK, total, torque_in
     return STATUS_NOT_CONVERGED, total, torque_in
 
@@ -463,6 +461,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     A = np.empty((N_DOF, N_DOF))
     q = q_start.copy()
     f_ext = np.zeros(N_DOF)
+    f_last = np.zeros(N_DOF)
     for k in range(n_points):
         status_out[k] = -1
     for k in range(n_points):
@@ -488,6 +487,16 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q,
                 K, channel, mesh_state, f_ext)
         else:
+            if k > 1:
+                # friction of the previous point extrapolated along the path; turned over
+                # where the direction of travel turns
+                same = omega[k] * omega[k - 1] + carrier_rate[k] * carrier_rate[k - 1]
+                for i in range(N_DOF):
+                    held = f_ext[i]
+                    f_ext[i] = 2.0 * held - f_last[i] if same > 0.0 else -held
+                    f_last[i] = held
+            else:
+                f_last[:] = f_ext
             status, iterations, torque_in = _solve_with_friction(
                 P, P_fric, q, theta_in[k], torque[k], omega[k], carrier_rate[k], scale, tol,
                 max_iter, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval,
