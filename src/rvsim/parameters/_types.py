@@ -279,9 +279,9 @@ class Friction:
                                               "pins_turn)", maximum=0.1)
     mesh_coefficient: float = quantity(0.0, "-", "mean Coulomb friction coefficient of the "
                                        "sun-planet tooth flanks", maximum=1.0)
-    oil_viscosity: float = quantity(100e-6, "mm^2/s", "kinematic viscosity of the lubricant "
-                                    "(grease: its base oil) at operating temperature",
-                                    positive=True)
+    oil_viscosity: float = quantity(100.0 * (_MM * _MM), "mm^2/s", "kinematic viscosity of "
+                                    "the lubricant (grease: its base oil) at operating "
+                                    "temperature", positive=True)
     arm_bearing_f0: float = quantity(0.0, "-", "Palmgren f0 (speed-dependent, viscous torque) "
                                      "of each turning-arm bearing (eccentric in its disc hole)")
     arm_bearing_f1: float = quantity(0.0, "-", "Palmgren f1 (load-dependent torque) of each "
