@@ -32,7 +32,7 @@ TYPICAL_FRICTION: dict[str, float | bool] = {
 TYPICAL_FRICTION_SOURCES: dict[str, str] = {
     "contact.friction_coefficient": "lubricated hardened steel in boundary/mixed lubrication "
     "0.03-0.1; cycloid-drive efficiency models use 0.03-0.1 (Gorla et al. 2008; Mihailidis et "
-    "al. 2014; Sensinger 2010)",
+    "al. 2014; Sensinger 2013)",
     "friction.pin_groove_coefficient": "as the pin-disc pair (steel pin in a greased steel "
     "groove, sliding)",
     "friction.pin_rolling_coefficient": "rolling resistance of hardened steel on steel "
