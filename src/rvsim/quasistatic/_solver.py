@@ -386,7 +386,8 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
     """Equilibrium with friction that follows the direction of travel: searches with the
     friction forces ``f_ext`` held (from the previous position first), each followed by the
     friction at the new pose, until they change by less than ``tol`` (fixed point; friction
-    coefficients well below 1 make it contract).  Returns (status, iterations, input torque
+    coefficients well below 1 make it contract).  The direction of travel (the virtual
+    velocity) is taken once, at the pose of the first search.  Returns (status, iterations, input torque
     with the mesh friction); ``f_ext`` holds the friction forces of the equilibrium."""
     v = np.empty(N_DOF)
     f_new = np.empty(N_DOF)
@@ -394,7 +395,7 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
     hold = np.zeros((2, 2))
     total = 0
     torque_in = 0.0
-    for _ in range(FRICTION_ITERATIONS):
+    for update in range(FRICTION_ITERATIONS):
         status, iterations, torque_in = _solve_point(
             P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
             mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
@@ -402,7 +403,11 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
         total += iterations
         if status != STATUS_OK:
             return status, total, torque_in
-        virtual_velocity(P, q, theta_in, omega, carrier_rate, K, scale, holes, v)
+        if update == 0:
+            # the direction of travel of this point, held while the friction settles (a
+            # direction taken afresh at each update can turn a tiny relative motion over
+            # and back, and the Coulomb forces with it: no fixed point)
+            virtual_velocity(P, q, theta_in, omega, carrier_rate, K, scale, holes, v)
         for j in range(2):
             hold[j, 0] = mesh_state[j, 2]
             hold[j, 1] = mesh_state[j, 3] if mesh_state[j, 1] > 0.0 else 0.0
