@@ -132,3 +132,23 @@ def test_each_friction_source_alone_converges_through_zero_torque(source):
     result = hysteresis(reducer, points_per_branch=10)
     assert result.status == "ok" and result.converged.all()
     assert result.summary()["torsional_rigidity_nm_per_arcmin"] > 0
+
+
+def test_te_depends_on_the_direction_of_travel_only_with_friction():
+    angles = np.linspace(0.0, 2.0, 9)
+    load = np.full(len(angles), 300.0)
+    speed = RV40E.operating.input_speed
+
+    def te(reducer, sign):
+        path = solve_path(reducer, angles[::sign], load, input_speed=sign * speed)
+        assert path.status == "ok"
+        return (angles[::sign] / reducer.ratio - path.q[:, 0])[::sign]
+
+    plain = te(RV40E, 1)
+    # without friction both ways reach the same equilibria, to the solver's tolerance
+    assert np.abs(plain - te(RV40E, -1)).max() < 1e-10         # measured 6.4e-12 rad
+    rough = with_values(RV40E, TYPICAL_FRICTION)
+    forwards, backwards = te(rough, 1), te(rough, -1)
+    # forwards the friction adds to the load the drive winds up against (>= 6.0e-6 rad
+    # measured), backwards, with the load helping the motion, it takes away (>= 5.0e-6 rad)
+    assert np.all(forwards - plain > 3e-6) and np.all(plain - backwards > 3e-6)
