@@ -28,6 +28,11 @@ def test_zero_friction_says_so(cli):
     res = cli("efficiency", "--speeds", "1000", "--torques", "412")
     assert res.code == 0, res.err
     assert "no friction" in res.err and "efficiency" in res.out
+    res = cli("efficiency", "--speeds", "1000,2000", "--torques", "412", "--json")
+    data = json.loads(res.out)
+    assert [p["efficiency"] for p in data["efficiency"]] == [1.0, 1.0]
+    assert data["no_load_running_torque_nm"] == 0.0 and data["starting_torque_nm"] == 0.0
+    assert data["friction"] is False and "no friction" in data["note"]
 
 
 @pytest.mark.parametrize("args, field", [

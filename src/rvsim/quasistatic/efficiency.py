@@ -150,8 +150,14 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
         no_load[i] = float(np.mean(_mean_input_torque(reducer, speed, 0.0, angles)))
     starting = float(np.max(np.abs(_mean_input_torque(reducer, STARTING_SPEED_RPM * RPM, 0.0,
                                                       angles))))
+    friction = has_friction(reducer)
+    if not friction:
+        # exactly 1 and 0 by construction: what the sweeps left is the solver's round-off
+        eff[:] = 1.0
+        no_load[:] = 0.0
+        starting = 0.0
     return EfficiencyResult(input_speed=speeds, output_torque=loads, efficiency=eff,
                             input_torque=t_in, no_load_running_torque=no_load,
                             starting_torque=starting, ratio=ratio, positions=positions,
-                            friction=has_friction(reducer), status="ok",
+                            friction=friction, status="ok",
                             wall_s=_time.perf_counter() - start)
