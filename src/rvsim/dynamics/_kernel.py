@@ -231,6 +231,8 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         if want:
             add_rank_one(K, (d, d + 1, d + 2), (gx, gy, lever), k)
         if P[MU] > 0.0:
+            # Coulomb friction, P[MU] the effective coefficient (fixed pins sliding on the
+            # disc, or pins turning in their grooves: rvsim.friction, docs/model.md sec. 15);
             # contact point on the disc (disc axes, from its centre) and sliding speed there
             cx = px - (P[PIN_RADIUS] - gap) * nx
             cy = py - (P[PIN_RADIUS] - gap) * ny
@@ -377,8 +379,9 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_hold[j]`` = (pairs, flank) held for mesh
     j (zeros: from the roll position and the flank rule, see :func:`gear_mesh`); with four
     columns, ``mesh_state`` also receives the pairs at the roll position and the rule's flank.
-    Returns (potential energy, dissipated power,
-    input torque, max pin penetration).
+    With P[FRICTION_ON], the mesh and bearing friction (dynamics._friction) act after their
+    elements with the normal forces those return.  Returns (potential energy, dissipated
+    power, input torque, max pin penetration).
     """
     for i in range(N_DOF):
         Q[i] = 0.0
