@@ -39,6 +39,7 @@ def test_zero_friction_says_so(cli):
     (("--speeds", "500,,1000"), "--speeds"),
     (("--speeds", "0"), "--speeds"),
     (("--speeds", "fast"), "--speeds"),
+    (("--speeds", "1e9"), "--speeds"),
     (("--torques", "-5"), "--torques"),
     (("--torques", "inf"), "--torques"),
     (("--torques", "100,100"), "--torques"),

@@ -44,6 +44,11 @@ def parse_list(option: str, text: str | None) -> list[float] | None:
 def _efficiency(args: argparse.Namespace) -> int:
     speeds = parse_list("--speeds", args.speeds)
     torques = parse_list("--torques", args.torques)
+    from ..quasistatic.efficiency import MAX_SPEED_RPM
+
+    if speeds and max(speeds) > MAX_SPEED_RPM:
+        raise ParameterError("--speeds", f"input speeds up to {MAX_SPEED_RPM:g} rpm (got "
+                             f"{max(speeds):g})")
     count = len(speeds or (1,) * 5) * len(torques or (1,) * 5)
     if count > MAX_POINTS:
         raise ParameterError("--speeds", f"{count} points: at most {MAX_POINTS} speeds x torques")

@@ -19,7 +19,7 @@ from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 
 __all__ = ["efficiency", "EfficiencyResult", "DEFAULT_SPEEDS_RPM", "DEFAULT_TORQUE_FRACTIONS",
-           "POSITIONS", "STARTING_SPEED_RPM"]
+           "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM"]
 
 RPM = 2.0 * math.pi / 60.0
 #: input speeds of the default map [rpm] (RV-40E, i = 121: output 4 to 25 rpm)
@@ -28,6 +28,9 @@ DEFAULT_SPEEDS_RPM = (500.0, 1000.0, 1500.0, 2000.0, 3000.0)
 DEFAULT_TORQUE_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 1.0)
 #: equilibria per point, equally spaced over one crank revolution relative to the carrier
 POSITIONS = 24
+#: fastest input speed accepted [rpm]: above any servo motor (Palmgren's viscous law and the
+#: quasi-static engine have no meaning far beyond a reducer's rated speed)
+MAX_SPEED_RPM = 100_000.0
 #: creep speed at which the starting torque is taken [input rpm]: Coulomb friction and
 #: Palmgren's low-speed viscous torque, i.e. the torque to keep the input moving at all
 STARTING_SPEED_RPM = 1.0
@@ -125,7 +128,11 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
     :class:`~rvsim.errors.SimulationError`."""
     validate(reducer)
     speeds = _values("speeds", DEFAULT_SPEEDS_RPM if speeds_rpm is None else speeds_rpm,
-                     allow_zero=False) * RPM
+                     allow_zero=False)
+    if np.any(speeds > MAX_SPEED_RPM):
+        raise ParameterError("speeds", f"input speeds up to {MAX_SPEED_RPM:g} rpm (got "
+                             f"{speeds.max():g})")
+    speeds = speeds * RPM
     rated = reducer.rating.rated_torque
     loads = _values("torques", np.array(DEFAULT_TORQUE_FRACTIONS) * rated if torques is None
                     else torques, allow_zero=False)
