@@ -25,6 +25,7 @@ TO_SI: dict[str, float] = {
     "arcmin": ARCMIN,
     "rad/s": 1.0,
     "mm/s": MM,
+    "mm^2/s": MM * MM,
     "deg/s": DEG,
     "s": 1.0,
     "Hz": 1.0,

@@ -10,7 +10,7 @@ import sys
 
 from .. import __version__
 from ..errors import RvsimError
-from . import _geometry, _quasistatic, _simulate, _study
+from . import _efficiency, _geometry, _quasistatic, _simulate, _study
 from ._common import EXAMPLES, Parser
 
 __all__ = ["main", "build_parser"]
@@ -28,6 +28,7 @@ def build_parser() -> argparse.ArgumentParser:
     _geometry.register(sub)
     _simulate.register(sub)
     _quasistatic.register(sub)
+    _efficiency.register(sub)
     _study.register(sub)
     return parser
 

@@ -22,11 +22,12 @@ invalidate_stale_cache()
 from ..geometry._curve import pin_gap, profile_axes
 from ._contact_law import EXPONENT, add_rank_one, contact, spring_force  # noqa: F401
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
+from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
 from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
                       CONTACT_RATIO, CRANK0, CRANK_COUNT, CRANK_STRIDE, DISC0, DISC_COUNT,
-                      DISC_STRIDE, DT, E_DISSIPATED,
+                      DISC_STRIDE, DT, E_DISSIPATED, FRICTION_ON,
                       E_INPUT, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
@@ -241,6 +242,8 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         if want:
             add_rank_one(K, (d, d + 1, d + 2), (gx, gy, lever), k)
         if P[MU] > 0.0:
+            # Coulomb friction, P[MU] the effective coefficient (fixed pins sliding on the
+            # disc, or pins turning in their grooves: rvsim.friction, docs/model.md sec. 15);
             # contact point on the disc (disc axes, from its centre) and sliding speed there
             cx = px - (P[PIN_RADIUS] - gap) * nx
             cy = py - (P[PIN_RADIUS] - gap) * ny
@@ -387,8 +390,9 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_hold[j]`` = (pairs, unused) held for
     mesh j (zero: from the roll position, see :func:`gear_mesh`); with four columns,
     ``mesh_state`` also receives the pairs at the roll position and the loaded flank.
-    Returns (potential energy, dissipated power,
-    input torque, max pin penetration).
+    With P[FRICTION_ON], the mesh and bearing friction (dynamics._friction) act after their
+    elements with the normal forces those return.  Returns (potential energy, dissipated
+    power, input torque, max pin penetration).
     """
     for i in range(N_DOF):
         Q[i] = 0.0
@@ -412,6 +416,12 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             torque_in += torque
             energy += e
             power += pw
+            if P[FRICTION_ON] == 1.0:
+                px, py, pvx, pvy = crank_point(q, v, j, P[W_G_L], P[W_G_U])
+                torque, fx, fy, pw = mesh_friction(P, force, omega_in, px, py, pvx, pvy)
+                add_crank_force(Q, j, P[W_G_L], P[W_G_U], fx, fy)
+                torque_in += torque
+                power += pw
     n_discs = int(P[DISC_COUNT])
     worst = 0.0
     ring = single and P[RING_OUTPUT] == 1.0
@@ -437,11 +447,15 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             channel[CH_ARM_F00 + 2 * j + disc] = force
             energy += e
             power += pw
+            if P[FRICTION_ON] == 1.0:
+                power += arm_bearing_friction(P, v, Q, j, disc, force)
         for upper in range(2):
             force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j])
             channel[CH_SUP_FL0 + 2 * j + upper] = force
             energy += e
             power += pw
+            if P[FRICTION_ON] == 1.0:
+                power += support_bearing_friction(P, v, Q, j, force)
     if single:
         for disc in range(n_discs):
             for m in range(int(P[OUT_COUNT])):

@@ -95,6 +95,17 @@ OUT_CB         = 65        # linear compliance in series (none so far)
 
 
 # ---- friction and efficiency: 86-99 ------------------------------------------------------
+# (docs/model.md section 15; the pin-disc coefficient stays in MU: model.build_model sets it to
+# the effective tangential coefficient of the pin contact)
+MESH_LOSS      = 86        # mu_m H_V: mesh friction coefficient x Ohlendorf's gear loss factor
+NU_OIL         = 87        # lubricant kinematic viscosity [m^2/s]
+ARM_F0         = 88        # Palmgren f0, f1 and mean diameter dm [m] of a turning-arm bearing
+ARM_F1         = 89
+ARM_DM         = 90
+SUP_F0         = 91        # ... of a crank support bearing
+SUP_F1         = 92
+SUP_DM         = 93
+FRICTION_ON    = 94        # 1: some bearing or mesh friction to evaluate (0: skip the calls)
 
 
 # ---- per-part manufacturing errors (tolerances): 100-119 ---------------------------------

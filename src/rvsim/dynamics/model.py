@@ -13,6 +13,7 @@ import numpy as np
 
 from ..geometry.cycloid import pin_centres, profile_offset
 from ..geometry.involute import gear_geometry
+from ..friction import fill_constants as fill_friction_constants
 from ..parameters import Reducer
 from . import _layout as L
 from .compliance import palmgren_coefficient, pin_compliance, ring_compliance, tooth_compliance
@@ -250,8 +251,8 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.SUP_CLEAR_L] = cl.crank_support_bushing + cl.support_flange
     P[L.SUP_CLEAR_U] = cl.crank_support_bushing + cl.support_carrier
     P[L.ZETA] = r.contact.damping_ratio
-    P[L.MU] = r.contact.friction_coefficient
     P[L.V_FRIC] = r.contact.friction_velocity
+    fill_friction_constants(r, P)       # P[MU] and the friction block (docs/model.md sec. 15)
 
     # the driven load turns with the carrier (rigid coupling; docs/model.md section 7)
     P[L.J_CARRIER] = masses.carrier_inertia + op.load_inertia

@@ -15,7 +15,7 @@ from ._schema import count, flag, quantity
 
 __all__ = [
     "Material", "Materials", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances",
-    "Flexibility", "Operating", "ContactModel", "Rating", "Layout", "Reducer",
+    "Flexibility", "Operating", "ContactModel", "Rating", "Layout", "Friction", "Reducer",
 ]
 
 #: ``layout.stages`` of the RV reducer (involute + cycloid stage) and of the single-stage drive
@@ -270,6 +270,40 @@ class Layout:
 
 
 @dataclasses.dataclass(frozen=True)
+class Friction:
+    """Friction beyond the pin-disc sliding coefficient ``contact.friction_coefficient``
+    (docs/model.md section 15 gives every law and its source; all zero: the paper's
+    frictionless model).  rvsim.friction.TYPICAL_FRICTION lists values for a greased reducer."""
+
+    pins_turn: bool = flag(False, "pins free to turn in their housing grooves: the pin rolls "
+                           "on the disc and slides in its groove (else it slides on the disc)")
+    pin_groove_coefficient: float = quantity(0.0, "-", "Coulomb friction of a pin turning in "
+                                             "its housing groove (with pins_turn)", maximum=1.0)
+    pin_rolling_coefficient: float = quantity(0.0, "-", "rolling resistance of a pin on the "
+                                              "disc, as a fraction of the normal force (with "
+                                              "pins_turn)", maximum=0.1)
+    mesh_coefficient: float = quantity(0.0, "-", "mean Coulomb friction coefficient of the "
+                                       "sun-planet tooth flanks", maximum=1.0)
+    oil_viscosity: float = quantity(100.0 * (_MM * _MM), "mm^2/s", "kinematic viscosity of "
+                                    "the lubricant (grease: its base oil) at operating "
+                                    "temperature", positive=True)
+    arm_bearing_f0: float = quantity(0.0, "-", "Palmgren f0 (speed-dependent, viscous torque) "
+                                     "of each turning-arm bearing (eccentric in its disc hole)")
+    arm_bearing_f1: float = quantity(0.0, "-", "Palmgren f1 (load-dependent torque) of each "
+                                     "turning-arm bearing", maximum=0.1)
+    arm_bearing_diameter: float = quantity(0.0, "mm", "mean (pitch) diameter dm of a turning-"
+                                           "arm bearing (0: eccentric diameter + arm bushing "
+                                           "wall)")
+    support_bearing_f0: float = quantity(0.0, "-", "Palmgren f0 of each crank support bearing "
+                                         "(journal in the carrier / flange)")
+    support_bearing_f1: float = quantity(0.0, "-", "Palmgren f1 of each crank support bearing",
+                                         maximum=0.1)
+    support_bearing_diameter: float = quantity(0.0, "mm", "mean (pitch) diameter dm of a "
+                                               "support bearing (0: journal diameter + arm "
+                                               "bushing wall)")
+
+
+@dataclasses.dataclass(frozen=True)
 class Reducer:
     """A complete RV reducer: geometry, materials, errors and operating point."""
 
@@ -286,6 +320,7 @@ class Reducer:
     contact: ContactModel = dataclasses.field(default_factory=ContactModel)
     rating: Rating = dataclasses.field(default_factory=Rating)
     layout: Layout = dataclasses.field(default_factory=Layout)
+    friction: Friction = dataclasses.field(default_factory=Friction)
 
     @property
     def ratio(self) -> float:

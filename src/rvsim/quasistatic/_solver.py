@@ -63,9 +63,11 @@ ROUNDOFF_FACTOR = 1e3
 @numba.njit(cache=True)
 def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
               next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
-              mesh_hold):
+              mesh_hold, f_ext):
     """Residual Q, stiffness K and potential energy Pi at q (every pin evaluated); returns
-    (Pi, the size of its terms, input torque, max pin penetration)."""
+    (Pi, the size of its terms, input torque, max pin penetration).  ``f_ext`` is a constant
+    generalised force added to Q (the friction forces held during one search), its potential
+    -f_ext . q added to Pi."""
     K[:, :] = 0.0
     next_eval[:, :] = 0
     energy, _, torque_in, worst = forces_at(
@@ -73,20 +75,25 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
         next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
         mesh_hold)
     work = torque * q[CARRIER]
-    return energy + work, abs(energy) + abs(work), torque_in, worst
+    held = 0.0
+    for i in range(N_DOF):
+        Q[i] += f_ext[i]
+        held -= f_ext[i] * q[i]
+    return energy + work + held, abs(energy) + abs(work) + abs(held), torque_in, worst
 
 
 @numba.njit(cache=True)
 def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
-                Q, K, channel, mesh_state, mesh_hold):
+                Q, K, channel, mesh_state, mesh_hold, f_ext):
     """Move ``q`` to the static equilibrium at input angle ``theta_in`` under ``torque``, each
     mesh j with its number of tooth pairs ``mesh_hold[j, 0]`` held (zero: that of the starting
     pose, stored into ``mesh_hold``).  ``mesh_state`` has four columns (stiffness, deflection,
     pairs at the roll position, loaded flank).
 
     ``scale[i]`` is the length that turns coordinate i into metres (1 for translations, a
-    radius for rotations).  Returns (status, iterations, input torque); on return Q, K and the
+    radius for rotations).  ``f_ext``: a constant generalised force (held friction, see
+    :func:`_evaluate`).  Returns (status, iterations, input torque); on return Q, K and the
     work arrays hold the state at q.
     """
     n = N_DOF
@@ -97,7 +104,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
     pi, size, torque_in, worst = _evaluate(P, q, theta_in, torque, pins, pin_angle, holes,
                                            crank_angles, mesh_phase, u, next_eval, pin_force,
                                            pin_elastic, arm_elastic, Q, K, channel,
-                                           mesh_state, v, mesh_hold)
+                                           mesh_state, v, mesh_hold, f_ext)
     for j in range(2):
         if mesh_hold[j, 0] == 0.0:
             mesh_hold[j, 0] = mesh_state[j, 2]
@@ -155,7 +162,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             pi_trial, size, torque_in, worst = _evaluate(
                 P, q_trial, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                 u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
-                mesh_hold)
+                mesh_hold, f_ext)
             drop = pi - pi_trial
             # below round-off of Pi's terms the energy cannot rank the points: the residual does
             flat = abs(drop) <= 1e-12 * size + 1e-18
@@ -179,7 +186,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 pi, size, torque_in, worst = _evaluate(
                     P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                     u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-                    mesh_state, v, mesh_hold)
+                    mesh_state, v, mesh_hold, f_ext)
                 if trust < 1e-16 or mu > 1e16:
                     # no step left above the round-off of the positions (1e-16 m): converged
                     # as far as double precision goes if the residual is near tol (very stiff
@@ -193,7 +200,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
 @numba.njit(cache=True)
 def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                  crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
-                 Q, K, channel, mesh_state):
+                 Q, K, channel, mesh_state, f_ext):
     """:func:`equilibrium` with each mesh's number of tooth pairs held at that of the starting
     pose (the rectangular-wave stiffness is discontinuous in q); where the equilibrium lies
     across a switch, solved again with the count found there.  Where it would flip back (the
@@ -208,7 +215,7 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
         status, iterations, torque_in = equilibrium(
             P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
             mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-            mesh_state, hold)
+            mesh_state, hold, f_ext)
         total += iterations
         same = True
         for j in range(2):
@@ -295,9 +302,114 @@ def condensed_stiffness(K, scale):
 
 
 @numba.njit(cache=True)
+def virtual_velocity(P, q, theta_in, omega, carrier_rate, K, scale, holes, out):
+    """The direction of travel as a velocity field: ``omega`` [rad/s] times the kinematic
+    motion per input radian (the ideal pose's derivative) plus ``carrier_rate`` [rad/s] times
+    the elastic motion per output radian with the input held (the tangent K^-1 e_c, scaled to
+    a unit carrier rotation; K from the last search)."""
+    for i in range(N_DOF):
+        out[i] = 0.0
+    if omega != 0.0:
+        h = 1e-6
+        ahead = np.empty(N_DOF)
+        behind = np.empty(N_DOF)
+        kinematic_pose(P, theta_in + h, holes, ahead)
+        kinematic_pose(P, theta_in - h, holes, behind)
+        for i in range(N_DOF):
+            out[i] += omega * (ahead[i] - behind[i]) / (2.0 * h)
+    if carrier_rate != 0.0:
+        A = np.empty((N_DOF, N_DOF))
+        for i in range(N_DOF):
+            for j in range(N_DOF):
+                A[i, j] = K[i, j] / (scale[i] * scale[j])
+            A[i, i] += MU_MIN
+        e = np.zeros(N_DOF)
+        e[CARRIER] = 1.0
+        x = np.linalg.solve(A, e)
+        for i in range(N_DOF):
+            out[i] += carrier_rate * (x[i] / scale[i]) / (x[CARRIER] / scale[CARRIER])
+
+
+@numba.njit(cache=True)
+def friction_forces(P_fric, q, v, Q0, theta_in, omega, torque, pins, pin_angle, holes,
+                    crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic,
+                    arm_elastic, channel, mesh_state, mesh_hold, out):
+    """Generalised friction forces at q for the virtual velocity ``v`` (input speed ``omega``)
+    into ``out``: the kernel's forces at (q, v) minus ``Q0``, those at (q, 0), with ``P_fric``
+    (damping off, friction velocity of the quasi-static engine).  Returns the input torque at
+    (q, v) (the elastic mesh torque plus the mesh friction's)."""
+    K0 = np.zeros((0, 0))
+    next_eval[:, :] = 0
+    _, _, torque_in, _ = forces_at(P_fric, q, v, theta_in, omega, torque, pins, pin_angle,
+                                   holes, crank_angles, mesh_phase, u, next_eval, 1, pin_force,
+                                   pin_elastic, arm_elastic, out, K0, channel, mesh_state,
+                                   mesh_hold)
+    for i in range(N_DOF):
+        out[i] -= Q0[i]
+    return torque_in
+
+
+#: most friction updates per position (each a search with the friction forces held)
+FRICTION_ITERATIONS = 30
+
+
+@numba.njit(cache=True)
+def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, scale, tol,
+                         max_iter, pins, pin_angle, holes, crank_angles, mesh_phase, u,
+                         next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
+                         mesh_state, f_ext):
+    """Equilibrium with friction that follows the direction of travel: searches with the
+    friction forces ``f_ext`` held (from the previous position first), each followed by the
+    friction at the new pose, until they change by less than ``tol`` (fixed point; friction
+    coefficients well below 1 make it contract).  The direction of travel (the virtual
+    velocity) is taken once, at the pose of the first search.  Returns (status, iterations, input torque
+    with the mesh friction); ``f_ext`` holds the friction forces of the equilibrium."""
+    v = np.empty(N_DOF)
+    f_new = np.empty(N_DOF)
+    Q0 = np.empty(N_DOF)
+    hold = np.zeros((2, 2))
+    total = 0
+    torque_in = 0.0
+    for update in range(FRICTION_ITERATIONS):
+        status, iterations, torque_in = _solve_point(
+            P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
+            mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
+            mesh_state, f_ext)
+        total += iterations
+        if status != STATUS_OK:
+            return status, total, torque_in
+        if update == 0:
+            # the direction of travel of this point, held while the friction settles (a
+            # direction taken afresh at each update can turn a tiny relative motion over
+            # and back, and the Coulomb forces with it: no fixed point)
+            virtual_velocity(P, q, theta_in, omega, carrier_rate, K, scale, holes, v)
+        for j in range(2):
+            hold[j, 0] = mesh_state[j, 2]
+            hold[j, 1] = mesh_state[j, 3] if mesh_state[j, 1] > 0.0 else 0.0
+        for i in range(N_DOF):
+            Q0[i] = Q[i] - f_ext[i]         # the search's residual holds f_ext
+        torque_in = friction_forces(P_fric, q, v, Q0, theta_in, omega, torque, pins,
+                                    pin_angle, holes, crank_angles, mesh_phase, u, next_eval,
+                                    pin_force, pin_elastic, arm_elastic, channel, mesh_state,
+                                    hold, f_new)
+        change = 0.0
+        for i in range(N_DOF):
+            change = max(change, abs(f_new[i] - f_ext[i]) / scale[i])
+            f_ext[i] = f_new[i]
+        if change <= tol:
+            # q is the equilibrium to the tolerance; K, the forces and the channels are those
+            # of q (friction changes no normal force); Q is its residual with the new friction
+            for i in range(N_DOF):
+                Q[i] = Q0[i] + f_ext[i]
+            return STATUS_OK, total, torque_in
+    return STATUS_NOT_CONVERGED, total, torque_in
+
+
+@numba.njit(cache=True)
 def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes, crank_angles,
           mesh_phase, q_out, pin_out, stress_out, channel_out, mesh_out, stiffness_out,
-          status_out, iterations_out, torque_in_out, output_pin_out):
+          status_out, iterations_out, torque_in_out, output_pin_out, P_fric, omega,
+          carrier_rate, friction_out):
     """Equilibria along a path of (input angle, output torque) pairs, each started from the
     previous one (continuation); the first from ``q_start``.
 
@@ -307,6 +419,11 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     that fails (its status stored; the later ones keep status -1).  Returns the number of points
     solved.  ``output_pin_out`` (points x 2 discs x output pins) receives the output pins'
     forces of the single-stage drive.
+
+    ``P_fric`` (None: frictionless) evaluates the friction at each point's virtual velocity
+    (:func:`virtual_velocity` with ``omega[k]``, ``carrier_rate[k]``); the friction forces of
+    each equilibrium go to ``friction_out`` (points x 17) and the input torque includes the
+    mesh friction.
     """
     n_points = theta_in.shape[0]
     zp = pins.shape[0]
@@ -323,6 +440,8 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     K = np.zeros((N_DOF, N_DOF))
     A = np.empty((N_DOF, N_DOF))
     q = q_start.copy()
+    f_ext = np.zeros(N_DOF)
+    f_last = np.zeros(N_DOF)
     for k in range(n_points):
         status_out[k] = -1
     for k in range(n_points):
@@ -342,10 +461,27 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
                 factor = 1.0 if largest <= TRUST_START else TRUST_START / largest
                 for i in range(N_DOF):
                     q[i] += factor * dx[i] / scale[i]
-        status, iterations, torque_in = _solve_point(
-            P, q, theta_in[k], torque[k], scale, tol, max_iter, pins, pin_angle, holes,
-            crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K,
-            channel, mesh_state)
+        if P_fric is None:
+            status, iterations, torque_in = _solve_point(
+                P, q, theta_in[k], torque[k], scale, tol, max_iter, pins, pin_angle, holes,
+                crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q,
+                K, channel, mesh_state, f_ext)
+        else:
+            if k > 1:
+                # friction of the previous point extrapolated along the path; turned over
+                # where the direction of travel turns
+                same = omega[k] * omega[k - 1] + carrier_rate[k] * carrier_rate[k - 1]
+                for i in range(N_DOF):
+                    held = f_ext[i]
+                    f_ext[i] = 2.0 * held - f_last[i] if same > 0.0 else -held
+                    f_last[i] = held
+            else:
+                f_last[:] = f_ext
+            status, iterations, torque_in = _solve_with_friction(
+                P, P_fric, q, theta_in[k], torque[k], omega[k], carrier_rate[k], scale, tol,
+                max_iter, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval,
+                pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, f_ext)
+            friction_out[k, :] = f_ext
         status_out[k] = status
         iterations_out[k] = iterations
         torque_in_out[k] = torque_in

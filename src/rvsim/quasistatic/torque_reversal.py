@@ -16,7 +16,11 @@ from ..parameters import Reducer
 from ..units import ARCMIN
 from .transmission import _finite, solve_path
 
-__all__ = ["hysteresis", "HysteresisResult", "sweep_torques"]
+__all__ = ["hysteresis", "HysteresisResult", "sweep_torques", "TEST_OUTPUT_SPEED"]
+
+#: output speed of the test [rad/s] that sets the bearings' speed-dependent friction (a bench
+#: turns the output this slowly or slower: Palmgren's viscous torque is at its low-speed value)
+TEST_OUTPUT_SPEED = 0.01
 
 
 @dataclasses.dataclass
@@ -96,7 +100,10 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
 
     torque, branch = sweep_torques(rated, points_per_branch)
     # the model's output load resists the motion: a load of -T is a torque T applied
-    path = solve_path(reducer, np.zeros(len(torque)), -torque)
+    # friction follows the output's motion: turning with the torque's change (the first point
+    # belongs to the first, decreasing quarter)
+    path = solve_path(reducer, np.zeros(len(torque)), -torque,
+                      carrier_rate=TEST_OUTPUT_SPEED * branch)
     converged = path.status_codes == 0
     angle = path.q[:, L.CARRIER].copy()
     angle[~converged] = np.nan

@@ -50,6 +50,8 @@ class PathSolution:
     wall_s: float
     force_resolution: float = 0.0  # [N] the residual tolerance: smaller forces are not resolved
     output_pin_forces: np.ndarray = None  # (n, 2, n_w) single-stage output pins (n_w = 0: RV)
+    #: (n, 17) generalised friction forces of each equilibrium (None: frictionless model)
+    friction_forces: np.ndarray = None
 
 
 def _finite(name: str, value: float) -> float:
@@ -62,10 +64,21 @@ def _finite(name: str, value: float) -> float:
     return value
 
 
-def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSolution:
+#: the quasi-static engine's friction velocity [m/s]: friction follows the direction of travel
+#: (Coulomb); any sliding faster than this carries the full friction force
+QS_FRICTION_VELOCITY = 1e-9
+
+
+def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_speed=None,
+               carrier_rate=None) -> PathSolution:
     """Static equilibria at the points (input_angle[k] [rad], torque[k] [N*m]) in order, each
     started from the previous one (the first from the ideal pose at its input angle, or
-    ``q_start``).  Stops at the first point that does not converge; its status is returned."""
+    ``q_start``).  Stops at the first point that does not converge; its status is returned.
+
+    Friction (a reducer with any friction element) follows the direction of travel at each
+    point: the kinematic motion at ``input_speed[k]`` [rad/s] plus the elastic motion at the
+    output speed ``carrier_rate[k]`` [rad/s] with the input held (docs/model.md section 15);
+    without them, or without friction, the frictionless model is solved."""
     from ..dynamics import _layout as L
     from ..dynamics.compliance import effective_modulus
     from ..dynamics.model import build_model
@@ -104,6 +117,19 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
                        iterations=np.zeros(n, dtype=np.int64), input_torque=np.zeros(n),
                        status_codes=np.full(n, -1, dtype=np.int64), status="ok", wall_s=0.0,
                        output_pin_forces=np.zeros((n, 2, int(P[L.OUT_COUNT]))))
+    from ..friction import has_friction
+
+    moving = np.zeros(n) if input_speed is None else np.broadcast_to(
+        np.asarray(input_speed, dtype=float), (n,)).copy()
+    turning = np.zeros(n) if carrier_rate is None else np.broadcast_to(
+        np.asarray(carrier_rate, dtype=float), (n,)).copy()
+    P_fric = None
+    friction = np.zeros((n, L.N_DOF))
+    if has_friction(reducer) and (moving.any() or turning.any()):
+        P_fric = P.copy()
+        P_fric[L.ZETA] = 0.0
+        P_fric[L.V_FRIC] = QS_FRICTION_VELOCITY
+        out.friction_forces = friction
     start = _time.perf_counter()
     q0 = np.asarray(q_start, dtype=float)
     solved = 0
@@ -115,7 +141,8 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
                        out.channels[part], out.mesh_state[part],
                        out.torsional_stiffness[part], out.status_codes[part],
                        out.iterations[part], out.input_torque[part],
-                       out.output_pin_forces[part])
+                       out.output_pin_forces[part], P_fric, moving[part], turning[part],
+                       friction[part])
         solved += done
         if done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK:
             break
@@ -253,7 +280,9 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
     discs = disc_count(reducer)
     ratio = reducer.ratio
     input_angle = np.arange(positions) * (2.0 * math.pi * ratio * revolutions / positions)
-    path = solve_path(reducer, input_angle, np.full(positions, torque))
+    # friction follows the input turning forwards at the operating speed
+    path = solve_path(reducer, input_angle, np.full(positions, torque),
+                      input_speed=reducer.operating.input_speed)
     converged = path.status_codes == 0
     ch = path.channels
     result = LtcaResult(

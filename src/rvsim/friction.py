@@ -1,0 +1,117 @@
+"""Friction constants of a reducer and the recommended values for a greased RV reducer.
+
+The laws and their sources are in docs/model.md section 15; this module derives the constants
+the kernel needs (``fill_constants``) and holds :data:`TYPICAL_FRICTION`, the one place that
+lists friction values for a greased RV reducer (docs/parameters.md, "Friction").
+"""
+
+from __future__ import annotations
+
+import math
+
+from .parameters import Reducer
+
+__all__ = ["TYPICAL_FRICTION", "TYPICAL_FRICTION_SOURCES", "gear_loss_factor",
+           "bearing_diameters", "pin_friction_coefficient", "has_friction", "fill_constants"]
+
+#: recommended friction values for a greased RV reducer in steady running (``--set`` names,
+#: user units); every value is an estimate from the sources in TYPICAL_FRICTION_SOURCES
+TYPICAL_FRICTION: dict[str, float | bool] = {
+    "contact.friction_coefficient": 0.05,       # pin on disc, boundary/mixed lubrication
+    "friction.pins_turn": True,                 # RV pins lie loose in housing grooves
+    "friction.pin_groove_coefficient": 0.05,    # pin turning in its greased groove
+    "friction.pin_rolling_coefficient": 0.001,  # rolling resistance of hardened steel
+    "friction.mesh_coefficient": 0.05,          # involute flanks, mixed lubrication
+    "friction.oil_viscosity": 100.0,            # mm^2/s: grease base oil near 40 C
+    "friction.arm_bearing_f0": 3.0,             # needle roller bearing, grease
+    "friction.arm_bearing_f1": 0.0005,
+    "friction.support_bearing_f0": 3.0,         # tapered roller bearing, grease
+    "friction.support_bearing_f1": 0.0004,
+}
+
+TYPICAL_FRICTION_SOURCES: dict[str, str] = {
+    "contact.friction_coefficient": "lubricated hardened steel in boundary/mixed lubrication "
+    "0.03-0.1; cycloid-drive efficiency models use 0.03-0.1 (Gorla et al. 2008; Mihailidis et "
+    "al. 2014; Sensinger 2013)",
+    "friction.pin_groove_coefficient": "as the pin-disc pair (steel pin in a greased steel "
+    "groove, sliding)",
+    "friction.pin_rolling_coefficient": "rolling resistance of hardened steel on steel "
+    "0.0005-0.001 (Harris & Kotzalas, Rolling Bearing Analysis, 5th ed., Ch. 13)",
+    "friction.mesh_coefficient": "mean flank friction of lubricated spur gears 0.04-0.08 "
+    "(ISO/TR 14179-2:2001; Niemann & Winter, Maschinenelemente II)",
+    "friction.oil_viscosity": "base oil of lithium / urea greases for reducers: ISO VG 100-220 "
+    "at 40 C",
+    "friction.arm_bearing_f0": "Palmgren f0 for needle roller bearings, grease: 2-4; f1 = 0.0005 "
+    "(Harris & Kotzalas Ch. 13 tables after Palmgren 1959; SKF General Catalogue 4000, 1989)",
+    "friction.support_bearing_f0": "Palmgren f0 for tapered roller bearings, grease: 2-4; f1 = "
+    "0.0004 (same sources); catalogue friction coefficients mu = 2 M / (P d): needle 0.002-"
+    "0.003, tapered 0.0017-0.0025 (Koyo/JTEKT technical section)",
+}
+
+
+def gear_loss_factor(reducer: Reducer) -> float:
+    """Ohlendorf's gear loss factor H_V of the sun-planet mesh (spur gears):
+    H_V = pi (u + 1) / (z1 u) (1 - eps_a + eps_1^2 + eps_2^2), eps_1, eps_2 the addendum
+    contact ratios of sun and planet (ISO/TR 14179-2:2001; Niemann & Winter).  The mesh loses
+    mu_m H_V of the power it carries.  0 for the single-stage drive (no gear stage)."""
+    if reducer.layout.single_stage:
+        return 0.0
+    from .geometry.involute import gear_geometry
+
+    g = reducer.gears
+    geo = gear_geometry(reducer)
+    tan_w = math.tan(geo.operating_pressure_angle)
+    eps_1 = (math.sqrt(geo.sun_tip_radius ** 2 - geo.sun_base_radius ** 2)
+             - geo.sun_base_radius * tan_w) / geo.base_pitch
+    eps_2 = (math.sqrt(geo.planet_tip_radius ** 2 - geo.planet_base_radius ** 2)
+             - geo.planet_base_radius * tan_w) / geo.base_pitch
+    u = g.planet_teeth / g.sun_teeth
+    return math.pi * (u + 1.0) / (g.sun_teeth * u) * (1.0 - geo.contact_ratio + eps_1 ** 2
+                                                       + eps_2 ** 2)
+
+
+def bearing_diameters(reducer: Reducer) -> tuple[float, float]:
+    """Mean (pitch) diameters dm [m] of a turning-arm and of a support bearing: the parameter,
+    or (0) bore diameter + ring wall, the wall being ``crank.arm_bushing_thickness`` (the
+    rolling elements' space in the paper's bushing geometry; docs/model.md section 15)."""
+    f, k = reducer.friction, reducer.crank
+    wall = k.arm_bushing_thickness
+    arm = f.arm_bearing_diameter or 2.0 * k.eccentric_radius + wall
+    support = f.support_bearing_diameter or 2.0 * k.journal_radius + wall
+    return arm, support
+
+
+def pin_friction_coefficient(reducer: Reducer) -> float:
+    """Tangential force / normal force at a pin contact: the pin-disc coefficient for fixed
+    pins; for pins free to turn, the pin rolls on the disc and turns in its groove (friction
+    mu_g at the groove, of about the pin's radius, plus the rolling resistance f_r), unless
+    that exceeds the pin-disc coefficient, when the pin sticks in its groove and slides on the
+    disc: min(mu, mu_g + f_r)."""
+    mu = reducer.contact.friction_coefficient
+    f = reducer.friction
+    if not f.pins_turn:
+        return mu
+    return min(mu, f.pin_groove_coefficient + f.pin_rolling_coefficient)
+
+
+def has_friction(reducer: Reducer) -> bool:
+    """True when any friction element of the reducer is active."""
+    f = reducer.friction
+    return (pin_friction_coefficient(reducer) > 0.0 or f.mesh_coefficient > 0.0
+            or f.arm_bearing_f0 > 0.0 or f.arm_bearing_f1 > 0.0 or f.support_bearing_f0 > 0.0
+            or f.support_bearing_f1 > 0.0)
+
+
+def fill_constants(reducer: Reducer, P) -> None:
+    """Friction constants into the kernel's constant vector ``P`` (dynamics._layout)."""
+    from .dynamics import _layout as L
+
+    f = reducer.friction
+    P[L.MU] = pin_friction_coefficient(reducer)
+    P[L.MESH_LOSS] = f.mesh_coefficient * gear_loss_factor(reducer)
+    P[L.NU_OIL] = f.oil_viscosity
+    P[L.ARM_DM], P[L.SUP_DM] = bearing_diameters(reducer)
+    P[L.ARM_F0], P[L.ARM_F1] = f.arm_bearing_f0, f.arm_bearing_f1
+    P[L.SUP_F0], P[L.SUP_F1] = f.support_bearing_f0, f.support_bearing_f1
+    bearings = f.arm_bearing_f0 + f.arm_bearing_f1 + f.support_bearing_f0 + f.support_bearing_f1
+    P[L.FRICTION_ON] = 1.0 if (P[L.MESH_LOSS] > 0.0 or bearings > 0.0) else 0.0

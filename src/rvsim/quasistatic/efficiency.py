@@ -1,0 +1,170 @@
+"""Efficiency map, no-load running torque and starting torque: :func:`efficiency`.
+
+Each point of the map is a quasi-static sweep of the loaded reducer over one revolution of the
+cranks relative to the carrier (the period of the cycloid stage's loads), the friction
+following the input turning forwards at the point's speed (docs/model.md section 15;
+docs/decisions.md, "Efficiency: the quasi-static engine").  Efficiency = output power / input
+power = T_out / (i * mean T_in); shared/design/catalogue_tests.md gives the definitions.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time as _time
+
+import numpy as np
+
+from ..errors import ParameterError, SimulationError
+from ..parameters import Reducer, validate
+
+__all__ = ["efficiency", "EfficiencyResult", "DEFAULT_SPEEDS_RPM", "DEFAULT_TORQUE_FRACTIONS",
+           "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM"]
+
+RPM = 2.0 * math.pi / 60.0
+#: input speeds of the default map [rpm] (RV-40E, i = 121: output 4 to 25 rpm)
+DEFAULT_SPEEDS_RPM = (500.0, 1000.0, 1500.0, 2000.0, 3000.0)
+#: output torques of the default map, as fractions of the rated torque
+DEFAULT_TORQUE_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 1.0)
+#: equilibria per point, equally spaced over one crank revolution relative to the carrier
+POSITIONS = 24
+#: fastest input speed accepted [rpm]: above any servo motor (Palmgren's viscous law and the
+#: quasi-static engine have no meaning far beyond a reducer's rated speed)
+MAX_SPEED_RPM = 100_000.0
+#: creep speed at which the starting torque is taken [input rpm]: Coulomb friction and
+#: Palmgren's low-speed viscous torque, i.e. the torque to keep the input moving at all
+STARTING_SPEED_RPM = 1.0
+
+
+@dataclasses.dataclass
+class EfficiencyResult:
+    """Efficiency over input speed and output torque (SI)."""
+
+    input_speed: np.ndarray        # (s,) [rad/s]
+    output_torque: np.ndarray      # (t,) [N*m]
+    efficiency: np.ndarray         # (s, t) output power / input power
+    input_torque: np.ndarray       # (s, t) [N*m] mean input torque
+    no_load_running_torque: np.ndarray  # (s,) [N*m] mean input torque at zero output torque
+    starting_torque: float         # [N*m] largest input torque at zero load at creep speed
+    ratio: float
+    positions: int
+    friction: bool                 # False: the reducer has no friction (efficiency 1)
+    status: str
+    wall_s: float
+
+    def summary(self) -> dict:
+        """The JSON keys of ``rvsim efficiency`` (speeds in rpm, torques in N*m)."""
+        rpm = self.input_speed / RPM
+        return {
+            "efficiency": [{"input_speed_rpm": float(n), "output_torque_nm": float(t),
+                            "efficiency": float(self.efficiency[i, j])}
+                           for i, n in enumerate(rpm) for j, t in enumerate(self.output_torque)],
+            "no_load_running_torque_nm": float(self.no_load_running_torque[0]),
+            "no_load_running_torque": [{"input_speed_rpm": float(n), "torque_nm": float(t)}
+                                       for n, t in zip(rpm, self.no_load_running_torque)],
+            "starting_torque_nm": float(self.starting_torque),
+            "starting_speed_rpm": STARTING_SPEED_RPM,
+            "ratio": self.ratio,
+            "positions": self.positions,
+            "friction": self.friction,
+            "wall_s": self.wall_s,
+            "status": self.status,
+        }
+
+    def to_frame(self):
+        """One row per (input speed, output torque) point."""
+        import pandas as pd
+
+        rows = [{"input_speed_rpm": self.input_speed[i] / RPM,
+                 "output_torque_nm": self.output_torque[j],
+                 "input_torque_nm": self.input_torque[i, j],
+                 "efficiency": self.efficiency[i, j]}
+                for i in range(len(self.input_speed)) for j in range(len(self.output_torque))]
+        return pd.DataFrame(rows)
+
+
+def _values(name: str, values, *, allow_zero: bool) -> np.ndarray:
+    try:
+        array = np.asarray(values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise ParameterError(name, f"must be numbers (got {values!r})") from None
+    if array.size == 0:
+        raise ParameterError(name, "needs at least one value")
+    if not np.all(np.isfinite(array)):
+        raise ParameterError(name, "every value must be a finite number")
+    if np.any(array < 0) or (not allow_zero and np.any(array == 0)):
+        raise ParameterError(name, "every value must be positive")
+    if len(np.unique(array)) != array.size:
+        raise ParameterError(name, "a value is given twice")
+    return array
+
+
+def _crank_period(reducer: Reducer) -> float:
+    """Input angle of one revolution of the eccentrics relative to the carrier [rad]."""
+    if reducer.layout.single_stage:
+        return 2.0 * math.pi
+    return 2.0 * math.pi * abs(reducer.ratio) / reducer.cycloid.pin_count
+
+
+def _mean_input_torque(reducer, speed, torque, angles):
+    from .transmission import solve_path
+
+    path = solve_path(reducer, angles, np.full(len(angles), torque),
+                      input_speed=math.copysign(speed, reducer.ratio))
+    if path.status != "ok":
+        raise SimulationError(path.status, f"efficiency point at {speed / RPM:g} rpm, "
+                              f"{torque:g} N*m: {path.status.replace('_', ' ')}")
+    return path.input_torque
+
+
+def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
+               positions: int = POSITIONS) -> EfficiencyResult:
+    """Efficiency map at the input ``speeds_rpm`` [rpm] and output ``torques`` [N*m]
+    (defaults: :data:`DEFAULT_SPEEDS_RPM`, :data:`DEFAULT_TORQUE_FRACTIONS` of the rated
+    torque), the no-load running torque at each speed and the starting torque.
+
+    A reducer without friction has efficiency 1 and zero running and starting torque (the
+    result says so in ``friction``).  A point that does not converge raises
+    :class:`~rvsim.errors.SimulationError`."""
+    validate(reducer)
+    speeds = _values("speeds", DEFAULT_SPEEDS_RPM if speeds_rpm is None else speeds_rpm,
+                     allow_zero=False)
+    if np.any(speeds > MAX_SPEED_RPM):
+        raise ParameterError("speeds", f"input speeds up to {MAX_SPEED_RPM:g} rpm (got "
+                             f"{speeds.max():g})")
+    speeds = speeds * RPM
+    rated = reducer.rating.rated_torque
+    loads = _values("torques", np.array(DEFAULT_TORQUE_FRACTIONS) * rated if torques is None
+                    else torques, allow_zero=False)
+    if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
+            or positions < 2:
+        raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
+    from ..friction import has_friction
+
+    start = _time.perf_counter()
+    ratio = reducer.ratio
+    # input angles forwards (the input turns in the sense that turns the output forwards)
+    angles = math.copysign(1.0, ratio) * np.arange(positions) * _crank_period(reducer) \
+        / positions
+    eff = np.ones((len(speeds), len(loads)))
+    t_in = np.zeros((len(speeds), len(loads)))
+    no_load = np.zeros(len(speeds))
+    for i, speed in enumerate(speeds):
+        for j, load in enumerate(loads):
+            mean = float(np.mean(_mean_input_torque(reducer, speed, load, angles)))
+            t_in[i, j] = mean
+            eff[i, j] = load / (ratio * mean)
+        no_load[i] = float(np.mean(_mean_input_torque(reducer, speed, 0.0, angles)))
+    starting = float(np.max(np.abs(_mean_input_torque(reducer, STARTING_SPEED_RPM * RPM, 0.0,
+                                                      angles))))
+    friction = has_friction(reducer)
+    if not friction:
+        # exactly 1 and 0 by construction: what the sweeps left is the solver's round-off
+        eff[:] = 1.0
+        no_load[:] = 0.0
+        starting = 0.0
+    return EfficiencyResult(input_speed=speeds, output_torque=loads, efficiency=eff,
+                            input_torque=t_in, no_load_running_torque=no_load,
+                            starting_torque=starting, ratio=ratio, positions=positions,
+                            friction=friction, status="ok",
+                            wall_s=_time.perf_counter() - start)

@@ -1,0 +1,55 @@
+"""``rvsim efficiency`` as a user runs it: JSON contract, report, error paths."""
+
+import json
+
+import pytest
+
+FRICTION = ("--set", "friction.mesh_coefficient=0.05", "--set",
+            "contact.friction_coefficient=0.05", "--set", "friction.arm_bearing_f0=3")
+KEYS = {"efficiency", "no_load_running_torque_nm", "starting_torque_nm", "wall_s", "status"}
+
+
+def test_json_contract_and_report(cli, tmp_path):
+    page = tmp_path / "eff.html"
+    res = cli("efficiency", *FRICTION, "--speeds", "500,2000", "--torques", "100,412",
+              "--json", "--report", str(page))
+    assert res.code == 0, res.err
+    data = json.loads(res.out)
+    assert KEYS <= set(data) and data["status"] == "ok" and data["friction"] is True
+    assert len(data["efficiency"]) == 4
+    for point in data["efficiency"]:
+        assert set(point) == {"input_speed_rpm", "output_torque_nm", "efficiency"}
+        assert 0.8 < point["efficiency"] < 1.0
+    assert data["no_load_running_torque_nm"] > 0 and data["starting_torque_nm"] > 0
+    assert "Efficiency map" in page.read_text()
+
+
+def test_zero_friction_says_so(cli):
+    res = cli("efficiency", "--speeds", "1000", "--torques", "412")
+    assert res.code == 0, res.err
+    assert "no friction" in res.err and "efficiency" in res.out
+    res = cli("efficiency", "--speeds", "1000,2000", "--torques", "412", "--json")
+    data = json.loads(res.out)
+    assert [p["efficiency"] for p in data["efficiency"]] == [1.0, 1.0]
+    assert data["no_load_running_torque_nm"] == 0.0 and data["starting_torque_nm"] == 0.0
+    assert data["friction"] is False and "no friction" in data["note"]
+
+
+@pytest.mark.parametrize("args, field", [
+    (("--speeds", "500,,1000"), "--speeds"),
+    (("--speeds", "0"), "--speeds"),
+    (("--speeds", "fast"), "--speeds"),
+    (("--speeds", "1e9"), "--speeds"),
+    (("--torques", "-5"), "--torques"),
+    (("--torques", "inf"), "--torques"),
+    (("--torques", "100,100"), "--torques"),
+    (("--report", "map.txt"), "--report"),
+    (("--set", "friction.mesh_coefficient=-1"), "friction.mesh_coefficient"),
+])
+def test_bad_input_is_one_line(cli, tmp_path, args, field):
+    res = cli("efficiency", *args, "--report", str(tmp_path / "x.html")) \
+        if "--report" not in args else cli("efficiency", *args)
+    assert res.code == 2
+    lines = res.err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("rvsim: error:") and field in lines[0]
+    assert not (tmp_path / "x.html").exists()
