@@ -203,7 +203,9 @@ def binned_sweep(torque, angle, bins_per_side: int = 100, threshold: float | Non
     torque-reversal functions take: each run between turning points (:func:`turning_points`,
     ``threshold`` default 5 % of the largest torque) reduced to the means of its samples in
     torque bins (``bins_per_side`` on each side of zero, 0 N*m an edge so that no bin mixes the
-    two sides of a free play), in sweep order.  Returns (torque, angle, branch)."""
+    two sides of a free play; the samples in the two bins next to zero are left out: the
+    free play is crossed there and the torque noise cannot tell its sides apart), in sweep
+    order.  Returns (torque, angle, branch)."""
     torque = _vector("torque", torque)
     angle = _vector("angle", angle, torque.size)
     top = float(np.max(np.abs(torque)))
@@ -213,23 +215,21 @@ def binned_sweep(torque, angle, bins_per_side: int = 100, threshold: float | Non
     turns = turning_points(torque, threshold)
     bounds = np.r_[0, turns, torque.size - 1]
     edges = np.linspace(-top, top, 2 * bins_per_side + 1)
+    width = top / bins_per_side
     out_t, out_a, out_b = [], [], []
     for a, b in zip(bounds[:-1], bounds[1:]):
         if b <= a:
             continue
         t, y = torque[a:b + 1], angle[a:b + 1]
         sign = 1.0 if t[-1] > t[0] else -1.0
-        # the run crosses zero once: at the index that leaves fewest samples on the wrong
-        # side (noise scatters the torque around zero there); a free play is crossed there,
-        # so each side's samples stay in that side's bins whatever their noisy torque
-        before = np.cumsum(np.r_[0, sign * t > 0])            # wrong-side samples before k
-        after = np.cumsum((sign * t < 0)[::-1])[::-1]          # wrong-side samples from k
-        cross = int(np.argmin(before + np.r_[after, 0]))
+        # a free play is crossed at zero torque, where the torque noise cannot tell the two
+        # sides apart: the samples within one bin of zero are left out (the catalogue's
+        # readings extend each side's first segment to zero)
+        keep = np.abs(t) >= width
+        t, y = t[keep], y[keep]
+        if t.size == 0:
+            continue
         cell = np.clip(np.searchsorted(edges, t, side="right") - 1, 0, edges.size - 2)
-        low, high = (slice(0, cross), slice(cross, None)) if sign > 0 else \
-            (slice(cross, None), slice(0, cross))
-        cell[low] = np.minimum(cell[low], bins_per_side - 1)   # negative side
-        cell[high] = np.maximum(cell[high], bins_per_side)     # positive side
         count = np.bincount(cell, minlength=edges.size - 1)
         used = np.flatnonzero(count)
         mean_t = np.bincount(cell, t, edges.size - 1)[used] / count[used]

@@ -101,6 +101,15 @@ def _revolutions(progress: np.ndarray, te: np.ndarray, points: int):
     return nodes, values
 
 
+def _on_common_nodes(first: float, values: np.ndarray) -> np.ndarray:
+    """One revolution sampled at ``first`` + j * 2 pi / n, moved to the nodes k * 2 pi / n by
+    trigonometric interpolation (exact for a curve without orders above n / 2; a linear one
+    would damp order 40 by ~1 % at 512 nodes)."""
+    n = values.size
+    orders = np.arange(n // 2 + 1)
+    return np.fft.irfft(np.fft.rfft(values) * np.exp(-1j * orders * first), n)
+
+
 def _directions(position: np.ndarray, te: np.ndarray, points: int, runs) -> list[DirectionTE]:
     """Complete revolutions of every run (start, stop, sense of travel of the position,
     direction label), grouped by direction label."""
@@ -122,8 +131,7 @@ def _directions(position: np.ndarray, te: np.ndarray, points: int, runs) -> list
     for sign in sorted(found, reverse=True):
         revs = found[sign]
         mean = float(np.mean([np.mean(v) for _, v in revs]))
-        curve = np.mean([np.interp(common, a, v, period=2.0 * math.pi) for a, v in revs],
-                        axis=0)
+        curve = np.mean([_on_common_nodes(a[0], v) for a, v in revs], axis=0)
         out.append(DirectionTE(sign, revs, mean, common, curve - curve.mean()))
     return out
 
