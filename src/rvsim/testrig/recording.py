@@ -320,7 +320,7 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None) -> Rec
     if frame.shape[0] == 0:
         raise InputFileError(f"{path}: the file has a header but no data rows")
     headerless = all(c.isdigit() for c in frame.columns)
-    if headerless and not any(c.column.isdigit() for c in column_map.columns.values()):
+    if headerless:
         column_map = _headerless_map(frame, column_map)
     values = {q: _column(frame, path, q, column_map.spec(q), headerless) for q in QUANTITIES}
     has = {q for q, v in values.items() if v is not None}
