@@ -24,7 +24,7 @@ import numpy as np
 from ..analysis import catalogue
 from ..analysis.catalogue import CurveError
 
-__all__ = ["DirectionTE", "te_directions", "te_curve_directions", "te_summary",
+__all__ = ["DirectionTE", "te_directions", "input_runs", "te_curve_directions", "te_summary",
            "reversal_curve", "reversal_summary", "run_efficiency", "leading_orders",
            "common_curve", "DEFAULT_POINTS", "ARCSEC"]
 
@@ -136,20 +136,26 @@ def _directions(position: np.ndarray, te: np.ndarray, points: int, runs) -> list
     return out
 
 
-def te_directions(input_angle, output_angle, ratio: float, points: int = DEFAULT_POINTS
-                  ) -> list[DirectionTE]:
+def input_runs(input_angle, ratio: float) -> list[tuple[int, int, int]]:
+    """(start, stop, direction) of the runs of the input between its reversals."""
+    return _segments(np.asarray(input_angle, dtype=float) / ratio,
+                     REVERSAL_FRACTION * 2.0 * math.pi)
+
+
+def te_directions(input_angle, output_angle, ratio: float, points: int = DEFAULT_POINTS,
+                  runs=None) -> list[DirectionTE]:
     """TE of a time series of encoder angles [rad], per direction of the input.
 
     The nominal output angle phi = theta_in / ratio is the position; runs are split where the
     input turns back (by more than :data:`REVERSAL_FRACTION` of an output revolution); each
     run's complete output revolutions are resampled at ``points`` nodes per revolution.  Node
     angles are phi shifted by the run's mean (theta_out - phi), i.e. referred to the output
-    encoder's zero."""
+    encoder's zero.  ``runs``: those of :func:`input_runs`, if already found."""
     theta_in = np.asarray(input_angle, dtype=float)
     theta_out = np.asarray(output_angle, dtype=float)
     phi = theta_in / ratio
     te = phi - theta_out
-    runs = _segments(phi, REVERSAL_FRACTION * 2.0 * math.pi)
+    runs = input_runs(theta_in, ratio) if runs is None else runs
     position = phi.copy()
     for a, b, _ in runs:
         position[a:b] = phi[a:b] - np.mean(te[a:b])

@@ -113,8 +113,8 @@ def _read_manifest(manifest: Path) -> list[tuple[Path, dict]]:
     return out
 
 
-def _longest_run(phi: np.ndarray) -> tuple[int, int]:
-    runs = A._segments(phi, A.REVERSAL_FRACTION * 2.0 * math.pi)
+def _longest_run(phi: np.ndarray, runs=None) -> tuple[int, int]:
+    runs = A._segments(phi, A.REVERSAL_FRACTION * 2.0 * math.pi) if runs is None else runs
     if not runs:
         return 0, phi.size
     a, b, _ = max(runs, key=lambda r: abs(phi[r[1] - 1] - phi[r[0]]))
@@ -165,7 +165,8 @@ def analyse_recording(rec: Recording, declared: dict, reducer, *, points: int = 
         else:
             _need(rec, ("time", "input_angle", "output_angle"), test)
             phi = rec.input_angle / expected
-            a, b = _longest_run(phi)
+            runs = A.input_runs(rec.input_angle, expected)
+            a, b = _longest_run(phi, runs)
             turned = abs(rec.output_angle[b - 1] - rec.output_angle[a])
             if turned > 0:
                 result.ratio_measured = abs(rec.input_angle[b - 1] - rec.input_angle[a]) / turned
@@ -177,13 +178,13 @@ def analyse_recording(rec: Recording, declared: dict, reducer, *, points: int = 
                         f"{100 * RATIO_TOLERANCE:g} %): check the angle units and counts per "
                         "revolution")
             result.directions = A.te_directions(rec.input_angle, rec.output_angle, expected,
-                                                points)
+                                                points, runs)
             measured["speed_rpm"] = float(abs(phi[b - 1] - phi[a]) * abs(expected)
                                           / (rec.time[b - 1] - rec.time[a]) / _RPM)
             if rec.output_torque is not None:
                 measured["torque_nm"] = float(np.mean(np.abs(rec.output_torque)))
             if rec.input_torque is not None and rec.output_torque is not None:
-                result.efficiency = _efficiency(rec, phi, expected)
+                result.efficiency = _efficiency(rec, runs)
         if not result.directions:
             travel = _travel(rec, expected, test)
             raise InputFileError(f"{rec.path}: shorter than one output revolution (the longest "
@@ -199,9 +200,9 @@ def _travel(rec: Recording, ratio: float, test: str) -> float:
     return abs(position[b - 1] - position[a]) / (2.0 * math.pi)
 
 
-def _efficiency(rec: Recording, phi: np.ndarray, ratio: float) -> float:
+def _efficiency(rec: Recording, runs) -> float:
     values = []
-    for a, b, _ in A._segments(phi, A.REVERSAL_FRACTION * 2.0 * math.pi):
+    for a, b, _ in runs:
         if b - a < 4:
             continue
         part = slice(a, b)

@@ -201,14 +201,18 @@ class Recording:
         return len(self.output_angle)
 
 
-def _sniff(path: Path) -> tuple[str, str, bool]:
-    """(delimiter, decimal mark, has header) of a CSV file from its first lines."""
+def _sniff(path: Path) -> tuple[str, str, bool, int]:
+    """(delimiter, decimal mark, has header, comment lines before it) of a CSV file from its
+    first lines (lines starting with '#' before the data are comments)."""
     try:
         with path.open("r", encoding="utf-8-sig", errors="replace") as handle:
             lines = [line.strip() for _, line in zip(range(20), handle)]
     except OSError as exc:
         raise InputFileError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    lines = [line for line in lines if line and not line.startswith("#")]
+    skip = 0
+    while skip < len(lines) and (not lines[skip] or lines[skip].startswith("#")):
+        skip += 1
+    lines = lines[skip:]
     if not lines:
         raise InputFileError(f"{path}: the file is empty")
     first = lines[0]
@@ -224,7 +228,7 @@ def _sniff(path: Path) -> tuple[str, str, bool]:
             return False
 
     header = not all(numeric(f) for f in first.split(sep))
-    return sep, decimal, header
+    return sep, decimal, header, skip
 
 
 def _read_table(path: Path):
@@ -246,10 +250,10 @@ def _read_table(path: Path):
             raise InputFileError(f"{path}: not a readable Parquet file ({exc})") from None
     if suffix not in (".csv", ".txt", ".tsv"):
         raise InputFileError(f"{path}: unknown file type '{suffix}' (use .csv or .parquet)")
-    sep, decimal, header = _sniff(path)
+    sep, decimal, header, skip = _sniff(path)
     try:
         frame = pd.read_csv(path, sep=sep, decimal=decimal, header=0 if header else None,
-                            comment="#", skipinitialspace=True, encoding="utf-8-sig")
+                            skiprows=skip, encoding="utf-8-sig")
     except (pd.errors.ParserError, UnicodeDecodeError, ValueError) as exc:
         raise InputFileError(f"{path}: not a readable CSV file "
                              f"({str(exc).splitlines()[0]})") from None
