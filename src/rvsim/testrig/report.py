@@ -51,23 +51,41 @@ def _spectrum_figure(measured, simulated, marks):
 
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(8, 3.4))
-    top = max(marks.values()) * 1.15
-    for source, color, result in (("measured", "C0", measured), ("model", "C1", simulated)):
-        if result is None:
+    lines = []
+    for result in (measured, simulated):
+        d = None if result is None else next(
+            (d for f in result.files for d in f.directions or []), None)
+        lines.append(None if d is None else d.spectrum())
+    # up to a little beyond the highest of the leading lines
+    leading = [] if lines[0] is None else list(
+        lines[0][0][np.argsort(lines[0][1][1:])[::-1][:3] + 1])
+    limit = 1.2 * max(leading + [2.0 * max(o for o in marks.values() if o < 100)])
+    for (source, color, style), line in zip((("measured", "C0", "-"), ("model", "C1", "o")),
+                                            lines):
+        if line is None:
             continue
-        d = next((d for f in result.files for d in f.directions or []), None)
-        if d is None:
-            continue
-        orders, amplitude = d.spectrum()
-        keep = (orders > 0) & (orders <= top)
-        ax.plot(orders[keep], amplitude[keep] / ARCSEC, "o" if source == "model" else "-",
-                color=color, ms=3, lw=0.8, label=source)
+        orders, amplitude = line
+        keep = (orders > 0) & (orders <= limit)
+        if style == "-":
+            ax.vlines(orders[keep], 0.0, amplitude[keep] / ARCSEC, color=color, lw=1.0,
+                      label=source)
+        else:
+            shown = keep & (amplitude > 0.01 * amplitude[keep].max())
+            ax.plot(orders[shown], amplitude[shown] / ARCSEC, "o", mfc="none", color=color,
+                    ms=5, label=source)
+    top = ax.get_ylim()[1]
+    grouped: dict = {}
     for name, order in marks.items():
-        ax.axvline(order, color="C3", lw=0.5, ls=":")
-        ax.text(order, ax.get_ylim()[1], name, rotation=90, fontsize=6, va="top", color="C3")
+        grouped.setdefault(float(order), []).append(name)
+    for order, names in grouped.items():
+        if order <= limit:
+            ax.axvline(order, color="C3", lw=0.5, ls=":")
+            ax.text(order, top, ", ".join(names), rotation=90, fontsize=6, va="top",
+                    color="C3")
+    ax.set_xlim(0, limit)
     ax.set_xlabel("order of the output revolution [-]")
     ax.set_ylabel("TE amplitude [arcsec]")
-    ax.legend(fontsize="small")
+    ax.legend(fontsize="small", loc="center right")
     ax.grid(alpha=0.3)
     fig.tight_layout()
     return fig
