@@ -173,8 +173,9 @@ def loop_arrays(hysteresis):
 
 def turning_points(values, threshold: float) -> np.ndarray:
     """Indices where a noisy sweep reverses: a running extreme counts as a turning point once
-    the signal has retreated from it by more than ``threshold`` (so noise smaller than the
-    threshold makes no reversal).  Returns the indices of the extremes, in order."""
+    the signal has retreated from it by more than ``threshold`` (so noise makes no reversal
+    while its peak-to-peak stays below the threshold).  Returns the indices of the extremes,
+    in order."""
     x = _vector("values", values)
     if not (math.isfinite(threshold) and threshold > 0):
         raise CurveError("threshold", f"must be positive (got {threshold!r})")

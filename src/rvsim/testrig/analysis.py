@@ -34,7 +34,7 @@ ARCMIN = math.pi / 10800.0
 #: at order 1440)
 DEFAULT_POINTS = 4096
 #: at least this many samples per node on average: nodes take the mean of their samples;
-#: fewer: linear interpolation at the node
+#: fewer: a cubic spline through the samples, read at the nodes
 BIN_MIN_SAMPLES = 4
 #: a reversal of the input counts once it has turned back by this fraction of an output
 #: revolution (smaller wiggles are encoder noise at standstill)
@@ -97,7 +97,16 @@ def _revolutions(progress: np.ndarray, te: np.ndarray, points: int):
             values[~full] = np.interp(nodes[~full], nodes[full], values[full])
     else:
         order = np.argsort(progress, kind="stable")
-        values = np.interp(nodes, progress[order], te[order])
+        x, y = progress[order], te[order]
+        if x.size >= 4 and np.all(np.diff(x) > 0):
+            # sparse samples (an exported curve, a model run): a cubic spline, which keeps
+            # the amplitude of the orders a linear interpolation would damp (1 % at order 40
+            # from 720 samples per revolution)
+            from scipy.interpolate import CubicSpline
+
+            values = CubicSpline(x, y)(nodes)
+        else:
+            values = np.interp(nodes, x, y)
     return nodes, values
 
 

@@ -265,10 +265,12 @@ def _read_table(path: Path):
 
 
 def _column(frame, path: Path, quantity: str, spec: ColumnSpec, headerless: bool):
+    import pandas as pd
+
     if spec.column not in frame.columns:
         return None
     values = frame[spec.column]
-    if quantity == "direction" and values.dtype == object:
+    if quantity == "direction" and not pd.api.types.is_numeric_dtype(values):
         text = values.astype(str).str.strip().str.lower()
         mapped = text.map({"forward": 1.0, "fwd": 1.0, "+1": 1.0, "1": 1.0, "cw": 1.0,
                            "backward": -1.0, "bwd": -1.0, "reverse": -1.0, "-1": -1.0,
@@ -278,8 +280,6 @@ def _column(frame, path: Path, quantity: str, spec: ColumnSpec, headerless: bool
             raise InputFileError(f"{path}: column '{spec.column}' row {row + 1}: direction "
                                  f"'{values.iloc[row]}' is not forward/backward or +1/-1")
         return mapped.to_numpy(dtype=float)
-    import pandas as pd
-
     numbers = pd.to_numeric(values, errors="coerce").to_numpy(dtype=float)
     bad = np.isnan(numbers)
     if bad.any():
