@@ -55,7 +55,7 @@ def test_semicolon_headerless_counts_and_parquet(tmp_path, capsys):
     (lambda f: f.assign(time_s=f.time_s[::-1].to_numpy()), "time does not increase"),
     (lambda f: f.iloc[:2000], "shorter than one output revolution"),
     (lambda f: f.assign(output_angle_deg=f.output_angle_deg.where(f.index % 500 != 7)),
-     "NaN gap at row 8"),
+     "NaN gap at data row 8"),
     (lambda f: f.assign(input_angle_deg=f.input_angle_deg * 1.02), "measured ratio"),
 ])
 def test_bad_recordings(tmp_path, capsys, change, message):
@@ -81,3 +81,14 @@ def test_calibrate_writes_params_the_other_commands_accept(tmp_path, capsys):
     rows = json.loads(capsys.readouterr().out)["parameters"]
     value = next(r["value"] for r in rows if r["name"] == "contact.bushing_stiffness_factor")
     assert value == pytest.approx(estimate, rel=1e-9)
+
+
+def test_compare_refuses_a_file_ratio_that_is_not_the_models(tmp_path, capsys):
+    path = tmp_path / "r81.csv"
+    _frame(ratio=81.0).to_csv(path, index=False)
+    assert main(["testrig", str(path), "--ratio", "81", "--json"]) == 0      # analysis: fine
+    capsys.readouterr()
+    assert main(["testrig", str(path), "--ratio", "81", "--compare"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"rvsim: error: {path}: its ratio 81 differs from the parameter "
+                          "set's 121")

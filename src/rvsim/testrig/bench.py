@@ -22,7 +22,7 @@ from . import analysis as A
 from .recording import ColumnMap, Recording, point_from_name, read_recording
 
 __all__ = ["FileResult", "PointResult", "analyse_path", "analyse_recording", "list_files",
-           "RATIO_TOLERANCE", "MANIFEST"]
+           "check_model_ratio", "RATIO_TOLERANCE", "MANIFEST"]
 
 #: the measured ratio may differ from the expected one by this fraction
 RATIO_TOLERANCE = 0.01
@@ -42,6 +42,7 @@ class FileResult:
     loop: tuple | None = None          # (torque, angle, branch) catalogue form
     efficiency: float | None = None
     ratio_measured: float | None = None
+    ratio_expected: float | None = None    # the ratio the file was analysed with
     samples: int = 0
 
 
@@ -149,7 +150,8 @@ def analyse_recording(rec: Recording, declared: dict, reducer, *, points: int = 
     measured: dict = {}
     if rec.oil_temperature is not None:
         measured["temperature_c"] = float(np.mean(rec.oil_temperature))
-    result = FileResult(rec.path, test, measured, samples=rec.samples)
+    result = FileResult(rec.path, test, measured, samples=rec.samples,
+                        ratio_expected=None if test == "te_curve" else abs(expected))
     try:
         if test == "torque_reversal":
             _need(rec, ("time", "output_angle", "output_torque"), test)
@@ -234,3 +236,16 @@ def analyse_path(path: str | Path, reducer, column_map: ColumnMap | None = None,
         group = groups.setdefault(key, PointResult(point, []))
         group.files.append(result)
     return list(groups.values())
+
+
+def check_model_ratio(point: PointResult, reducer) -> None:
+    """A file analysed with a ratio (``--ratio``, map, manifest) that differs from the parameter
+    set's by more than :data:`RATIO_TOLERANCE` cannot be compared with that model."""
+    for f in point.files:
+        if f.ratio_expected is None:
+            continue
+        off = f.ratio_expected / abs(reducer.ratio) - 1.0
+        if abs(off) > RATIO_TOLERANCE:
+            raise InputFileError(f"{f.path}: its ratio {f.ratio_expected:g} differs from the "
+                                 f"parameter set's {abs(reducer.ratio):g} by {100 * off:+.1f} "
+                                 "%: give the bench reducer's parameters with --params")

@@ -27,6 +27,7 @@ from ..errors import ParameterError, RvsimError, SimulationError
 from ..parameters import SPECS, get_value, resolve_name, with_values
 from ..units import TO_SI
 from . import analysis as A
+from .bench import check_model_ratio
 from .model import model_loop, model_te
 
 __all__ = ["calibrate", "Calibration", "CalibrationError", "residuals", "CORRELATION_LIMIT"]
@@ -90,6 +91,7 @@ def _targets(points, reducer, positions: int):
     nodes = np.arange(positions) * step
     targets = []
     for point in points:
+        check_model_ratio(point, reducer)
         torque = float(point.point.get("torque_nm", 0.0))
         for f in point.files:
             for d in f.directions or []:

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..analysis import catalogue
 from . import analysis as A
-from .bench import FileResult, PointResult
+from .bench import FileResult, PointResult, check_model_ratio
 
 __all__ = ["simulate_point", "model_te", "model_loop", "point_summary", "compare_point",
            "COMPARED_KEYS"]
@@ -51,7 +51,9 @@ def model_loop(reducer, rated: float):
 
 def simulate_point(point: PointResult, reducer, *, points: int = A.DEFAULT_POINTS
                    ) -> PointResult:
-    """The model's runs for every test of a measured point (raises SimulationError)."""
+    """The model's runs for every test of a measured point (raises SimulationError; an
+    InputFileError when a file's ratio is not the model's)."""
+    check_model_ratio(point, reducer)
     torque = float(point.point.get("torque_nm", 0.0))
     files = []
     for measured in point.files:

@@ -23,8 +23,8 @@ import numpy as np
 
 from ..errors import InputFileError
 
-__all__ = ["Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map", "parse_column_option", "point_from_name",
-           "DEFAULT_COLUMNS", "QUANTITIES", "UNITS"]
+__all__ = ["Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map",
+           "parse_column_option", "point_from_name", "DEFAULT_COLUMNS", "QUANTITIES", "UNITS"]
 
 #: canonical quantity -> (default column name, its unit)
 DEFAULT_COLUMNS: dict[str, tuple[str, str]] = {
@@ -101,8 +101,8 @@ def _spec(quantity: str, column, unit: str | None, cpr, where: str) -> ColumnSpe
                              f"{', '.join(QUANTITIES)})")
     unit = unit or DEFAULT_COLUMNS[quantity][1]
     if unit not in UNITS:
-        raise InputFileError(f"{where}: unknown unit '{unit}' for {quantity} (known: "
-                             f"{', '.join(u for u, (k, _) in UNITS.items() if k == _KIND[quantity])})")
+        known = ", ".join(u for u, (k, _) in UNITS.items() if k == _KIND[quantity])
+        raise InputFileError(f"{where}: unknown unit '{unit}' for {quantity} (known: {known})")
     if UNITS[unit][0] != _KIND[quantity]:
         raise InputFileError(f"{where}: unit '{unit}' is not a unit of {_KIND[quantity]} "
                              f"(for {quantity})")
@@ -277,8 +277,9 @@ def _column(frame, path: Path, quantity: str, spec: ColumnSpec, headerless: bool
                            "ccw": -1.0})
         if mapped.isna().any():
             row = int(np.flatnonzero(mapped.isna().to_numpy())[0])
-            raise InputFileError(f"{path}: column '{spec.column}' row {row + 1}: direction "
-                                 f"'{values.iloc[row]}' is not forward/backward or +1/-1")
+            raise InputFileError(f"{path}: column '{spec.column}' data row {row + 1}: "
+                                 f"direction '{values.iloc[row]}' is not forward/backward or "
+                                 "+1/-1")
         return mapped.to_numpy(dtype=float)
     numbers = pd.to_numeric(values, errors="coerce").to_numpy(dtype=float)
     bad = np.isnan(numbers)
@@ -287,18 +288,19 @@ def _column(frame, path: Path, quantity: str, spec: ColumnSpec, headerless: bool
         text_bad = rows[values.iloc[rows].notna().to_numpy()]
         if text_bad.size:
             row = int(text_bad[0])
-            raise InputFileError(f"{path}: column '{spec.column}' row {row + 1}: "
+            raise InputFileError(f"{path}: column '{spec.column}' data row {row + 1}: "
                                  f"'{values.iloc[row]}' is not a number")
         # a NaN gap: name the first run of missing rows
         stop = rows[0]
         while stop + 1 < numbers.size and bad[stop + 1]:
             stop += 1
-        span = f"row {rows[0] + 1}" if stop == rows[0] else f"rows {rows[0] + 1}-{stop + 1}"
+        span = (f"data row {rows[0] + 1}" if stop == rows[0]
+                else f"data rows {rows[0] + 1}-{stop + 1}")
         raise InputFileError(f"{path}: column '{spec.column}' has a NaN gap at {span} "
                              f"({rows.size} missing values in all)")
     if not np.all(np.isfinite(numbers)):
         row = int(np.flatnonzero(~np.isfinite(numbers))[0])
-        raise InputFileError(f"{path}: column '{spec.column}' row {row + 1} is infinite")
+        raise InputFileError(f"{path}: column '{spec.column}' data row {row + 1} is infinite")
     if quantity == "direction":
         if not np.all(np.isin(numbers, (1.0, -1.0))):
             raise InputFileError(f"{path}: column '{spec.column}': direction must be +1 or -1")
@@ -348,7 +350,7 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None) -> Rec
         steps = np.diff(values["time"])
         if not np.all(steps > 0):
             row = int(np.flatnonzero(~(steps > 0))[0]) + 2
-            raise InputFileError(f"{path}: time does not increase at row {row} "
+            raise InputFileError(f"{path}: time does not increase at data row {row} "
                                  f"({values['time'][row - 2]:g} s then "
                                  f"{values['time'][row - 1]:g} s)")
     return Recording(path=path, kind=kind, ratio=column_map.ratio,
