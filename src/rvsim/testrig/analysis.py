@@ -26,7 +26,7 @@ from ..analysis.catalogue import CurveError
 
 __all__ = ["DirectionTE", "te_directions", "input_runs", "te_curve_directions", "te_summary",
            "reversal_curve", "reversal_summary", "run_efficiency", "leading_orders",
-           "common_curve", "DEFAULT_POINTS", "ARCSEC"]
+           "DEFAULT_POINTS", "ARCSEC"]
 
 ARCSEC = math.pi / 648000.0
 ARCMIN = math.pi / 10800.0
@@ -231,14 +231,6 @@ def te_summary(directions: list[DirectionTE], marks: dict) -> dict:
                                                      - per_direction["backward"][
                                                          "mean_te_arcmin"])
     return summary
-
-
-def common_curve(directions: list[DirectionTE], direction: int):
-    """The averaged curve of one direction, or None."""
-    for d in directions:
-        if d.direction == direction:
-            return d
-    return None
 
 
 def reversal_curve(torque, angle, bins_per_side: int = 100):

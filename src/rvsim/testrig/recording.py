@@ -264,7 +264,7 @@ def _read_table(path: Path):
     return frame
 
 
-def _column(frame, path: Path, quantity: str, spec: ColumnSpec, headerless: bool):
+def _column(frame, path: Path, quantity: str, spec: ColumnSpec):
     import pandas as pd
 
     if spec.column not in frame.columns:
@@ -328,7 +328,7 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None) -> Rec
     headerless = all(c.isdigit() for c in frame.columns)
     if headerless:
         column_map = _headerless_map(frame, column_map)
-    values = {q: _column(frame, path, q, column_map.spec(q), headerless) for q in QUANTITIES}
+    values = {q: _column(frame, path, q, column_map.spec(q)) for q in QUANTITIES}
     has = {q for q, v in values.items() if v is not None}
     if "te" in has:
         kind = "te_curve"
