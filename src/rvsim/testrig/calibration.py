@@ -34,6 +34,9 @@ __all__ = ["calibrate", "Calibration", "CalibrationError", "residuals", "CORRELA
 
 #: |correlation| above which two fitted parameters are reported as hardly separable
 CORRELATION_LIMIT = 0.95
+#: |correlation| from which they count as not separable at all (a singular J^T J shows up so
+#: through the finite-difference Jacobian's round-off)
+SAME_LIMIT = 0.999
 #: singular values of the scaled Jacobian below this fraction of the largest: not identifiable
 RANK_TOLERANCE = 1e-6
 _LEVELS = np.linspace(0.02, 0.98, 24)
@@ -206,7 +209,12 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     np.fill_diagonal(corr, 1.0)
     for i in range(p):
         for j in range(i + 1, p):
-            if np.isfinite(corr[i, j]) and abs(corr[i, j]) > CORRELATION_LIMIT:
+            if not np.isfinite(corr[i, j]):
+                continue
+            if abs(corr[i, j]) >= SAME_LIMIT:
+                notes.append(f"the data cannot tell {names[i]} and {names[j]} apart "
+                             f"(correlation {corr[i, j]:+.4f}): fix one of them")
+            elif abs(corr[i, j]) > CORRELATION_LIMIT:
                 notes.append(f"{names[i]} and {names[j]} are correlated {corr[i, j]:+.3f}: the "
                              "data hardly tell them apart (wide, linked intervals)")
     if failed[0]:
