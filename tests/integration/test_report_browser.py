@@ -80,3 +80,15 @@ def test_run_report_in_browser(tmp_path, cli):
     seen = _open(report, tmp_path / "run_report.png")
     _check(seen, min_images=4)
     assert "Pin contact forces" in seen["text"]
+
+
+def test_testrig_report_in_browser(tmp_path):
+    from rvsim.cli import main
+
+    report = tmp_path / "bench.html"
+    assert main(["testrig", "docs/examples/testrig", "--params",
+                 "docs/examples/testrig_start.toml", "--compare", "--report",
+                 str(report)]) == 0
+    seen = _open(report, tmp_path / "testrig_report.png")
+    _check(seen, min_images=3)
+    assert "lost_motion_arcmin" in seen["text"] and "difference" in seen["text"]

@@ -29,7 +29,7 @@ from ..errors import RvsimError
 __all__ = ["CurveError", "loop_branches", "sweep_branches", "branch_side", "angle_at",
            "torsional_rigidity", "lost_motion", "backlash", "hysteresis_loss",
            "transmission_error_pp", "order_spectrum", "reducer_orders", "loop_arrays",
-           "LOST_MOTION_FRACTION"]
+           "LOST_MOTION_FRACTION", "turning_points", "binned_sweep"]
 
 #: lost motion is read at +- this fraction of rated torque (GB/T 35089-2018, catalogues)
 LOST_MOTION_FRACTION = 0.03
@@ -167,6 +167,82 @@ def loop_arrays(hysteresis):
         if not np.all(np.isfinite(stiffness)):
             stiffness = None
     return (*arrays, stiffness)
+
+
+# --- sampled (bench) sweeps ------------------------------------------------------------------
+
+def turning_points(values, threshold: float) -> np.ndarray:
+    """Indices where a noisy sweep reverses: a running extreme counts as a turning point once
+    the signal has retreated from it by more than ``threshold`` (so noise makes no reversal
+    while its peak-to-peak stays below the threshold).  Returns the indices of the extremes,
+    in order."""
+    x = _vector("values", values)
+    if not (math.isfinite(threshold) and threshold > 0):
+        raise CurveError("threshold", f"must be positive (got {threshold!r})")
+    # the first move beyond the threshold sets the first direction
+    up = np.flatnonzero(x - np.minimum.accumulate(x) > threshold)
+    down = np.flatnonzero(np.maximum.accumulate(x) - x > threshold)
+    if not (up.size or down.size):
+        return np.zeros(0, dtype=int)
+    direction = 1.0 if (up[0] if up.size else x.size) < (down[0] if down.size else x.size) \
+        else -1.0
+    turns = []
+    start = 0
+    while True:
+        rest = direction * x[start:]              # looking for a maximum of direction * x
+        past = np.flatnonzero(np.maximum.accumulate(rest) - rest > threshold)
+        if not past.size:
+            break
+        start += int(np.argmax(rest[:past[0] + 1]))
+        turns.append(start)
+        direction = -direction
+    return np.asarray(turns, dtype=int)
+
+
+def binned_sweep(torque, angle, bins_per_side: int = 100, threshold: float | None = None):
+    """A sampled torque sweep (a bench's time series: noisy torque, angle) as the curve the
+    torque-reversal functions take: each run between turning points (:func:`turning_points`,
+    ``threshold`` default 5 % of the largest torque) reduced to the means of its samples in
+    torque bins (``bins_per_side`` on each side of zero, 0 N*m an edge so that no bin mixes the
+    two sides of a free play; the samples in the two bins next to zero are left out: the
+    free play is crossed there and the torque noise cannot tell its sides apart), in sweep
+    order.  Returns (torque, angle, branch)."""
+    torque = _vector("torque", torque)
+    angle = _vector("angle", angle, torque.size)
+    top = float(np.max(np.abs(torque)))
+    if top == 0.0:
+        raise CurveError("torque", "is zero throughout")
+    threshold = 0.05 * top if threshold is None else threshold
+    turns = turning_points(torque, threshold)
+    bounds = np.r_[0, turns, torque.size - 1]
+    edges = np.linspace(-top, top, 2 * bins_per_side + 1)
+    width = top / bins_per_side
+    out_t, out_a, out_b = [], [], []
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        if b <= a:
+            continue
+        t, y = torque[a:b + 1], angle[a:b + 1]
+        sign = 1.0 if t[-1] > t[0] else -1.0
+        # a free play is crossed at zero torque, where the torque noise cannot tell the two
+        # sides apart: the samples within one bin of zero are left out (the catalogue's
+        # readings extend each side's first segment to zero)
+        keep = np.abs(t) >= width
+        t, y = t[keep], y[keep]
+        if t.size == 0:
+            continue
+        cell = np.clip(np.searchsorted(edges, t, side="right") - 1, 0, edges.size - 2)
+        count = np.bincount(cell, minlength=edges.size - 1)
+        used = np.flatnonzero(count)
+        mean_t = np.bincount(cell, t, edges.size - 1)[used] / count[used]
+        mean_a = np.bincount(cell, y, edges.size - 1)[used] / count[used]
+        if sign < 0:
+            mean_t, mean_a = mean_t[::-1], mean_a[::-1]
+        out_t.append(mean_t)
+        out_a.append(mean_a)
+        out_b.append(np.full(mean_t.size, sign))
+    if not out_t:
+        raise CurveError("torque", "has no sweep (no run between turning points)")
+    return np.concatenate(out_t), np.concatenate(out_a), np.concatenate(out_b)
 
 
 # --- torque-reversal quantities -------------------------------------------------------------

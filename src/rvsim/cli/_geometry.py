@@ -6,7 +6,7 @@ import argparse
 
 from ..parameters import parameter_table
 from ..errors import ParameterError
-from ..parameters._io import toml_string
+from ..parameters._io import toml_text
 from ._common import (add_command, add_reducer_options, check_output_file, path_text,
                       print_json, reducer_from_args)
 
@@ -24,16 +24,7 @@ def _params(args: argparse.Namespace) -> int:
         print_json({"name": reducer.name, "citation": reducer.citation, "parameters": rows})
         return 0
     if args.toml:
-        section = None
-        print(f'base = "RV-40E"\nname = {toml_string(reducer.name)}')
-        for row in rows:
-            head, _, leaf = row["name"].rpartition(".")
-            if head != section:
-                print(f"\n[{head}]")
-                section = head
-            value = row["value"]
-            text = ("true" if value else "false") if isinstance(value, bool) else f"{value:.12g}"
-            print(f"{leaf} = {text}  # [{row['unit']}] {row['description']}")
+        print(toml_text(reducer), end="")
         return 0
     print(f"{reducer.name}: {reducer.citation}")
     width = max(len(r["name"]) for r in rows)

@@ -23,7 +23,7 @@ from .cycloid_drive import CYCLOID_DRIVE
 from .rv40e import RV40E, TABLE2_FACTORS
 
 __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assignment",
-           "load_toml", "validate", "resolve_name", "BUILT_IN_SETS", "toml_string"]
+           "load_toml", "validate", "resolve_name", "BUILT_IN_SETS", "toml_string", "toml_text"]
 
 #: every leaf parameter of :class:`Reducer`, by dotted name
 SPECS: dict[str, FieldSpec] = {s.name: s for s in field_specs(Reducer)}
@@ -312,3 +312,19 @@ def parameter_table(reducer: Reducer) -> list[dict[str, Any]]:
         value = get_value(reducer, spec.name)
         rows.append({"name": spec.name, "value": value, "unit": spec.unit, "description": spec.doc})
     return rows
+
+
+def toml_text(reducer: Reducer) -> str:
+    """Every parameter of ``reducer`` as a TOML file that :func:`load_toml` (``--params``)
+    reads back: user units, one table per group, each line commented with unit and meaning."""
+    lines = [f'base = "RV-40E"\nname = {toml_string(reducer.name)}']
+    section = None
+    for row in parameter_table(reducer):
+        head, _, leaf = row["name"].rpartition(".")
+        if head != section:
+            lines.append(f"\n[{head}]")
+            section = head
+        value = row["value"]
+        text = ("true" if value else "false") if isinstance(value, bool) else f"{value:.12g}"
+        lines.append(f"{leaf} = {text}  # [{row['unit']}] {row['description']}")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,80 @@
+"""Benchmark the analysis of a bench recording (issue 12, item 6).
+
+Target: analysing a recording of 10^6 samples <= 2 s.  A synthetic TE recording (the RV-40E's
+quasi-static TE, forward and backward, encoder quantisation and noise) of ``--samples`` rows
+is written as CSV and as Parquet; the figure is the median of ``--repeat`` runs of
+:func:`rvsim.testrig.analyse_path` (read + analyse, the numbers ``rvsim testrig`` prints),
+and separately of the analysis alone on the loaded recording.  BLAS threads limited to one.
+
+Usage:  python benchmarks/bench_testrig.py [--samples 1000000] [--repeat 5]
+"""
+
+from __future__ import annotations
+
+import os
+
+for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
+    os.environ.setdefault(_name, "1")
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import platform  # noqa: E402
+import statistics  # noqa: E402
+import tempfile  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+
+def _median(function, repeat):
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), min(times), max(times)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--samples", type=int, default=1_000_000)
+    parser.add_argument("--repeat", type=int, default=5)
+    args = parser.parse_args()
+
+    from rvsim.parameters import RV40E
+    from rvsim.testrig import analyse_path, synthetic
+    from rvsim.testrig.bench import analyse_recording
+    from rvsim.testrig.model import point_summary
+    from rvsim.testrig.recording import read_recording
+
+    per_rev = args.samples // 2 / 1.05
+    frame, _ = synthetic.te_recording(RV40E, backward=True, revolutions=1.05,
+                                      samples_per_revolution=int(per_rev))
+    figures = {"samples": len(frame)}
+    with tempfile.TemporaryDirectory() as folder:
+        for suffix in ("csv", "parquet"):
+            path = Path(folder) / f"run_300Nm.{suffix}"
+            (frame.to_csv(path, index=False) if suffix == "csv"
+             else frame.to_parquet(path))
+
+            def whole(path=path):
+                for point in analyse_path(path, RV40E):
+                    point_summary(point, RV40E)
+
+            whole()                                   # warm-up (imports)
+            figures[f"read_and_analyse_{suffix}_s"] = _median(whole, args.repeat)
+        recording = read_recording(path)
+
+        def analysis_only():
+            point_summary(type("P", (), {"point": {}, "files": [
+                analyse_recording(recording, {}, RV40E)]})(), RV40E)
+
+        figures["analysis_only_s"] = _median(analysis_only, args.repeat)
+    figures.update(machine=f"{platform.machine()} {platform.processor() or ''}".strip(),
+                   cpus=os.cpu_count(), python=platform.python_version(),
+                   date=time.strftime("%Y-%m-%d %H:%M"),
+                   load=os.getloadavg()[0])
+    print(json.dumps(figures, indent=2))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,198 @@
+"""``rvsim testrig`` (bench recordings: the standard numbers, the model beside them) and
+``rvsim calibrate`` (fit uncertain parameters to the recordings).
+
+Every input problem is one line naming the file, exit 2, and nothing is written; a model run
+that fails prints its status and exits 1.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from .._json import to_json_safe
+from ..errors import ParameterError
+from ._common import (add_command, add_reducer_options, check_output_file,
+                      check_output_folder, path_text, print_json, reducer_from_args)
+
+__all__ = ["register"]
+
+
+def _column_map(args: argparse.Namespace):
+    from ..testrig.recording import ColumnMap, parse_column_option, read_column_map
+
+    column_map = read_column_map(args.map) if args.map else ColumnMap()
+    extra = dict(parse_column_option(text) for text in args.columns)
+    ratio = args.ratio
+    if ratio is not None and not ratio > 1:
+        raise ParameterError("--ratio", f"must be above 1 (got {ratio:g})")
+    return column_map.merged(ColumnMap(extra, ratio))
+
+
+def _points_option(value: int) -> int:
+    if not 64 <= value <= 65536:
+        raise ParameterError("--points", f"must be 64 to 65536 (got {value})")
+    return value
+
+
+def _testrig(args: argparse.Namespace) -> int:
+    report = None
+    if args.report:
+        if Path(args.report).suffix.lower() != ".html":
+            raise ParameterError("--report", f"{args.report}: must be a .html file")
+        report = check_output_file(args.report, "--report")
+    points = _points_option(args.points)
+    reducer = reducer_from_args(args)
+    column_map = _column_map(args)
+    from ..testrig.bench import analyse_path
+    from ..testrig.model import compare_point, point_summary
+
+    analysed = analyse_path(args.path, reducer, column_map, points=points)
+    results, code = [], 0
+    for point in analysed:
+        if args.compare:
+            summary, simulated = compare_point(point, reducer, points=points)
+            if simulated is None:
+                code = 1
+                print(f"rvsim: model failed at {point.point}: status "
+                      f"{summary['simulated']['status']}", file=sys.stderr)
+        else:
+            summary, simulated = point_summary(point, reducer), None
+        results.append((summary, point, simulated))
+    if report:
+        from ..testrig.report import write_testrig_report
+
+        write_testrig_report(results, reducer, report)
+    for summary, _, _ in results:
+        if args.json:
+            # one JSON object per operating point, one per line
+            print(json.dumps(to_json_safe(summary), allow_nan=False))
+        else:
+            _print_point(summary)
+    return code
+
+
+def _fmt(value, spec: str) -> str:
+    return "-" if value is None else format(value, spec)
+
+
+def _print_point(s: dict) -> None:
+    point = ", ".join(f"{k} {v:g}" for k, v in s["point"].items())
+    print(f"[{point}] {', '.join(s['files'])}")
+    if s.get("ate_pp_arcmin") is not None:
+        lines = ", ".join(f"{o['order']:g} ({o['name'] or '-'}) {o['amplitude_arcsec']:.3g}\""
+                          for o in s["orders"][:4])
+        print(f"  TE peak-to-peak {s['ate_pp_arcmin']:.4f} arcmin, RMS "
+              f"{s['te_rms_arcsec']:.3f} arcsec; leading orders: {lines}")
+    if "forward_backward_offset_arcmin" in s:
+        print(f"  forward/backward offset {s['forward_backward_offset_arcmin']:.4f} arcmin")
+    if "lost_motion_arcmin" in s:
+        print(f"  lost motion {s['lost_motion_arcmin']:.4f} arcmin, backlash "
+              f"{s['backlash_arcmin']:.4f} arcmin, hysteresis loss "
+              f"{s['hysteresis_loss_arcmin']:.4f} arcmin, torsional rigidity "
+              f"{s['torsional_rigidity_nm_per_arcmin']:.2f} N*m/arcmin")
+    if "efficiency" in s:
+        print(f"  efficiency {s['efficiency']:.4f}")
+    sim, diff = s.get("simulated"), s.get("difference") or {}
+    if sim and sim.get("status") == "ok":
+        keys = [k for k in diff if k != "te_curve_rms_arcsec"]
+        print("  model: " + ", ".join(f"{k} {_fmt(sim.get(k), '.4g')} (difference "
+                                         f"{diff[k]:+.4g})" for k in keys))
+
+
+def _calibrate(args: argparse.Namespace) -> int:
+    out = check_output_folder(args.out, "--out")
+    if not 32 <= args.positions <= 8192:
+        raise ParameterError("--positions", f"must be 32 to 8192 (got {args.positions})")
+    names = [n.strip() for n in args.fit.split(",") if n.strip()]
+    reducer = reducer_from_args(args)
+    column_map = _column_map(args)
+    from ..parameters import resolve_name
+    from ..parameters._io import toml_text
+    from ..testrig.bench import analyse_path
+    from ..testrig.calibration import calibrate
+
+    for name in names:
+        resolve_name(name)
+    analysed = analyse_path(args.path, reducer, column_map)
+    result = calibrate(analysed, reducer, names, positions=args.positions)
+    from .._files import atomic_write_text
+
+    out.mkdir(parents=True, exist_ok=True)
+    payload = result.to_dict()
+    fitted = out / "fitted.toml"
+    atomic_write_text(fitted, toml_text(result.reducer))
+    payload["fitted_params"] = str(fitted)
+    atomic_write_text(out / "calibration.json",
+                      json.dumps(to_json_safe(payload), indent=2, allow_nan=False) + "\n")
+    if args.json:
+        print_json(payload)
+    else:
+        print(f"fitted {len(names)} parameters to {payload['residuals']} residuals "
+              f"({payload['evaluations']} model evaluations): RMS {payload['rms_start_arcsec']:.3f}"
+              f" -> {payload['rms_arcsec']:.3f} arcsec, status {payload['status']}")
+        for name, p in payload["parameters"].items():
+            lo, hi = p["ci95"]
+            interval = "not identifiable" if lo is None else f"95 % CI {lo:.6g} .. {hi:.6g}"
+            print(f"  {name} = {p['estimate']:.6g} {p['unit']} ({interval})")
+        for note in payload["notes"]:
+            print(f"  note: {note}")
+        print(f"wrote {fitted} (use it with --params) and {out / 'calibration.json'}")
+    return 0 if payload["status"] == "ok" else 1
+
+
+def _inputs(p: argparse.ArgumentParser) -> None:
+    p.add_argument("path", metavar="FILE_OR_FOLDER", type=path_text,
+                   help="a recording (.csv, .parquet) or a folder of them (with an optional "
+                        "manifest.csv)")
+    p.add_argument("--map", metavar="FILE.toml", type=path_text,
+                   help="column names, units and ratio (docs/user_guide.md, Test-bench data)")
+    p.add_argument("--column", metavar="QUANTITY=COLUMN[:UNIT[:COUNTS]]", action="append",
+                   default=[], dest="columns",
+                   help="map one quantity, e.g. input_angle=enc1:counts:4096 (repeatable; "
+                        "wins over --map)")
+    p.add_argument("--ratio", type=float, metavar="I",
+                   help="reduction ratio of the bench reducer (default: the parameter set's)")
+    add_reducer_options(p)
+    p.add_argument("--json", action="store_true", help="machine-readable output")
+
+
+def register(sub) -> None:
+    p = add_command(sub, "testrig", "bench recordings: TE, spectrum, lost motion, rigidity",
+                    "Analyse encoder recordings of a test bench the standard way: TE over each "
+                    "complete output revolution per direction (peak-to-peak, RMS, order "
+                    "spectrum), forward/backward offset, lost motion, backlash, hysteresis "
+                    "loss and torsional rigidity of a torque reversal, efficiency. One JSON "
+                    "object per operating point (--json: one per line).",
+                    ["rvsim testrig docs/examples/testrig --json",
+                     "rvsim testrig run.csv --column input_angle=enc1:counts:4096 --json",
+                     "rvsim testrig bench/ --map columns.toml --compare --report bench.html"])
+    _inputs(p)
+    p.add_argument("--compare", action="store_true",
+                   help="run the model (quasi-static) at the same operating points")
+    p.add_argument("--report", metavar="FILE.html",
+                   help="write an HTML report (measured and model curves on the same axes)")
+    p.add_argument("--points", type=int, default=4096, metavar="N",
+                   help="nodes per output revolution (64 to 65536, default 4096)")
+    p.set_defaults(func=_testrig)
+
+    p = add_command(sub, "calibrate", "fit uncertain parameters to bench recordings",
+                    "Least-squares fit of the named parameters to the measured TE curves and "
+                    "torque-reversal loops (quasi-static model), with 95 % confidence "
+                    "intervals from the Jacobian and the correlation of the fitted "
+                    "parameters; writes OUT/fitted.toml (for --params) and "
+                    "OUT/calibration.json.",
+                    ["rvsim calibrate docs/examples/testrig --params base.toml "
+                     "--fit errors.disc_runout,clearances.crank_arm_bushing --out fit",
+                     "rvsim calibrate bench/ --fit contact.bushing_stiffness_factor --out fit "
+                     "--json"])
+    _inputs(p)
+    p.add_argument("--fit", required=True, metavar="NAME,NAME,...",
+                   help="parameters to fit (dotted names as --set takes)")
+    p.add_argument("--out", required=True, metavar="DIR", type=path_text,
+                   help="folder for fitted.toml and calibration.json")
+    p.add_argument("--positions", type=int, default=1024, metavar="N",
+                   help="model positions per output revolution (32 to 8192, default 1024)")
+    p.set_defaults(func=_calibrate)

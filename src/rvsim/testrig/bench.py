@@ -1,0 +1,251 @@
+"""A file or a folder of bench recordings -> the standard numbers per operating point.
+
+A folder holds any number of ``.csv`` / ``.parquet`` files; each file's operating point
+(speed, torque, oil temperature) comes from its name (``fwd_15rpm_300Nm_40C.csv``) or from a
+``manifest.csv`` beside them (columns ``file`` and any of ``speed_rpm``, ``torque_nm``,
+``temperature_c``, ``test``, ``ratio``; when it exists it lists the files to analyse).  Files
+with the same point form one operating point (e.g. a forward, a backward and a torque-reversal
+recording); a file whose point is given nowhere is a point of its own, its values measured.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..analysis.catalogue import CurveError
+from ..errors import InputFileError
+from . import analysis as A
+from .recording import ColumnMap, Recording, point_from_name, read_recording
+
+__all__ = ["FileResult", "PointResult", "analyse_path", "analyse_recording", "list_files",
+           "check_model_ratio", "RATIO_TOLERANCE", "MANIFEST"]
+
+#: the measured ratio may differ from the expected one by this fraction
+RATIO_TOLERANCE = 0.01
+MANIFEST = "manifest.csv"
+_SUFFIXES = (".csv", ".parquet", ".pq", ".tsv", ".txt")
+_RPM = 2.0 * math.pi / 60.0
+
+
+@dataclasses.dataclass
+class FileResult:
+    """One recording analysed."""
+
+    path: Path
+    test: str                          # transmission_error | torque_reversal | te_curve
+    measured: dict                     # operating point measured from the data
+    directions: list | None = None     # [DirectionTE]
+    loop: tuple | None = None          # (torque, angle, branch) catalogue form
+    efficiency: float | None = None
+    ratio_measured: float | None = None
+    ratio_expected: float | None = None    # the ratio the file was analysed with
+    samples: int = 0
+
+
+@dataclasses.dataclass
+class PointResult:
+    """The files of one operating point and their combined numbers."""
+
+    point: dict
+    files: list
+
+
+def list_files(path: str | Path) -> list[tuple[Path, dict]]:
+    """(file, declared point and options) of a file or folder (see the module docstring)."""
+    path = Path(path)
+    if path.is_file():
+        return [(path, point_from_name(path.name))]
+    if not path.is_dir():
+        raise InputFileError(f"{path}: no such file or folder")
+    manifest = path / MANIFEST
+    if manifest.is_file():
+        return _read_manifest(manifest)
+    files = sorted(p for p in path.iterdir() if p.is_file() and p.suffix.lower() in _SUFFIXES
+                   and not p.name.startswith("."))
+    if not files:
+        raise InputFileError(f"{path}: no .csv or .parquet recordings in the folder")
+    return [(p, point_from_name(p.name)) for p in files]
+
+
+def _read_manifest(manifest: Path) -> list[tuple[Path, dict]]:
+    import pandas as pd
+
+    try:
+        frame = pd.read_csv(manifest, sep=None, engine="python", comment="#")
+    except (pd.errors.ParserError, UnicodeDecodeError, ValueError, OSError) as exc:
+        raise InputFileError(f"{manifest}: not a readable CSV file ({exc})") from None
+    frame.columns = [str(c).strip() for c in frame.columns]
+    if "file" not in frame.columns:
+        raise InputFileError(f"{manifest}: missing column 'file'")
+    known = {"file", "speed_rpm", "torque_nm", "temperature_c", "test", "ratio"}
+    unknown = set(frame.columns) - known
+    if unknown:
+        raise InputFileError(f"{manifest}: unknown columns {', '.join(sorted(unknown))} "
+                             f"(known: {', '.join(sorted(known))})")
+    out = []
+    for row, record in enumerate(frame.to_dict("records"), start=2):
+        target = manifest.parent / str(record.pop("file")).strip()
+        if not target.is_file():
+            raise InputFileError(f"{manifest}: row {row}: file {target.name} not found")
+        declared = {}
+        for key, value in record.items():
+            if isinstance(value, float) and math.isnan(value):
+                continue
+            if key == "test":
+                value = str(value).strip()
+                if value not in ("transmission_error", "torque_reversal", "te_curve"):
+                    raise InputFileError(f"{manifest}: row {row}: test must be "
+                                         "transmission_error, torque_reversal or te_curve "
+                                         f"(got {value!r})")
+            else:
+                try:
+                    value = float(value)
+                except ValueError:
+                    raise InputFileError(f"{manifest}: row {row}: {key} '{value}' is not a "
+                                         "number") from None
+            declared[key] = value
+        out.append((target, declared))
+    if not out:
+        raise InputFileError(f"{manifest}: lists no files")
+    return out
+
+
+def _longest_run(phi: np.ndarray, runs=None) -> tuple[int, int]:
+    runs = A._segments(phi, A.REVERSAL_FRACTION * 2.0 * math.pi) if runs is None else runs
+    if not runs:
+        return 0, phi.size
+    a, b, _ = max(runs, key=lambda r: abs(phi[r[1] - 1] - phi[r[0]]))
+    return a, b
+
+
+def _classify(rec: Recording, declared: dict, ratio: float) -> str:
+    if "test" in declared:
+        return declared["test"]
+    if rec.kind == "te_curve":
+        return "te_curve"
+    if rec.output_torque is not None:
+        turns = (0.0 if rec.input_angle is None
+                 else np.ptp(rec.input_angle) / abs(ratio) / (2.0 * math.pi))
+        if turns < 0.5 and rec.output_torque.min() < 0.0 < rec.output_torque.max():
+            return "torque_reversal"
+    return "transmission_error"
+
+
+def _need(rec: Recording, names: tuple, test: str) -> None:
+    missing = [n for n in names if getattr(rec, n) is None]
+    if missing:
+        raise InputFileError(f"{rec.path}: a {test.replace('_', ' ')} recording needs "
+                             f"{', '.join(missing)} (map columns with --column or --map)")
+
+
+def analyse_recording(rec: Recording, declared: dict, reducer, *, points: int = A.DEFAULT_POINTS
+                      ) -> FileResult:
+    """The standard analyses of one recording (its test found from its columns, or given)."""
+    expected = declared.get("ratio") or rec.ratio or reducer.ratio
+    test = _classify(rec, declared, expected)
+    measured: dict = {}
+    if rec.oil_temperature is not None:
+        measured["temperature_c"] = float(np.mean(rec.oil_temperature))
+    result = FileResult(rec.path, test, measured, samples=rec.samples,
+                        ratio_expected=None if test == "te_curve" else abs(expected))
+    try:
+        if test == "torque_reversal":
+            _need(rec, ("time", "output_angle", "output_torque"), test)
+            angle = rec.output_angle - (0.0 if rec.input_angle is None
+                                        else rec.input_angle / expected)
+            result.loop = A.reversal_curve(rec.output_torque, angle)
+            measured["torque_nm"] = float(np.max(np.abs(rec.output_torque)))
+            return result
+        if test == "te_curve":
+            _need(rec, ("output_angle", "te", "direction"), test)
+            result.directions = A.te_curve_directions(rec.output_angle, rec.te, rec.direction,
+                                                      points)
+        else:
+            _need(rec, ("time", "input_angle", "output_angle"), test)
+            phi = rec.input_angle / expected
+            runs = A.input_runs(rec.input_angle, expected)
+            a, b = _longest_run(phi, runs)
+            turned = abs(rec.output_angle[b - 1] - rec.output_angle[a])
+            if turned > 0:
+                result.ratio_measured = abs(rec.input_angle[b - 1] - rec.input_angle[a]) / turned
+                off = result.ratio_measured / abs(expected) - 1.0
+                if abs(off) > RATIO_TOLERANCE:
+                    raise InputFileError(
+                        f"{rec.path}: the measured ratio {result.ratio_measured:.5g} differs "
+                        f"from {abs(expected):g} by {100 * off:+.1f} % (more than "
+                        f"{100 * RATIO_TOLERANCE:g} %): check the angle units and counts per "
+                        "revolution")
+            result.directions = A.te_directions(rec.input_angle, rec.output_angle, expected,
+                                                points, runs)
+            measured["speed_rpm"] = float(abs(phi[b - 1] - phi[a]) * abs(expected)
+                                          / (rec.time[b - 1] - rec.time[a]) / _RPM)
+            if rec.output_torque is not None:
+                measured["torque_nm"] = float(np.mean(np.abs(rec.output_torque)))
+            if rec.input_torque is not None and rec.output_torque is not None:
+                result.efficiency = _efficiency(rec, runs)
+        if not result.directions:
+            travel = _travel(rec, expected, test)
+            raise InputFileError(f"{rec.path}: shorter than one output revolution (the longest "
+                                 f"run in one direction covers {travel:.3g} of a revolution)")
+    except CurveError as exc:
+        raise InputFileError(f"{rec.path}: {exc}") from None
+    return result
+
+
+def _travel(rec: Recording, ratio: float, test: str) -> float:
+    position = rec.output_angle if test == "te_curve" else rec.input_angle / ratio
+    a, b = _longest_run(position)
+    return abs(position[b - 1] - position[a]) / (2.0 * math.pi)
+
+
+def _efficiency(rec: Recording, runs) -> float:
+    values = []
+    for a, b, _ in runs:
+        if b - a < 4:
+            continue
+        part = slice(a, b)
+        values.append(A.run_efficiency(
+            rec.time[part], rec.input_angle[part], rec.output_angle[part],
+            rec.input_torque[part], rec.output_torque[part],
+            None if rec.input_speed is None else rec.input_speed[part],
+            None if rec.output_speed is None else rec.output_speed[part]))
+    return float(np.mean(values)) if values else None
+
+
+def _point_key(declared: dict) -> tuple:
+    return tuple((k, round(declared[k], 6)) for k in ("speed_rpm", "torque_nm", "temperature_c")
+                 if k in declared)
+
+
+def analyse_path(path: str | Path, reducer, column_map: ColumnMap | None = None, *,
+                 points: int = A.DEFAULT_POINTS) -> list[PointResult]:
+    """Every recording of a file or folder, analysed and grouped into operating points."""
+    groups: dict = {}
+    for file, declared in list_files(path):
+        rec = read_recording(file, column_map)
+        result = analyse_recording(rec, declared, reducer, points=points)
+        key = _point_key(declared) or (("file", file.name),)
+        point = {k: v for k, v in declared.items() if k in ("speed_rpm", "torque_nm",
+                                                              "temperature_c")}
+        for k, v in result.measured.items():
+            point.setdefault(k, v)
+        group = groups.setdefault(key, PointResult(point, []))
+        group.files.append(result)
+    return list(groups.values())
+
+
+def check_model_ratio(point: PointResult, reducer) -> None:
+    """A file analysed with a ratio (``--ratio``, map, manifest) that differs from the parameter
+    set's by more than :data:`RATIO_TOLERANCE` cannot be compared with that model."""
+    for f in point.files:
+        if f.ratio_expected is None:
+            continue
+        off = f.ratio_expected / abs(reducer.ratio) - 1.0
+        if abs(off) > RATIO_TOLERANCE:
+            raise InputFileError(f"{f.path}: its ratio {f.ratio_expected:g} differs from the "
+                                 f"parameter set's {abs(reducer.ratio):g} by {100 * off:+.1f} "
+                                 "%: give the bench reducer's parameters with --params")

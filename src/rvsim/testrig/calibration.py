@@ -1,0 +1,230 @@
+"""Least-squares calibration of uncertain parameters to bench curves (:func:`calibrate`).
+
+Residuals [arcsec], all measured minus model, each group with its own mean removed (an
+encoder zero makes the mean arbitrary):
+
+* every TE direction of every operating point: the measured revolution-synchronous average
+  at the model's nodes (``positions`` per output revolution; the model is the quasi-static
+  TE at the point's torque, :func:`rvsim.testrig.model.model_te`);
+* every torque-reversal loop: the angle of each branch at 24 torques on each side of zero
+  (2 % to 98 % of the test torque), read by :func:`rvsim.analysis.catalogue.angle_at`.
+
+scipy.optimize.least_squares (trust-region reflective, bounds from the parameters' lower
+limits) on the parameters in user units divided by a scale; covariance s^2 (J^T J)^-1 with
+s^2 = the residual sum of squares / (m - p); 95 % intervals with Student's t.  A singular or
+nearly singular J^T J means the data cannot tell the parameters apart: said by name.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..analysis import catalogue
+from ..errors import ParameterError, RvsimError, SimulationError
+from ..parameters import SPECS, get_value, resolve_name, with_values
+from ..units import TO_SI
+from . import analysis as A
+from .bench import check_model_ratio
+from .model import model_loop, model_te
+
+__all__ = ["calibrate", "Calibration", "CalibrationError", "residuals", "CORRELATION_LIMIT"]
+
+#: |correlation| above which two fitted parameters are reported as hardly separable
+CORRELATION_LIMIT = 0.95
+#: |correlation| from which they count as not separable at all (a singular J^T J shows up so
+#: through the finite-difference Jacobian's round-off)
+SAME_LIMIT = 0.999
+#: singular values of the scaled Jacobian below this fraction of the largest: not identifiable
+RANK_TOLERANCE = 1e-6
+_LEVELS = np.linspace(0.02, 0.98, 24)
+#: scale of a parameter that starts at zero, by unit
+_TYPICAL = {"mm": 0.01, "um": 10.0, "arcmin": 1.0, "deg": 0.1}
+
+
+class CalibrationError(RvsimError):
+    """The data or the chosen parameters cannot be fitted (message says why)."""
+
+
+@dataclasses.dataclass
+class Calibration:
+    """Result of :func:`calibrate` (values in the parameters' user units)."""
+
+    names: list
+    units: list
+    start: np.ndarray
+    estimate: np.ndarray
+    std_error: np.ndarray
+    ci_low: np.ndarray
+    ci_high: np.ndarray
+    correlation: np.ndarray
+    notes: list
+    rms_start_arcsec: float
+    rms_arcsec: float
+    residuals: int
+    evaluations: int
+    status: str
+    reducer: object = None
+
+    def to_dict(self) -> dict:
+        def num(v):
+            return None if not math.isfinite(v) else float(v)
+
+        return {
+            "parameters": {n: {"unit": u, "start": num(s), "estimate": num(e),
+                               "std_error": num(se), "ci95": [num(lo), num(hi)]}
+                           for n, u, s, e, se, lo, hi in zip(
+                               self.names, self.units, self.start, self.estimate,
+                               self.std_error, self.ci_low, self.ci_high)},
+            "correlation": {"names": self.names,
+                            "matrix": [[num(v) for v in row] for row in self.correlation]},
+            "notes": self.notes,
+            "rms_start_arcsec": self.rms_start_arcsec, "rms_arcsec": self.rms_arcsec,
+            "residuals": self.residuals, "evaluations": self.evaluations,
+            "status": self.status,
+        }
+
+
+def _targets(points, reducer, positions: int):
+    """What the residuals compare: [("te", torque, direction, measured values at the model's
+    nodes)] and [("loop", measured angles at the torque levels)]."""
+    step = 2.0 * math.pi / positions
+    nodes = np.arange(positions) * step
+    targets = []
+    for point in points:
+        check_model_ratio(point, reducer)
+        torque = float(point.point.get("torque_nm", 0.0))
+        for f in point.files:
+            for d in f.directions or []:
+                values = np.interp(nodes, d.curve_angle, d.curve, period=2.0 * math.pi)
+                targets.append(("te", torque, d.direction, values))
+            if f.loop is not None:
+                (tu, _), (td, _) = catalogue.loop_branches(*f.loop)
+                reach = min(reducer.rating.rated_torque,
+                            float(min(tu.max(), td.max(), -tu.min(), -td.min())))
+                # the same torques for the measured and the model loop
+                targets.append(("loop", reach, None, _loop_angles(f.loop, reach)))
+    if not targets:
+        raise CalibrationError("the recordings hold no TE curve and no torque-reversal loop "
+                               "to fit")
+    return targets
+
+
+def _loop_angles(loop, reach: float) -> np.ndarray:
+    """Angles of both branches at +-_LEVELS * ``reach`` [N*m], each side read from its own
+    samples."""
+    (tu, au), (td, ad) = catalogue.loop_branches(*loop)
+    out = [catalogue.angle_at(bt, ba, sign, sign * level * reach, "calibration")
+           for bt, ba in ((tu, au), (td, ad)) for sign in (1.0, -1.0) for level in _LEVELS]
+    return np.asarray(out)
+
+
+def residuals(targets, reducer, positions: int) -> np.ndarray:
+    """Measured minus model [arcsec] of every target, each with its mean removed."""
+    parts = []
+    for kind, torque, direction, measured in targets:
+        if kind == "te":
+            model = model_te(reducer, torque, direction, positions)[0].curve
+        else:
+            model = _loop_angles(model_loop(reducer, reducer.rating.rated_torque), torque)
+        diff = measured - model
+        parts.append((diff - diff.mean()) / A.ARCSEC)
+    return np.concatenate(parts)
+
+
+def _scale(spec, start: float) -> float:
+    return abs(start) if start != 0 else _TYPICAL.get(spec.unit, 1.0)
+
+
+def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
+              max_evaluations: int = 200) -> Calibration:
+    """Fit the parameters ``fit`` (dotted names or factor letters, as ``--set`` takes) of
+    ``reducer`` to the analysed recordings ``points`` (:func:`rvsim.testrig.analyse_path`)."""
+    from scipy import optimize, stats
+
+    names = [resolve_name(n) for n in fit]
+    if not names:
+        raise ParameterError("--fit", "name at least one parameter")
+    if len(set(names)) != len(names):
+        raise ParameterError("--fit", "a parameter is named twice")
+    specs = [SPECS[n] for n in names]
+    for spec in specs:
+        if spec.kind != "float":
+            raise ParameterError(spec.name, f"cannot be fitted (a {spec.kind}, not a number)")
+    start = np.array([float(get_value(reducer, n)) for n in names])
+    scale = np.array([_scale(s, v) for s, v in zip(specs, start)])
+    lower = np.array([-np.inf if s.minimum is None else s.minimum / TO_SI[s.unit]
+                      for s in specs]) / scale
+    upper = np.array([np.inf if s.maximum is None else s.maximum / TO_SI[s.unit]
+                      for s in specs]) / scale
+    targets = _targets(points, reducer, positions)
+    evaluations = [0]
+    failed = [None]
+
+    def model_at(x):
+        return with_values(reducer, dict(zip(names, x * scale)))
+
+    def fun(x):
+        evaluations[0] += 1
+        try:
+            return residuals(targets, model_at(x), positions)
+        except (SimulationError, ParameterError) as exc:
+            failed[0] = str(exc)
+            return np.full(size, penalty)
+
+    try:
+        r0 = residuals(targets, reducer, positions)
+    except SimulationError as exc:
+        raise CalibrationError(f"the model fails at the starting parameters: {exc}") from None
+    size = r0.size
+    penalty = 10.0 * max(float(np.sqrt(np.mean(r0 ** 2))), 1.0)
+    x0 = np.clip(start / scale, lower, upper)
+    result = optimize.least_squares(fun, x0, jac="2-point", diff_step=1e-3,
+                                    bounds=(lower, upper), x_scale=1.0,
+                                    max_nfev=max_evaluations)
+    m, p = result.fun.size, len(names)
+    if m <= p:
+        raise CalibrationError(f"{m} residuals cannot fit {p} parameters")
+    s2 = 2.0 * result.cost / (m - p)
+    J = result.jac
+    _, sv, vt = np.linalg.svd(J, full_matrices=False)
+    keep = sv > RANK_TOLERANCE * sv[0] if sv.size and sv[0] > 0 else np.zeros(p, bool)
+    inv = (vt[keep].T / sv[keep] ** 2) @ vt[keep]
+    cov = s2 * inv * np.outer(scale, scale)
+    std = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    notes = []
+    for row in vt[~keep]:                    # directions the data do not see at all
+        involved = [names[i] for i in np.flatnonzero(np.abs(row) > 0.1)]
+        std[[names.index(n) for n in involved]] = np.inf
+        if len(involved) > 1:
+            notes.append(f"the data cannot tell {' and '.join(involved)} apart (they change "
+                         "the curves the same way): fix all but one of them")
+        else:
+            notes.append(f"the data do not depend on {involved[0]}: it cannot be fitted")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov / np.outer(std, std)
+    corr[~np.isfinite(corr)] = np.nan
+    np.fill_diagonal(corr, 1.0)
+    for i in range(p):
+        for j in range(i + 1, p):
+            if not np.isfinite(corr[i, j]):
+                continue
+            if abs(corr[i, j]) >= SAME_LIMIT:
+                notes.append(f"the data cannot tell {names[i]} and {names[j]} apart "
+                             f"(correlation {corr[i, j]:+.4f}): fix one of them")
+            elif abs(corr[i, j]) > CORRELATION_LIMIT:
+                notes.append(f"{names[i]} and {names[j]} are correlated {corr[i, j]:+.3f}: the "
+                             "data hardly tell them apart (wide, linked intervals)")
+    if failed[0]:
+        notes.append(f"the model failed at some trial values (penalised): {failed[0]}")
+    estimate = result.x * scale
+    half = stats.t.ppf(0.975, m - p) * std
+    fitted = model_at(result.x)
+    status = "ok" if result.success else "not_converged"
+    return Calibration(names, [s.unit for s in specs], start, estimate, std, estimate - half,
+                       estimate + half, corr, notes,
+                       float(np.sqrt(np.mean(r0 ** 2))),
+                       float(np.sqrt(np.mean(result.fun ** 2))), m, evaluations[0], status,
+                       fitted)

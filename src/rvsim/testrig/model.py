@@ -1,0 +1,151 @@
+"""The model at the measured operating points, analysed by the same functions as the bench.
+
+TE tests: the quasi-static engine (:func:`rvsim.quasistatic.ltca`) over one output revolution
+at the point's output torque, resisting the motion (forward: +T along increasing input;
+backward: -T, the path read in reverse so that the input turns back); torque-reversal tests:
+:func:`rvsim.quasistatic.hysteresis` to the rated torque.  The model runs come back as
+:class:`~rvsim.testrig.bench.FileResult` and go through :func:`point_summary` like the
+measurements.  Speed and oil temperature do not enter the quasi-static model (reported).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..analysis import catalogue
+from . import analysis as A
+from .bench import FileResult, PointResult, check_model_ratio
+
+__all__ = ["simulate_point", "model_te", "model_loop", "point_summary", "compare_point",
+           "COMPARED_KEYS"]
+
+COMPARED_KEYS = ("ate_pp_arcmin", "te_rms_arcsec", "forward_backward_offset_arcmin",
+                 "lost_motion_arcmin", "backlash_arcmin", "hysteresis_loss_arcmin",
+                 "torsional_rigidity_nm_per_arcmin", "efficiency")
+
+
+def model_te(reducer, torque: float, direction: int, points: int) -> list:
+    """[DirectionTE] of the model under ``torque`` resisting the motion in ``direction``."""
+    from ..quasistatic import ltca
+
+    # points + 1 positions over (points + 1) / points revolutions: the first and the last
+    # position are one output revolution apart, so the run holds one complete revolution
+    run = ltca(reducer, torque=direction * abs(torque), positions=points + 1,
+               revolutions=(points + 1) / points)
+    theta_in, theta_out = run.input_angle, run.output_angle
+    if direction < 0:
+        theta_in, theta_out = theta_in[::-1], theta_out[::-1]
+    return A.te_directions(theta_in, theta_out, run.ratio, points)
+
+
+def model_loop(reducer, rated: float):
+    """(torque, angle, branch) of the model's torque-reversal test to ``rated``."""
+    from ..quasistatic import hysteresis
+
+    t, a, b, _ = catalogue.loop_arrays(hysteresis(reducer, rated_torque=rated))
+    return t, a, b
+
+
+def simulate_point(point: PointResult, reducer, *, points: int = A.DEFAULT_POINTS
+                   ) -> PointResult:
+    """The model's runs for every test of a measured point (raises SimulationError; an
+    InputFileError when a file's ratio is not the model's)."""
+    check_model_ratio(point, reducer)
+    torque = float(point.point.get("torque_nm", 0.0))
+    files = []
+    for measured in point.files:
+        if measured.directions:
+            directions = []
+            for d in measured.directions:
+                directions += model_te(reducer, torque, d.direction, points)
+            files.append(FileResult(Path(f"model: ltca at {torque:g} N*m"), measured.test,
+                                    {"torque_nm": torque}, directions=directions))
+        if measured.loop is not None:
+            rated = reducer.rating.rated_torque
+            files.append(FileResult(Path(f"model: hysteresis to {rated:g} N*m"),
+                                    measured.test, {"torque_nm": rated},
+                                    loop=model_loop(reducer, rated)))
+    return PointResult(dict(point.point), files)
+
+
+def point_summary(point: PointResult, reducer) -> dict:
+    """One JSON object of an operating point: the TE quantities (largest peak-to-peak of a
+    complete revolution, RMS, leading orders), the catalogue quantities of a torque-reversal
+    recording, efficiency; keys of what the recordings do not have are left out, except the
+    three TE keys (null)."""
+    marks = catalogue.reducer_orders(reducer)
+    out: dict = {"point": point.point, "files": [f.path.name for f in point.files],
+                 "tests": sorted({f.test for f in point.files})}
+    te = [A.te_summary(f.directions, marks) for f in point.files if f.directions]
+    if te:
+        out["ate_pp_arcmin"] = max(s["ate_pp_arcmin"] for s in te)
+        out["te_rms_arcsec"] = float(np.sqrt(np.mean([s["te_rms_arcsec"] ** 2 for s in te])))
+        out["orders"] = te[0]["orders"]
+        directions: dict = {}
+        for f, s in zip([f for f in point.files if f.directions], te):
+            for name, values in s["directions"].items():
+                directions[name if name not in directions else f"{name} ({f.path.name})"] = \
+                    values
+        out["directions"] = directions
+        offsets = [s["forward_backward_offset_arcmin"] for s in te
+                   if "forward_backward_offset_arcmin" in s]
+        if offsets:
+            out["forward_backward_offset_arcmin"] = offsets[0]
+    else:
+        out.update(ate_pp_arcmin=None, te_rms_arcsec=None, orders=[])
+    loops = [f.loop for f in point.files if f.loop is not None]
+    if loops:
+        out.update(A.reversal_summary(*loops[0], reducer.rating.rated_torque))
+    efficiency = [f.efficiency for f in point.files if f.efficiency is not None]
+    if efficiency:
+        out["efficiency"] = float(np.mean(efficiency))
+    ratios = [f.ratio_measured for f in point.files if f.ratio_measured]
+    if ratios:
+        out["ratio_measured"] = float(np.mean(ratios))
+    samples = sum(f.samples for f in point.files)
+    if samples:
+        out["samples"] = samples
+    return out
+
+
+def _curve_difference(measured: PointResult, simulated: PointResult) -> dict:
+    """RMS of measured minus simulated averaged TE curve per direction [arcsec] (the model
+    interpolated onto the measured nodes, periodic)."""
+    out = {}
+    model = {d.direction: d for f in simulated.files if f.directions for d in f.directions}
+    for f in measured.files:
+        for d in f.directions or []:
+            m = model.get(d.direction)
+            if m is None:
+                continue
+            sim = np.interp(d.curve_angle, m.curve_angle, m.curve, period=2.0 * math.pi)
+            diff = (d.curve - sim) - np.mean(d.curve - sim)
+            name = "forward" if d.direction > 0 else "backward"
+            out.setdefault(name, float(np.sqrt(np.mean(diff ** 2)) / A.ARCSEC))
+    return out
+
+
+def compare_point(point: PointResult, reducer, *, points: int = A.DEFAULT_POINTS):
+    """(measured summary with "simulated" and "difference" entries, simulated PointResult)."""
+    from ..errors import SimulationError
+
+    summary = point_summary(point, reducer)
+    try:
+        simulated = simulate_point(point, reducer, points=points)
+    except SimulationError as exc:
+        summary["simulated"] = {"status": exc.status, "error": str(exc)}
+        return summary, None
+    sim = point_summary(simulated, reducer)
+    sim["status"] = "ok"
+    sim["note"] = ("quasi-static model: speed and oil temperature do not enter; efficiency is "
+                   "not modelled (no friction in this engine)")
+    summary["simulated"] = sim
+    summary["difference"] = {k: summary[k] - sim[k] for k in COMPARED_KEYS
+                             if summary.get(k) is not None and sim.get(k) is not None}
+    curves = _curve_difference(point, simulated)
+    if curves:
+        summary["difference"]["te_curve_rms_arcsec"] = curves
+    return summary, simulated

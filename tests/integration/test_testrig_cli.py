@@ -1,0 +1,94 @@
+"""rvsim testrig / rvsim calibrate: output, report, and bad input (one line, exit 2, no file)."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from rvsim.cli import main
+
+EXAMPLE = "docs/examples/testrig"
+
+
+def _frame(n=4000, revolutions=1.1, ratio=121.0):
+    phi = np.linspace(0.0, revolutions * 2 * np.pi, n)
+    te = 1e-5 * np.sin(40 * phi)
+    return pd.DataFrame({"time_s": np.arange(n) * 0.01, "input_angle_deg": np.degrees(ratio * phi),
+                         "output_angle_deg": np.degrees(phi - te)})
+
+
+def test_example_folder_json_lines_and_report(tmp_path, capsys):
+    report = tmp_path / "bench.html"
+    assert main(["testrig", EXAMPLE, "--params", "docs/examples/testrig_start.toml",
+                 "--json", "--compare", "--report", str(report)]) == 0
+    lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert len(lines) == 2
+    te = next(p for p in lines if p["ate_pp_arcmin"] is not None)
+    assert {"te_rms_arcsec", "orders", "efficiency", "forward_backward_offset_arcmin"} <= set(te)
+    assert te["simulated"]["status"] == "ok" and "ate_pp_arcmin" in te["difference"]
+    loop = next(p for p in lines if p["ate_pp_arcmin"] is None)
+    assert loop["lost_motion_arcmin"] > 0 and loop["torsional_rigidity_nm_per_arcmin"] > 0
+    assert report.read_text().count("data:image/png;base64") >= 3
+
+
+def test_semicolon_headerless_counts_and_parquet(tmp_path, capsys):
+    frame = _frame()
+    counts = frame.copy()
+    counts["input_angle_deg"] = np.round(frame["input_angle_deg"] / 360 * 2 ** 20)
+    counts.to_csv(tmp_path / "run.csv", sep=";", decimal=",", header=False, index=False)
+    assert main(["testrig", str(tmp_path / "run.csv"), "--column", "input_angle=2:counts:1048576",
+                 "--json"]) == 0
+    first = json.loads(capsys.readouterr().out)
+    frame.rename(columns={"output_angle_deg": "out"}).to_parquet(tmp_path / "run.parquet")
+    (tmp_path / "map.toml").write_text('[output_angle]\ncolumn = "out"\nunit = "deg"\n')
+    assert main(["testrig", str(tmp_path / "run.parquet"), "--map", str(tmp_path / "map.toml"),
+                 "--json"]) == 0
+    second = json.loads(capsys.readouterr().out)
+    # 2^20 counts of the input: 0.01 arcsec of output per count, 0.2 % of this small TE
+    assert first["ate_pp_arcmin"] == pytest.approx(second["ate_pp_arcmin"], rel=3e-3)
+    assert second["ate_pp_arcmin"] == pytest.approx(2e-5 / (np.pi / 10800), rel=1e-3)
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda f: f.drop(columns="output_angle_deg"), "missing column 'output_angle_deg'"),
+    (lambda f: f.assign(time_s=f.time_s[::-1].to_numpy()), "time does not increase"),
+    (lambda f: f.iloc[:2000], "shorter than one output revolution"),
+    (lambda f: f.assign(output_angle_deg=f.output_angle_deg.where(f.index % 500 != 7)),
+     "NaN gap at data row 8"),
+    (lambda f: f.assign(input_angle_deg=f.input_angle_deg * 1.02), "measured ratio"),
+])
+def test_bad_recordings(tmp_path, capsys, change, message):
+    path = tmp_path / "bad.csv"
+    change(_frame()).to_csv(path, index=False)
+    report = tmp_path / "r.html"
+    assert main(["testrig", str(path), "--report", str(report)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"rvsim: error: {path}: ") and message in err
+    assert len(err.strip().splitlines()) == 1
+    assert not report.exists()
+
+
+def test_calibrate_writes_params_the_other_commands_accept(tmp_path, capsys):
+    out = tmp_path / "fit"
+    assert main(["calibrate", EXAMPLE, "--params", "docs/examples/testrig_start.toml",
+                 "--fit", "contact.bushing_stiffness_factor", "--positions", "128",
+                 "--out", str(out), "--json"]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    estimate = payload["parameters"]["contact.bushing_stiffness_factor"]["estimate"]
+    assert 0.7 < estimate < 0.9
+    assert main(["params", "--params", str(out / "fitted.toml"), "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)["parameters"]
+    value = next(r["value"] for r in rows if r["name"] == "contact.bushing_stiffness_factor")
+    assert value == pytest.approx(estimate, rel=1e-9)
+
+
+def test_compare_refuses_a_file_ratio_that_is_not_the_models(tmp_path, capsys):
+    path = tmp_path / "r81.csv"
+    _frame(ratio=81.0).to_csv(path, index=False)
+    assert main(["testrig", str(path), "--ratio", "81", "--json"]) == 0      # analysis: fine
+    capsys.readouterr()
+    assert main(["testrig", str(path), "--ratio", "81", "--compare"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"rvsim: error: {path}: its ratio 81 differs from the parameter "
+                          "set's 121")

@@ -1,0 +1,98 @@
+"""Reading bench files: formats, mapping, units, points, manifests; the sampled-sweep helpers."""
+
+import math
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from rvsim.analysis import catalogue
+from rvsim.errors import InputFileError
+from rvsim.parameters import RV40E
+from rvsim.testrig.bench import analyse_path, list_files
+from rvsim.testrig.model import point_summary
+from rvsim.testrig.recording import (parse_column_option, point_from_name, read_column_map,
+                                     read_recording)
+
+
+def test_point_from_name():
+    assert point_from_name("fwd_15rpm_300Nm_40C.csv") == {
+        "speed_rpm": 15.0, "torque_nm": 300.0, "temperature_c": 40.0}
+    assert point_from_name("run-12p5Nm.parquet") == {"torque_nm": 12.5}
+    assert point_from_name("calibration.csv") == {}
+
+
+def test_semicolon_decimal_comma_with_header_and_comment(tmp_path):
+    path = tmp_path / "r.csv"
+    path.write_text("# bench 3\ntime_s;input_angle_deg;output_angle_deg\n0;0,0;0,0\n"
+                    "0,5;1,5;0,0125\n1;3,0;0,025\n1,5;4,5;0,0375\n")
+    rec = read_recording(path)
+    assert rec.time[1] == 0.5 and rec.input_angle[1] == pytest.approx(math.radians(1.5))
+
+
+def test_column_option_and_map(tmp_path):
+    quantity, spec = parse_column_option("input_angle=enc1:counts:4096")
+    assert quantity == "input_angle" and spec.factor() == pytest.approx(2 * math.pi / 4096)
+    (tmp_path / "m.toml").write_text('ratio = 81\n[output_torque]\ncolumn = "T2"\n'
+                                     'unit = "kN*m"\n')
+    column_map = read_column_map(tmp_path / "m.toml")
+    assert column_map.ratio == 81 and column_map.spec("output_torque").factor() == 1e3
+    for bad, message in (("te=x:furlong", "unknown unit"), ("input_angle=x:counts", "counts per"),
+                         ("input_angle=x:N*m", "not a unit of angle"), ("speed=x", "unknown")):
+        with pytest.raises(InputFileError, match=message):
+            parse_column_option(bad)
+
+
+def test_ready_made_te_curve(tmp_path):
+    x = np.linspace(0, 2 * math.pi, 721)
+    frame = pd.concat([
+        pd.DataFrame({"output_angle_deg": np.degrees(x), "te_arcsec": 6 * np.sin(40 * x),
+                      "direction": "forward"}),
+        pd.DataFrame({"output_angle_deg": np.degrees(x[::-1]),
+                      "te_arcsec": 4 * np.sin(40 * x[::-1]), "direction": "backward"})])
+    frame.to_csv(tmp_path / "curve.csv", index=False)
+    (point,) = analyse_path(tmp_path / "curve.csv", RV40E)
+    s = point_summary(point, RV40E)
+    assert s["tests"] == ["te_curve"]
+    assert s["directions"]["forward"]["orders"][0]["amplitude_arcsec"] == pytest.approx(6, 1e-3)
+    assert s["directions"]["backward"]["ate_pp_arcmin"] == pytest.approx(8 / 60, 1e-3)
+
+
+def test_manifest_lists_the_files(tmp_path):
+    (tmp_path / "a.csv").write_text("time_s,input_angle_deg,output_angle_deg\n0,0,0\n")
+    (tmp_path / "manifest.csv").write_text("file,torque_nm,test\na.csv,100,transmission_error\n")
+    ((path, declared),) = list_files(tmp_path)
+    assert path.name == "a.csv" and declared == {"torque_nm": 100.0,
+                                                 "test": "transmission_error"}
+    (tmp_path / "manifest.csv").write_text("file,torque_nm\nmissing.csv,100\n")
+    with pytest.raises(InputFileError, match="missing.csv not found"):
+        list_files(tmp_path)
+
+
+def test_parquet_without_pyarrow_is_one_clear_error(tmp_path, monkeypatch):
+    path = tmp_path / "r.parquet"
+    path.write_bytes(b"PAR1")
+    monkeypatch.setitem(sys.modules, "pyarrow", None)
+    with pytest.raises(InputFileError, match=r"rvsim\[parquet\]"):
+        read_recording(path)
+
+
+def test_turning_points_ignore_noise_below_the_threshold():
+    rng = np.random.default_rng(0)
+    sweep = np.interp(np.linspace(0, 3, 3001), [0, 1, 2, 3], [0, -1, 1, -1])
+    # noise of 0.005 rms: peaks of about 0.04 peak-to-peak, below the threshold
+    turns = catalogue.turning_points(sweep + rng.normal(0, 0.005, sweep.size), 0.05)
+    assert np.allclose(turns, [1000, 2000], atol=30)
+
+
+def test_binned_sweep_of_a_noiseless_loop_gives_the_catalogue_values():
+    # a loop with 0.2 mrad of free play and 1e-5 rad/(N*m) of compliance, sampled finely
+    torque = np.interp(np.linspace(0, 5, 50_001), np.arange(6.0), [0, -100, 0, 100, 0, -100])
+    rising = np.r_[np.diff(torque) > 0, False]
+    angle = 1e-5 * torque + np.where(torque > 0, 1e-4, np.where(torque < 0, -1e-4,
+                                                                np.where(rising, -1e-4, 1e-4)))
+    t, a, b = catalogue.binned_sweep(torque, angle)
+    assert catalogue.backlash(t, a, b) == pytest.approx(2e-4, rel=1e-9)
+    # the last bin's mean is below the extreme (99.5 N*m): read to 99 N*m
+    assert catalogue.torsional_rigidity(t, a, 99.0, branch=b) == pytest.approx(1e5, rel=1e-6)
