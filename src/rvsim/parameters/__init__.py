@@ -1,6 +1,6 @@
 """Reducer parameter sets: dataclasses (SI inside), the paper's RV-40E, TOML and overrides."""
 
-from ._types import (Clearances, ContactModel, Crankshaft, CycloidStage, Errors, Flexibility,
+from ._types import (Bearings, Clearances, ContactModel, Crankshaft, CycloidStage, Errors, Flexibility,
                      GearStage, Material, Materials, Operating, Rating, Reducer)
 from .rv40e import (CITATION, RV40E, TABLE2_FACTORS, FactorSpec, paper_l36_scheme,
                     paper_run_values)
@@ -8,7 +8,7 @@ from ._io import (BUILT_IN_SETS, SPECS, get_value, load_toml, parameter_table, p
                   resolve_name, validate, with_values)
 
 __all__ = [
-    "Reducer", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances", "Flexibility",
+    "Reducer", "Bearings", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances", "Flexibility",
     "Operating", "ContactModel", "Rating", "Material", "Materials", "RV40E", "CITATION",
     "TABLE2_FACTORS",
     "FactorSpec", "paper_l36_scheme", "paper_run_values", "BUILT_IN_SETS", "SPECS", "get_value", "load_toml", "parameter_table",

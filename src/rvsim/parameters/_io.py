@@ -21,6 +21,7 @@ from ._schema import FieldSpec, field_specs
 from ._types import Reducer
 from .cycloid_drive import CYCLOID_DRIVE
 from .rv40e import RV40E, TABLE2_FACTORS
+from .rv40e_bearings import RV40E_BEARINGS
 
 __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assignment",
            "load_toml", "validate", "resolve_name", "BUILT_IN_SETS", "toml_string"]
@@ -29,7 +30,8 @@ __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assign
 SPECS: dict[str, FieldSpec] = {s.name: s for s in field_specs(Reducer)}
 
 #: named parameter sets shipped with rvsim
-BUILT_IN_SETS: dict[str, Reducer] = {"RV-40E": RV40E, "cycloid-drive": CYCLOID_DRIVE}
+BUILT_IN_SETS: dict[str, Reducer] = {"RV-40E": RV40E, "RV-40E-bearings": RV40E_BEARINGS,
+                                      "cycloid-drive": CYCLOID_DRIVE}
 
 _TRUE = {"true", "yes", "y", "1", "on"}
 _FALSE = {"false", "no", "n", "0", "off"}
