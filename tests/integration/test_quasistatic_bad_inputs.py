@@ -114,9 +114,10 @@ def test_reverse_drive_mirrors_forward(cli, run):
     preset = ("--paper-run", str(run)) if run else ()
     forward = _ltca(cli, "--torque", "412", "--positions", "72", *preset)
     backward = _ltca(cli, "--torque=-412", "--positions", "72", *preset)
-    # measured: p-p equal within 8.5e-5 relative, mean within 1.1e-3 (the mesh's radial term)
+    # measured: p-p equal within 8.5e-5 relative, mean within 0.0023 arcmin (the mesh's radial
+    # term; 1.1e-3 relative with the Palmgren bushings, 4.2e-3 with the stiffer conforming ones)
     assert backward["te_pp_arcmin"] == pytest.approx(forward["te_pp_arcmin"], rel=3e-4)
-    assert -backward["te_mean_arcmin"] == pytest.approx(forward["te_mean_arcmin"], rel=2e-3)
+    assert -backward["te_mean_arcmin"] == pytest.approx(forward["te_mean_arcmin"], abs=3e-3)
     assert backward["pins_in_contact_min"] == forward["pins_in_contact_min"]
 
 

@@ -39,7 +39,7 @@ QUICK = {"operating.speed_ramp_time": 0.2, "operating.load_start": 0.2,
 @pytest.fixture(scope="module")
 def paper_run_2():
     reducer = with_values(RV40E, paper_run_values(2))
-    return reducer, simulate(reducer), simulate(reducer, time_step=5e-6)
+    return reducer, simulate(reducer), simulate(reducer, time_step=2.5e-6)
 
 
 def test_zero_error_no_load_gives_zero_te_and_ratio_121():
@@ -57,7 +57,9 @@ def test_zero_error_no_load_gives_zero_te_and_ratio_121():
 def rigid_bearings():
     # the bare carrier (no load inertia): these are static balances, and a load inertia brings
     # the drive's torsional mode down to the pin-passing orders, whose ringing they would see
-    reducer = with_values(RV40E, {**QUICK, "contact.bushing_stiffness_factor": 1e3,
+    # (x 100: the conforming bushings are stiffer than the Palmgren ones were, x 1000 of which
+    # was this test's factor; x 1000 of the conforming law is unstable at 1e-6 s)
+    reducer = with_values(RV40E, {**QUICK, "contact.bushing_stiffness_factor": 1e2,
                                   "operating.duration": 0.7, "operating.load_inertia": 0.0})
     return reducer, simulate(reducer, time_step=1e-6, sample_rate=500)
 
