@@ -32,6 +32,7 @@ from rvsim.dynamics import simulate
 from rvsim.dynamics._bearings import (WRAP_RATIO, conforming_approach, conforming_force,
                                       roller_set)
 from rvsim.dynamics.compliance import PALMGREN_REFERENCE
+from rvsim.errors import ParameterError
 from rvsim.parameters import BUILT_IN_SETS, paper_run_values, with_values
 from rvsim.quasistatic import solve_path
 
@@ -171,3 +172,14 @@ def test_main_bearing_stiffness_is_positive_and_scales_with_preload():
     # linearised Hertz point contacts: stiffness ~ preload approach^0.5
     assert stiff.tilting == pytest.approx(2.0 * soft.tilting, rel=1e-12)
     assert soft.radial > 0 and soft.axial > 0
+
+
+def test_needles_must_fit_the_space_and_preload_is_not_an_interference():
+    with pytest.raises(ParameterError) as info:
+        with_values(BEARINGS, {"bearings.needle_diameter": 3.5})
+    assert info.value.field == "assembly" and "needle rollers do not fit" in info.value.reason
+    preloaded = with_values(BEARINGS, {"bearings.support_clearance": -0.002,
+                                       "bearings.needle_clearance": -0.002})
+    path = solve_path(preloaded, np.array([0.3]), np.array([0.0]))
+    # preloaded rollers push symmetrically: no load, no wind-up
+    assert path.status == "ok" and abs(path.q[0, L.CARRIER] - 0.3 / BEARINGS.ratio) < 1e-12
