@@ -101,10 +101,13 @@ def roller_set(rx, ry, vx, vy, count, cage, c, gap, cos_alpha, zeta, mass):
     sx = sy = energy = power = largest = 0.0
     kxx = kxy = kyy = gx = gy = 0.0
     pitch = 2.0 * math.pi / count
+    cos_p, sin_p = math.cos(pitch), math.sin(pitch)
     n = int(count)
+    # roller directions by rotation from roller 0 (no trigonometric call per roller)
+    cx, cy = math.cos(cage), math.sin(cage)
     for i in range(n):
-        psi = cage + i * pitch
-        nx, ny = math.cos(psi), math.sin(psi)
+        nx, ny = cx, cy
+        cx, cy = nx * cos_p - ny * sin_p, nx * sin_p + ny * cos_p
         delta = (rx * nx + ry * ny - gap) * cos_alpha
         if delta <= 0.0:
             continue
