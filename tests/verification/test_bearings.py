@@ -185,3 +185,13 @@ def test_needles_must_fit_the_space_and_preload_is_not_an_interference():
     path = solve_path(preloaded, np.array([0.3]), np.array([0.0]))
     # preloaded rollers push symmetrically: no load, no wind-up
     assert path.status == "ok" and abs(path.q[0, L.CARRIER] - 0.3 / BEARINGS.ratio) < 1e-12
+
+
+@pytest.mark.parametrize("values, field", [
+    ({"bearings.needle_clearance": 7.0}, "bearings.needle_clearance"),       # > tooth height
+    ({"bearings.support_clearance": -0.5}, "bearings.support_clearance"),    # absurd preload
+])
+def test_bearing_clearances_are_validated(values, field):
+    with pytest.raises(ParameterError) as info:
+        with_values(BEARINGS, values)
+    assert info.value.field == field
