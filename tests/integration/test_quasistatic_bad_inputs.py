@@ -115,7 +115,7 @@ def test_reverse_drive_mirrors_forward(cli, run):
     # pressed towards the sun touches both flanks of its mesh (docs/model.md section 3), and
     # which crank that is depends on the direction, so the two differ a little.
     preset = ("--paper-run", str(run)) if run else ()
-    for backlash, pp_rel, mean_rel in (("0.01", 3e-4, 2e-3), ("0", 0.1, 2e-3)):
+    for backlash, pp_rel, mean_abs in (("0.01", 3e-4, 3e-3), ("0", 0.1, 3e-3)):
         forward = _ltca(cli, "--torque", "412", "--positions", "72", *preset,
                         "--set", f"gears.backlash={backlash}")
         backward = _ltca(cli, "--torque=-412", "--positions", "72", *preset,
@@ -123,8 +123,10 @@ def test_reverse_drive_mirrors_forward(cli, run):
         # measured with 0.01 mm: p-p within 4e-6 (RV-40E) and 8.6e-5 (run 2), mean within
         # 1.1e-3 and 2.3e-4; with 0: p-p within 7.3 % and 1.8 %, mean 1.6e-3 and 4.5e-4
         assert backward["te_pp_arcmin"] == pytest.approx(forward["te_pp_arcmin"], rel=pp_rel)
+        # the mean: within 3e-3 arcmin absolute (the mesh's radial term; measured 2.3e-3 with
+        # the conforming bushings)
         assert -backward["te_mean_arcmin"] == pytest.approx(forward["te_mean_arcmin"],
-                                                            rel=mean_rel)
+                                                            abs=mean_abs)
         assert backward["pins_in_contact_min"] == forward["pins_in_contact_min"]
 
 

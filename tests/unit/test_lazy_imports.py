@@ -37,6 +37,6 @@ def test_lazy_names_resolve():
     import rvsim.dynamics
 
     assert callable(rvsim.simulate) and callable(rvsim.dynamics.simulate)
-    assert rvsim.dynamics.DEFAULT_TIME_STEP == 1e-5
+    assert rvsim.dynamics.DEFAULT_TIME_STEP == 5e-6
     assert callable(rvsim.doe.paper_l36)
     assert set(rvsim.__all__) <= set(dir(rvsim))

@@ -37,8 +37,8 @@ def test_clearance_larger_than_the_tooth_height_is_a_parameter_error(values, fie
 
 
 @pytest.mark.parametrize("values, status", [
-    # bushings 1000x softer than Palmgren's law: the discs rattle, speed ratio -1.7
-    ({"contact.bushing_stiffness_factor": 1e-3}, "energy_imbalance"),
+    # bushings 10,000x softer than the conforming law: the discs rattle
+    ({"contact.bushing_stiffness_factor": 1e-4}, "energy_imbalance"),
     # mu = 1 with the regularised friction: far beyond the explicit step's stability
     ({"contact.friction_coefficient": 1.0}, "energy_imbalance"),
 ])

@@ -49,7 +49,8 @@ def add_reducer_options(parser: argparse.ArgumentParser, *, paper_run: bool = Fa
                                  "Table 2 levels); --set values override it")
     parser.add_argument("--params", metavar="FILE", type=path_text,
                         help="TOML file describing the reducer (user units, see 'rvsim "
-                             "params'), or the name of a built-in set (RV-40E, cycloid-drive)")
+                             "params'), or the name of a built-in set (RV-40E, RV-40E-bearings, "
+                             "cycloid-drive)")
     parser.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
                         dest="assignments",
                         help="override one parameter in its listed unit, e.g. "

@@ -70,6 +70,6 @@ def register(sub) -> None:
     p.add_argument("--duration", type=float, help="simulated time [s] (default: "
                    "operating.duration, 4 s)")
     p.add_argument("--time-step", type=float,
-                   help="integration step [s] (default: the model's, 1e-5 s)")
+                   help="integration step [s] (default: the model's, 5e-6 s)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_simulate)

@@ -14,7 +14,7 @@ from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-__all__ = ["EXPONENT", "spring_force", "contact", "add_rank_one"]
+__all__ = ["EXPONENT", "spring_force", "damped", "contact", "add_rank_one"]
 
 EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
 _INV_EXPONENT = 1.0 / EXPONENT
@@ -62,10 +62,18 @@ def contact(delta, rate, c, cb, zeta, mass, guess):
     tangent stiffness of the elastic force).
     """
     f, k, energy = spring_force(delta, c, cb, guess)
+    fn, power = damped(f, k, rate, zeta, mass)
+    return fn, energy, power, f, k
+
+
+@numba.njit(cache=True)
+def damped(f, k, rate, zeta, mass):
+    """Elastic force ``f`` of tangent stiffness ``k`` plus damping 2 zeta sqrt(k m) at the
+    approach rate; the total never pulls.  Returns (force, dissipated power)."""
     fn = f + 2.0 * zeta * math.sqrt(k * mass) * rate
     if fn < 0.0:
         fn = 0.0
-    return fn, energy, (fn - f) * rate, f, k
+    return fn, (fn - f) * rate
 
 
 @numba.njit(cache=True)

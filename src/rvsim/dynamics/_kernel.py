@@ -20,10 +20,13 @@ from ._cache_guard import invalidate_stale_cache
 invalidate_stale_cache()
 
 from ..geometry._curve import pin_gap, profile_axes
-from ._contact_law import EXPONENT, add_rank_one, contact, spring_force  # noqa: F401
+from ._bearings import conforming_force, roller_set
+from ._contact_law import EXPONENT, add_rank_one, contact, damped, spring_force  # noqa: F401
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
-from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
+from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
+                      ARM_J2, ARM_KIND, ARM_ROLLERS, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
+                      SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
                       CONTACT_RATIO, CRANK0, CRANK_COUNT, CRANK_STRIDE, DISC0, DISC_COUNT,
@@ -35,7 +38,7 @@ from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CAR
                       PIN_RADIUS, PROFILE_OFFSET,
                       PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RING_OUTPUT, RUNOUT_X0, RUNOUT_X1,
                       RUNOUT_Y0, RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
-                      STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CB, SUP_CLEAR_L, SUP_CLEAR_U,
+                      STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CLEAR_L, SUP_CLEAR_U,
                       V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA, ZP)
 
 MAX_SKIP = 64          # longest skip of an open pin contact [steps]
@@ -261,37 +264,78 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
 
 
 @numba.njit(cache=True)
-def arm_stiffness(K, b, d, wl, wu, nx, ny, ecc, cos_p, sin_p, lx, ly, k, force, dist):
-    """Stiffness matrix of an arm bushing contact (crank coordinates from b, disc from d; (lx,
-    ly) the hole centre from the disc centre): k g g^T + F/dist h h^T + F n . d2r/dq2."""
-    index = (b, b + 1, b + 2, b + 3, b + 4, d, d + 1, d + 2)
-    add_rank_one(K, index, (wl * nx, wl * ny, wu * nx, wu * ny,
-                            ecc * (-nx * sin_p + ny * cos_p), -nx, -ny, nx * ly - ny * lx), k)
-    tx, ty = -ny, nx
-    add_rank_one(K, index, (wl * tx, wl * ty, wu * tx, wu * ty,
-                            ecc * (-tx * sin_p + ty * cos_p), -tx, -ty, tx * ly - ty * lx),
-                 force / dist)
-    K[b + 4, b + 4] -= force * ecc * (nx * cos_p + ny * sin_p)
-    K[d + 2, d + 2] += force * (nx * lx + ny * ly)
+def _radial_stiffness(nx, ny, k, force, dist):
+    """dS/dr of a force ``force`` along n = r / dist with tangent stiffness ``k``: k n n^T +
+    F/dist t t^T (the normal turns with r)."""
+    turn = force / dist
+    return (k * nx * nx + turn * ny * ny, (k - turn) * nx * ny, k * ny * ny + turn * nx * nx)
 
 
 @numba.njit(cache=True)
-def support_stiffness(K, b, nx, ny, bx, by, k, force, dist):
-    """Stiffness matrix of a support bushing contact (node coordinates from b, bore centre
-    (bx, by) on the carrier): k g g^T + F/dist h h^T + F n . d2r/dtheta_c^2."""
-    add_rank_one(K, (b, b + 1, CARRIER), (nx, ny, nx * by - ny * bx), k)
-    add_rank_one(K, (b, b + 1, CARRIER), (-ny, nx, -ny * by - nx * bx), force / dist)
-    K[CARRIER, CARRIER] += force * (nx * bx + ny * by)
+def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx, sy, cx, cy,
+                  w_in):
+    """Stiffness matrix -dQ/dq of an arm element whose elastic force S (on the disc hole;
+    -S on the eccentric) depends on r = eccentric centre - hole centre with dS/dr = [[kxx,
+    kxy], [kxy, kyy]] and on the cage angle w_in phi + (1 - w_in) theta_disc with dS/dcage
+    = (cx, cy) (crank coordinates from b, disc from d; (lx, ly) the hole centre from the disc
+    centre): J^T dS/dr J + J^T dS/dcage dcage/dq + S . d2r/dq2."""
+    index = (b, b + 1, b + 2, b + 3, b + 4, d, d + 1, d + 2)
+    gx = (wl, 0.0, wu, 0.0, -ecc * sin_p, -1.0, 0.0, ly)
+    gy = (0.0, wl, 0.0, wu, ecc * cos_p, 0.0, -1.0, -lx)
+    for a in range(8):
+        ax = kxx * gx[a] + kxy * gy[a]
+        ay = kxy * gx[a] + kyy * gy[a]
+        for c in range(8):
+            K[index[c], index[a]] += gx[c] * ax + gy[c] * ay
+        cage = gx[a] * cx + gy[a] * cy
+        K[index[a], b + 4] += w_in * cage
+        K[index[a], d + 2] += (1.0 - w_in) * cage
+    K[b + 4, b + 4] -= ecc * (sx * cos_p + sy * sin_p)
+    K[d + 2, d + 2] += sx * lx + sy * ly
+
+
+@numba.njit(cache=True)
+def support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, sx, sy, cx, cy, w_in):
+    """Stiffness matrix of a support element (node coordinates from b, crank rotation at
+    ``phi``, bore centre (bx, by) on the carrier), as :func:`arm_stiffness`."""
+    index = (b, b + 1, CARRIER)
+    gx = (1.0, 0.0, by)
+    gy = (0.0, 1.0, -bx)
+    for a in range(3):
+        ax = kxx * gx[a] + kxy * gy[a]
+        ay = kxy * gx[a] + kyy * gy[a]
+        for c in range(3):
+            K[index[c], index[a]] += gx[c] * ax + gy[c] * ay
+        cage = gx[a] * cx + gy[a] * cy
+        K[index[a], phi] += w_in * cage
+        K[index[a], CARRIER] += (1.0 - w_in) * cage
+    K[CARRIER, CARRIER] += sx * bx + sy * by
+
+
+@numba.njit(cache=True)
+def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess):
+    """Conforming bushing on the relative position r of journal and bore: returns (Sx, Sy,
+    energy, power, force, elastic force, kxx, kxy, kyy)."""
+    dist = math.sqrt(rx * rx + ry * ry)
+    delta = dist - clearance
+    if delta <= 0.0 or dist < 1e-15:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    nx, ny = rx / dist, ry / dist
+    f, k, energy = conforming_force(delta, j1, a1, j2, a2, cb, guess)
+    fn, power = damped(f, k, nx * vx + ny * vy, zeta, mass)
+    kxx, kxy, kyy = _radial_stiffness(nx, ny, k, f, dist)
+    return fn * nx, fn * ny, energy, power, fn, f, kxx, kxy, kyy
 
 
 @numba.njit(cache=True)
 def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
-    """Crank ``crank``'s eccentric in disc ``disc``'s hole through the arm bushing (K + M).
+    """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
+    contact, :func:`~rvsim.dynamics._bearings.conforming_force`) or a needle roller bearing
+    (:func:`~rvsim.dynamics._bearings.roller_set`; P[ARM_KIND]).
 
-    ``elastic[crank, disc]`` carries the contact's elastic force from step to step (Newton
+    ``elastic[crank, disc]`` carries the bushing's elastic force from step to step (Newton
     start).  ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic
-    force: k g g^T + F/dist h h^T (turning of the normal, h the gradient along the tangent)
-    + F n . d2r/dq2 (the eccentric's and the hole's rotation)."""
+    force (:func:`arm_stiffness`).  Returns (resultant force, energy, dissipated power)."""
     ax, ay, avx, avy = crank_point(q, v, crank, wl, wu)
     b = CRANK0 + CRANK_STRIDE * crank
     phi = q[b + 4] + disc * math.pi
@@ -308,20 +352,30 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     hvx = v[d] - v[d + 2] * (hy - q[d + 1])
     hvy = v[d + 1] + v[d + 2] * (hx - q[d])
     rx, ry = ex - hx, ey - hy
-    dist = math.sqrt(rx * rx + ry * ry)
-    delta = dist - P[ARM_CLEAR]
-    if delta <= 0.0 or dist < 1e-15:
-        elastic[crank, disc] = 0.0
-        return 0.0, 0.0, 0.0
-    nx, ny = rx / dist, ry / dist
-    rate = nx * (evx - hvx) + ny * (evy - hvy)
-    fn, energy, power, elastic[crank, disc], k = contact(delta, rate, P[ARM_C], P[ARM_CB],
-                                                         P[ZETA], P[M_NODE],
-                                                         elastic[crank, disc])
+    cx = cy = 0.0
+    w_in = P[ARM_CAGE_IN]
+    if P[ARM_KIND] == 1.0:
+        cage = w_in * phi + (1.0 - w_in) * q[d + 2]
+        sx, sy, energy, power, _, kxx, kxy, kyy, cx, cy = roller_set(
+            rx, ry, evx - hvx, evy - hvy, P[ARM_ROLLERS], cage, P[ARM_C], P[ARM_CLEAR], 1.0,
+            P[ZETA], P[M_NODE])
+        fn = math.sqrt(sx * sx + sy * sy)
+        ex_el, ey_el = sx, sy
+        if fn == 0.0:
+            return 0.0, 0.0, 0.0
+    else:
+        sx, sy, energy, power, fn, f_el, kxx, kxy, kyy = _bushing(
+            rx, ry, evx - hvx, evy - hvy, P[ARM_CLEAR], P[ARM_J1], P[ARM_A1], P[ARM_J2],
+            P[ARM_A2], P[ARM_CB], P[ZETA], P[M_NODE], elastic[crank, disc])
+        elastic[crank, disc] = f_el
+        if fn == 0.0 and f_el == 0.0:
+            return 0.0, 0.0, 0.0
+        dist = math.sqrt(rx * rx + ry * ry)
+        ex_el, ey_el = f_el * rx / dist, f_el * ry / dist
     if K.shape[0] > 0:
-        arm_stiffness(K, b, d, wl, wu, nx, ny, ecc, cos_p, sin_p, hx - q[d], hy - q[d + 1], k,
-                      elastic[crank, disc], dist)
-    fx, fy = -fn * nx, -fn * ny                      # on the crank
+        arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, hx - q[d], hy - q[d + 1], kxx, kxy,
+                      kyy, ex_el, ey_el, cx, cy, w_in)
+    fx, fy = -sx, -sy                                # on the crank
     add_crank_force(Q, crank, wl, wu, fx, fy)
     Q[b + 4] += fx * (-ecc * sin_p) + fy * (ecc * cos_p)
     Q[d] -= fx
@@ -332,30 +386,45 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
 
 @numba.njit(cache=True)
 def support_bushing(P, q, v, Q, K, crank, upper, crank_angle):
-    """Crank ``crank``'s lower or upper support node in its carrier / flange bore.
+    """Crank ``crank``'s lower or upper support node in its carrier / flange bore: the paper's
+    bushing (conforming contact) or a tapered roller bearing (P[SUP_KIND]).
 
     ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic force (as in
-    :func:`arm_bushing`)."""
+    :func:`arm_bushing`).  Returns (resultant force, energy, dissipated power)."""
     b = CRANK0 + CRANK_STRIDE * crank + (2 if upper else 0)
+    phi = CRANK0 + CRANK_STRIDE * crank + 4
     carrier_angle = q[CARRIER] + crank_angle
     bx = P[CENTRE_DIST] * math.cos(carrier_angle)
     by = P[CENTRE_DIST] * math.sin(carrier_angle)
     rx, ry = q[b] - bx, q[b + 1] - by
-    dist = math.sqrt(rx * rx + ry * ry)
-    clearance = P[SUP_CLEAR_U] if upper else P[SUP_CLEAR_L]
-    delta = dist - clearance
-    if delta <= 0.0 or dist < 1e-15:
-        return 0.0, 0.0, 0.0
-    nx, ny = rx / dist, ry / dist
     wc = v[CARRIER]
-    rate = nx * (v[b] + wc * by) + ny * (v[b + 1] - wc * bx)
-    fn, energy, power, f_el, k = contact(delta, rate, P[SUP_C], P[SUP_CB], P[ZETA], P[M_NODE],
-                                         0.0)
+    vx, vy = v[b] + wc * by, v[b + 1] - wc * bx
+    clearance = P[SUP_CLEAR_U] if upper else P[SUP_CLEAR_L]
+    cx = cy = 0.0
+    w_in = P[SUP_CAGE_IN]
+    if P[SUP_KIND] == 1.0:
+        cage = w_in * q[phi] + (1.0 - w_in) * q[CARRIER]
+        sx, sy, energy, power, _, kxx, kxy, kyy, cx, cy = roller_set(
+            rx, ry, vx, vy, P[SUP_ROLLERS], cage, P[SUP_C], clearance, P[SUP_COS_ALPHA],
+            P[ZETA], P[M_NODE])
+        fn = math.sqrt(sx * sx + sy * sy)
+        ex_el, ey_el = sx, sy
+        if fn == 0.0:
+            return 0.0, 0.0, 0.0
+    else:
+        a2 = P[SUP_A2_U] if upper else P[SUP_A2_L]
+        sx, sy, energy, power, fn, f_el, kxx, kxy, kyy = _bushing(
+            rx, ry, vx, vy, clearance, P[SUP_J1], P[SUP_A1], P[SUP_J2], a2, 0.0, P[ZETA],
+            P[M_NODE], 0.0)
+        if fn == 0.0 and f_el == 0.0:
+            return 0.0, 0.0, 0.0
+        dist = math.sqrt(rx * rx + ry * ry)
+        ex_el, ey_el = f_el * rx / dist, f_el * ry / dist
     if K.shape[0] > 0:
-        support_stiffness(K, b, nx, ny, bx, by, k, f_el, dist)
-    Q[b] -= fn * nx
-    Q[b + 1] -= fn * ny
-    Q[CARRIER] += fn * (-nx * by + ny * bx)
+        support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, ex_el, ey_el, cx, cy, w_in)
+    Q[b] -= sx
+    Q[b + 1] -= sy
+    Q[CARRIER] += -sx * by + sy * bx
     return fn, energy, power
 
 

@@ -92,6 +92,26 @@ OUT_CB         = 65        # linear compliance in series (none so far)
 # Index blocks reserved for work in progress, so that parallel additions merge cleanly: add
 # constants inside your block only (PARAM_NAMES is built from the names defined here).
 # ---- bearings (rolling bearings, conforming bushings): 66-85 ----------------------------
+# ARM_CLEAR / SUP_CLEAR_L / SUP_CLEAR_U hold the radial play of either element (rolling: half
+# the radial internal clearance plus the K-O play, negative: preload); ARM_C / SUP_C the
+# Palmgren coefficient of one roller on both raceways (rolling bearings only); ARM_CB the
+# bushing ring's compliance (factor C; bushings only)
+ARM_KIND       = 66        # 0: conforming bushing (paper); 1: needle roller bearing
+SUP_KIND       = 67        # 0: conforming bushing (paper); 1: tapered roller bearing
+ARM_J1         = 68        # conforming interface crank - bushing: 1 / (pi L E*)
+ARM_A1         = 69        # ... and 4 pi L E* dR
+ARM_J2         = 70        # conforming interface bushing - disc hole
+ARM_A2         = 71
+SUP_J1         = 72        # conforming interface journal - support bushing
+SUP_A1         = 73
+SUP_J2         = 74        # conforming interface support bushing - flange / carrier bore
+SUP_A2_L       = 75        # lower (flange) support
+SUP_A2_U       = 76        # upper (carrier) support
+ARM_ROLLERS    = 77        # needle rollers per eccentric
+ARM_CAGE_IN    = 78        # cage angle = w phi_inner + (1 - w) theta_outer, w = r_i / (r_i + r_o)
+SUP_ROLLERS    = 79        # rollers per support bearing
+SUP_CAGE_IN    = 80
+SUP_COS_ALPHA  = 81        # cosine of the tapered rollers' contact angle
 
 
 # ---- friction and efficiency: 86-99 ------------------------------------------------------

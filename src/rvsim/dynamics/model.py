@@ -233,23 +233,7 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     if r.flexibility.pin:
         body += pin_compliance(c.pin_radius, c.disc_width, pin_load, m.pin)
     P[L.PIN_CB] = body
-    # stiffness x s at a given approach means compliance coefficient x s**-0.9
-    bushing_scale = r.contact.bushing_stiffness_factor ** -0.9
-    P[L.ARM_C] = bushing_scale * (palmgren_coefficient(c.disc_width, m.crankshaft, m.bushing)
-                                  + palmgren_coefficient(c.disc_width, m.bushing,
-                                                         m.cycloid_disc))
-    P[L.ARM_CB] = (ring_compliance(k.arm_bushing_thickness,
-                                   k.eccentric_radius + 0.5 * k.arm_bushing_thickness,
-                                   c.disc_width, m.bushing)
-                   if r.flexibility.arm_bushing else 0.0)
-    P[L.ARM_CLEAR] = cl.crank_arm_bushing + cl.disc_arm_bushing
-    P[L.SUP_C] = bushing_scale * (palmgren_coefficient(k.support_bushing_width, m.crankshaft,
-                                                       m.bushing)
-                                  + palmgren_coefficient(k.support_bushing_width, m.bushing,
-                                                         m.carrier))
-    P[L.SUP_CB] = 0.0
-    P[L.SUP_CLEAR_L] = cl.crank_support_bushing + cl.support_flange
-    P[L.SUP_CLEAR_U] = cl.crank_support_bushing + cl.support_carrier
+    _bearing_constants(r, P)
     P[L.ZETA] = r.contact.damping_ratio
     P[L.V_FRIC] = r.contact.friction_velocity
     fill_friction_constants(r, P)       # P[MU] and the friction block (docs/model.md sec. 15)
@@ -293,6 +277,51 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses)
 
 
+def _bearing_constants(r: Reducer, P: np.ndarray) -> None:
+    """Constants of the arm and support elements: the paper's bushings (conforming contacts,
+    docs/model.md "Bearings") or rolling bearings (per-roller Palmgren contacts)."""
+    from ..bearings import arm_play, conforming_constants, roller_coefficient, support_play
+
+    c, k, cl, m, b = r.cycloid, r.crank, r.clearances, r.materials, r.bearings
+    factor = r.contact.bushing_stiffness_factor
+    floor = b.bushing_min_radial_difference
+    P[L.ARM_CLEAR] = arm_play(r)
+    P[L.SUP_CLEAR_L] = support_play(r, upper=False)
+    P[L.SUP_CLEAR_U] = support_play(r, upper=True)
+    if b.arm_needles:
+        P[L.ARM_KIND] = 1.0
+        P[L.ARM_ROLLERS] = b.needle_count
+        P[L.ARM_C] = roller_coefficient(b.needle_length, m.crankshaft, m.bushing,
+                                        m.cycloid_disc)
+        inner = k.eccentric_radius
+        P[L.ARM_CAGE_IN] = inner / (2.0 * inner + b.needle_diameter)
+    else:
+        P[L.ARM_J1], P[L.ARM_A1] = conforming_constants(
+            c.disc_width, m.crankshaft, m.bushing, max(cl.crank_arm_bushing, floor), factor)
+        P[L.ARM_J2], P[L.ARM_A2] = conforming_constants(
+            c.disc_width, m.bushing, m.cycloid_disc, max(cl.disc_arm_bushing, floor), factor)
+        P[L.ARM_CB] = (ring_compliance(k.arm_bushing_thickness,
+                                       k.eccentric_radius + 0.5 * k.arm_bushing_thickness,
+                                       c.disc_width, m.bushing)
+                       if r.flexibility.arm_bushing else 0.0)
+    if b.support_rollers:
+        P[L.SUP_KIND] = 1.0
+        P[L.SUP_ROLLERS] = b.support_roller_count
+        P[L.SUP_C] = roller_coefficient(b.support_roller_length, m.crankshaft, m.bushing,
+                                        m.carrier)
+        inner = k.journal_radius
+        P[L.SUP_CAGE_IN] = inner / (2.0 * inner + b.support_roller_diameter)
+        P[L.SUP_COS_ALPHA] = math.cos(b.support_contact_angle)
+    else:
+        width = k.support_bushing_width
+        P[L.SUP_J1], P[L.SUP_A1] = conforming_constants(
+            width, m.crankshaft, m.bushing, max(cl.crank_support_bushing, floor), factor)
+        P[L.SUP_J2], P[L.SUP_A2_L] = conforming_constants(
+            width, m.bushing, m.carrier, max(cl.support_flange, floor), factor)
+        _, P[L.SUP_A2_U] = conforming_constants(
+            width, m.bushing, m.carrier, max(cl.support_carrier, floor), factor)
+
+
 def _single_stage_constants(r: Reducer, P: np.ndarray) -> None:
     """Constants of the single-stage drive (docs/model.md section 13): one eccentric shaft on
     the axis, input on it (the input turns so that the output turns forwards: ratio < 0 with
@@ -306,7 +335,18 @@ def _single_stage_constants(r: Reducer, P: np.ndarray) -> None:
     P[L.CRANK_COUNT] = 1
     P[L.DISC_COUNT] = lay.disc_count
     P[L.CENTRE_DIST] = 0.0
-    P[L.SUP_CLEAR_L] = P[L.SUP_CLEAR_U] = lay.input_bearing_clearance
+    play = lay.input_bearing_clearance
+    if r.bearings.support_rollers:
+        play += 0.5 * r.bearings.support_clearance
+    else:  # the input bearings' clearance is the second conforming interface's
+        from ..bearings import conforming_constants
+
+        _, P[L.SUP_A2_L] = conforming_constants(
+            r.crank.support_bushing_width, m.bushing, m.carrier,
+            max(lay.input_bearing_clearance, r.bearings.bushing_min_radial_difference),
+            r.contact.bushing_stiffness_factor)
+        P[L.SUP_A2_U] = P[L.SUP_A2_L]
+    P[L.SUP_CLEAR_L] = P[L.SUP_CLEAR_U] = play
     P[L.K_INPUT] = input_stiffness(r)
     P[L.OUT_COUNT] = lay.output_pin_count
     P[L.OUT_RADIUS] = lay.output_pin_circle_radius

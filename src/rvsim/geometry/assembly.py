@@ -16,6 +16,11 @@ angle 0 with the crank's eccentricity a - G, at rest.  In that pose:
   radial approach is minus the clearance (K + M, O + L, O + N), never an overlap for the
   non-negative clearances validation allows.  It is computed all the same, so a future pose or
   parameter cannot slip through.
+* **rolling bearings** (``bearings.arm_needles`` / ``support_rollers``): the needles must fit
+  the radial space between the eccentric and the disc hole (``crank.arm_bushing_thickness``):
+  a needle diameter larger than that space plus K + M is an interference; a bearing's own
+  preload (negative internal clearance) is intended and not reported.  The tapered support
+  bearings start centred like the bushings.
 * **sun-planet meshes**: the cranks start at zero phase with the input at zero, so the mesh
   deflection along the line of action is zero and the approach is minus half the backlash.
 
@@ -85,15 +90,24 @@ def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
             cos_t, sin_t = math.cos(angle), math.sin(angle)
             bore = np.array([x + cos_t * hole[0] - sin_t * hole[1],
                              y + sin_t * hole[0] + cos_t * hole[1]])
+            offset = float(np.linalg.norm(pin - bore))
+            if reducer.bearings.arm_needles:
+                # needles between eccentric and hole: they must fit the radial space (a
+                # bearing preload, negative needle_clearance, is intended, not an overlap)
+                excess = reducer.bearings.needle_diameter - reducer.crank.arm_bushing_thickness
+                result.append(Overlap(f"crank {crank + 1} needle rollers do not fit between "
+                                      f"the eccentric and the hole of disc {disc + 1}",
+                                      offset + excess - arm_clearance))
+                continue
             result.append(Overlap(f"crank {crank + 1} eccentric overlaps the arm bushing of "
-                                  f"disc {disc + 1}",
-                                  float(np.linalg.norm(pin - bore)) - arm_clearance))
+                                  f"disc {disc + 1}", offset - arm_clearance))
         # the crank's support journals start on their bore centres
         supports = ((("input shaft", reducer.layout.input_bearing_clearance),) if single else
                     (("lower (flange)", cl.crank_support_bushing + cl.support_flange),
                      ("upper (carrier)", cl.crank_support_bushing + cl.support_carrier)))
         for name, clearance in supports:
-            result.append(Overlap(f"crank {crank + 1} overlaps its {name} support bushing",
+            kind = "bearing" if reducer.bearings.support_rollers else "bushing"
+            result.append(Overlap(f"crank {crank + 1} overlaps its {name} support {kind}",
                                   0.0 - clearance))
     return result
 

@@ -21,6 +21,7 @@ from ._schema import FieldSpec, field_specs
 from ._types import Reducer
 from .cycloid_drive import CYCLOID_DRIVE
 from .rv40e import RV40E, TABLE2_FACTORS
+from .rv40e_bearings import RV40E_BEARINGS
 
 __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assignment",
            "load_toml", "validate", "resolve_name", "BUILT_IN_SETS", "toml_string", "toml_text"]
@@ -29,7 +30,8 @@ __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assign
 SPECS: dict[str, FieldSpec] = {s.name: s for s in field_specs(Reducer)}
 
 #: named parameter sets shipped with rvsim
-BUILT_IN_SETS: dict[str, Reducer] = {"RV-40E": RV40E, "cycloid-drive": CYCLOID_DRIVE}
+BUILT_IN_SETS: dict[str, Reducer] = {"RV-40E": RV40E, "RV-40E-bearings": RV40E_BEARINGS,
+                                      "cycloid-drive": CYCLOID_DRIVE}
 
 _TRUE = {"true", "yes", "y", "1", "on"}
 _FALSE = {"false", "no", "n", "0", "off"}
@@ -252,6 +254,10 @@ def _check_rv_layout(r: Reducer, hole: float, root: float) -> None:
                              "tooth root (crank circle + hole radius >= root radius)")
 
 
+#: largest accepted bearing preload (negative radial internal clearance) [m]: real preloads
+#: are a few micrometres
+MAX_PRELOAD = 0.02e-3
+
 #: RV-only clearances that the single-stage drive replaces by layout.input_bearing_clearance
 _RV_ONLY_CLEARANCES = ("support_flange", "support_carrier", "crank_support_bushing")
 
@@ -295,12 +301,25 @@ def _check_clearances(r: Reducer) -> None:
              "clearances.crank_support_bushing": cl.crank_support_bushing,
              "clearances.support_flange": cl.support_flange,
              "clearances.support_carrier": cl.support_carrier}
+    b = r.bearings
+    for name in ("needle_clearance", "support_clearance"):
+        if getattr(b, name) < -MAX_PRELOAD:
+            raise ParameterError(f"bearings.{name}", f"a preload (negative clearance) of "
+                                 f"{-getattr(b, name) * 1e3:g} mm is far beyond any bearing "
+                                 f"preload (at most {MAX_PRELOAD * 1e3:g} mm accepted)")
+    if b.arm_needles:
+        chain["bearings.needle_clearance"] = 0.5 * max(b.needle_clearance, 0.0)
+    if b.support_rollers:
+        chain["bearings.support_clearance"] = 0.5 * max(b.support_clearance, 0.0)
     play = (cl.crank_arm_bushing + cl.disc_arm_bushing + cl.crank_support_bushing
-            + max(cl.support_flange, cl.support_carrier))
+            + max(cl.support_flange, cl.support_carrier)
+            + chain.get("bearings.needle_clearance", 0.0)
+            + chain.get("bearings.support_clearance", 0.0))
     tooth = 2.0 * r.cycloid.eccentricity
     if play >= tooth:
         largest = max(chain, key=chain.get)
-        raise ParameterError(largest, f"the play of a disc, K + M + O + max(L, N) = "
+        raise ParameterError(largest, f"the play of a disc, K + M + O + max(L, N) (+ half the "
+                             f"bearings' internal clearances) = "
                              f"{play * 1e3:g} mm, reaches the cycloid tooth height 2a = "
                              f"{tooth * 1e3:g} mm (the disc could slip over the pins)")
 

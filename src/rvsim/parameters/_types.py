@@ -15,7 +15,7 @@ from ._schema import count, flag, quantity
 
 __all__ = [
     "Material", "Materials", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances",
-    "Flexibility", "Operating", "ContactModel", "Rating", "Layout", "Friction", "Reducer",
+    "Flexibility", "Operating", "ContactModel", "Rating", "Layout", "Friction", "Bearings", "Reducer",
 ]
 
 #: ``layout.stages`` of the RV reducer (involute + cycloid stage) and of the single-stage drive
@@ -304,6 +304,56 @@ class Friction:
 
 
 @dataclasses.dataclass(frozen=True)
+class Bearings:
+    """Crank bearings (docs/model.md "Bearings"; sizes of RV-40E-bearings: docs/parameters.md).
+
+    The paper replaces every bearing by a bushing (the default); a switch per location puts
+    rolling bearings there instead.  The paper's clearances K-O (``clearances.*``) add their
+    radial play to either element; a rolling bearing's own radial internal clearance
+    (diametral, ISO 5753) adds half of itself.  The main bearings (carrier in the housing)
+    are not in the planar kernel: their stiffness is reported (rvsim.bearings,
+    docs/decisions.md).
+    """
+
+    arm_needles: bool = flag(False, "needle roller bearings at the crank eccentrics "
+                             "(false: the paper's arm bushings)")
+    support_rollers: bool = flag(False, "tapered roller bearings at the crank supports "
+                                 "(false: the paper's support bushings)")
+    bushing_min_radial_difference: float = quantity(0.005 * _MM, "mm", "smallest radial "
+                                                    "difference of a bushing's conforming "
+                                                    "surfaces used by the contact law (a "
+                                                    "smaller clearance is conforming to this)",
+                                                    positive=True)
+    needle_count: int = count(20, "needle rollers per eccentric", minimum=3)
+    needle_diameter: float = quantity(3.0 * _MM, "mm", "needle roller diameter", positive=True)
+    needle_length: float = quantity(12.0 * _MM, "mm", "needle effective contact length",
+                                    positive=True)
+    needle_clearance: float = quantity(0.0, "mm", "radial internal clearance of a needle "
+                                       "bearing (diametral; negative: preload)", minimum=None)
+    support_roller_count: int = count(15, "rollers per tapered support bearing", minimum=3)
+    support_roller_diameter: float = quantity(5.0 * _MM, "mm", "tapered roller mean diameter",
+                                              positive=True)
+    support_roller_length: float = quantity(8.0 * _MM, "mm", "tapered roller effective "
+                                            "length", positive=True)
+    support_contact_angle: float = quantity(15.0 * _DEG, "deg", "contact angle of the tapered "
+                                            "rollers (cup angle)", maximum=45.0 * _DEG)
+    support_clearance: float = quantity(0.0, "mm", "radial internal clearance of a support "
+                                        "bearing (diametral; negative: preload)", minimum=None)
+    main_ball_count: int = count(30, "balls per main bearing (angular contact, carrier in "
+                                 "the housing; reported only)", minimum=3)
+    main_ball_diameter: float = quantity(9.0 * _MM, "mm", "main bearing ball diameter",
+                                         positive=True)
+    main_pitch_diameter: float = quantity(140.0 * _MM, "mm", "main bearing ball pitch "
+                                          "diameter", positive=True)
+    main_contact_angle: float = quantity(40.0 * _DEG, "deg", "main bearing contact angle",
+                                         maximum=80.0 * _DEG)
+    main_span: float = quantity(60.0 * _MM, "mm", "axial distance between the two main "
+                                "bearings' load centres", positive=True)
+    main_preload: float = quantity(2.0 * _MM * 1e-3, "mm", "axial preload deflection of "
+                                   "each main bearing (contact approach at zero load)")
+
+
+@dataclasses.dataclass(frozen=True)
 class Reducer:
     """A complete RV reducer: geometry, materials, errors and operating point."""
 
@@ -321,6 +371,7 @@ class Reducer:
     rating: Rating = dataclasses.field(default_factory=Rating)
     layout: Layout = dataclasses.field(default_factory=Layout)
     friction: Friction = dataclasses.field(default_factory=Friction)
+    bearings: Bearings = dataclasses.field(default_factory=Bearings)
 
     @property
     def ratio(self) -> float:

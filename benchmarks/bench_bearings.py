@@ -1,0 +1,56 @@
+"""Benchmark a 4 s run of RV-40E-bearings (every needle and tapered roller evaluated each step)
+against the same run with the paper's bushings (issue 10, item 7: target <= 2x).
+
+Both runs use the same schedule, step and errors (paper L36 run ``--run``, default 3: every
+element active); only the bearing switches differ.  Prints the median wall time of
+``--repeat`` warm runs of each model (the kernel is compiled / loaded from cache first) and
+their ratio.
+
+Usage:  python benchmarks/bench_bearings.py [--repeat 5] [--run 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import statistics
+import time
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--run", type=int, default=3, help="paper L36 run (default 3)")
+    args = parser.parse_args()
+
+    from rvsim.dynamics import simulate
+    from rvsim.parameters import BUILT_IN_SETS, paper_run_values, with_values
+
+    values = paper_run_values(args.run)
+    models = {"bushings": with_values(BUILT_IN_SETS["RV-40E"], values),
+              "bearings": with_values(BUILT_IN_SETS["RV-40E-bearings"], values)}
+    walls = {name: [] for name in models}
+    metrics = {}
+    for name, reducer in models.items():
+        metrics[name] = simulate(reducer).metrics          # compile / cache load
+    for _ in range(args.repeat):                           # interleaved: same machine load
+        for name, reducer in models.items():
+            walls[name].append(simulate(reducer).wall_s)
+    median = {name: statistics.median(w) for name, w in walls.items()}
+    report = {
+        "machine": f"{platform.machine()} {platform.processor() or ''} "
+                   f"{os.cpu_count()} cpu, Python {platform.python_version()}".strip(),
+        "date": time.strftime("%Y-%m-%d"),
+        "paper_run": args.run,
+        "median_wall_s": {name: round(v, 3) for name, v in median.items()},
+        "runs": {name: [round(w, 3) for w in v] for name, v in walls.items()},
+        "ratio_bearings_to_bushings": round(median["bearings"] / median["bushings"], 3),
+        "te_mean_arcmin": {name: round(m["te_mean_arcmin"], 4) for name, m in metrics.items()},
+    }
+    print(json.dumps(report, indent=2))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,131 @@
+"""Crank bearings and main bearings: constants of the kernel's laws and reported stiffness.
+
+* Bushings (the paper's model): two conforming interfaces in series per bushing, Johnson's
+  law (docs/model.md "Bearings"; :mod:`rvsim.dynamics._bearings`).
+* Needle roller bearings at the eccentrics and tapered roller bearings at the supports: every
+  roller a Palmgren line contact on both raceways (Harris & Kotzalas, *Rolling Bearing
+  Analysis*, 5th ed., Eq. 7.9 and Ch. 7 load distribution).
+* Main bearings (two angular-contact ball bearings, back to back, carrier in the housing):
+  not in the planar kernel (docs/decisions.md); :func:`main_bearing_stiffness` reports their
+  radial, axial and tilting stiffness at the preload from Hertz point contact (Hamrock &
+  Brewe's closed-form approximation of the elliptic integrals, Harris & Kotzalas Ch. 6).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from .dynamics.compliance import effective_modulus, palmgren_coefficient
+from .parameters import Reducer
+
+__all__ = ["arm_play", "support_play", "conforming_constants", "roller_coefficient",
+           "MainBearingStiffness", "main_bearing_stiffness", "ball_contact_coefficient",
+           "RAD_PER_ARCMIN"]
+
+RAD_PER_ARCMIN = math.pi / (180.0 * 60.0)
+
+
+def arm_play(r: Reducer) -> float:
+    """Radial play of the eccentric in its disc hole [m]: K + M, plus half the needle
+    bearing's radial internal clearance when needles are fitted (negative: preload)."""
+    cl = r.clearances
+    play = cl.crank_arm_bushing + cl.disc_arm_bushing
+    if r.bearings.arm_needles:
+        play += 0.5 * r.bearings.needle_clearance
+    return play
+
+
+def support_play(r: Reducer, upper: bool) -> float:
+    """Radial play of a crank journal in its lower (flange, O + L) or upper (carrier, O + N)
+    bore [m], plus half the tapered bearing's radial internal clearance when fitted."""
+    cl = r.clearances
+    play = cl.crank_support_bushing + (cl.support_carrier if upper else cl.support_flange)
+    if r.bearings.support_rollers:
+        play += 0.5 * r.bearings.support_clearance
+    return play
+
+
+def conforming_constants(length: float, m1, m2, radial_difference: float,
+                         stiffness_factor: float = 1.0) -> tuple[float, float]:
+    """(j, a) of Johnson's law delta = j F (ln(a / F) - 1) for one conforming interface of
+    ``length`` between materials m1 and m2 with the radial difference ``radial_difference``.
+
+    ``stiffness_factor`` s multiplies the force at every approach: j / s and a s."""
+    e_star = effective_modulus(m1, m2)
+    j = 1.0 / (math.pi * length * e_star)
+    a = 4.0 * math.pi * length * e_star * radial_difference
+    return j / stiffness_factor, a * stiffness_factor
+
+
+def roller_coefficient(length: float, inner, roller, outer) -> float:
+    """Palmgren coefficient C [m/N^0.9] of one roller on both raceways in series."""
+    return palmgren_coefficient(length, inner, roller) + palmgren_coefficient(length, roller,
+                                                                              outer)
+
+
+@dataclasses.dataclass(frozen=True)
+class MainBearingStiffness:
+    """Stiffness of the pair of main bearings at their preload (linearised)."""
+
+    ball_stiffness: float        # N/m, one ball's normal contact (both raceways) at preload
+    radial: float                # N/m, the pair
+    axial: float                 # N/m, the pair (preloaded: both rows work)
+    tilting: float               # N*m/rad, the pair
+    tilting_per_arcmin: float    # N*m/arcmin
+    preload_force: float         # N, axial preload of the pair
+
+
+def ball_contact_coefficient(ball_diameter: float, pitch_diameter: float, contact_angle: float,
+                             conformity: float, inner: bool, e_star: float) -> float:
+    """K [N/m^1.5] of Q = K delta^1.5 for a ball on a raceway groove of radius ``conformity``
+    x ball diameter (Hertz point contact; Hamrock & Brewe approximations of the ellipticity
+    k, the elliptic integral E and the function F)."""
+    d = ball_diameter
+    gamma = d * math.cos(contact_angle) / pitch_diameter
+    if inner:                                                  # rolling direction
+        rx = 1.0 / (2.0 / d + 2.0 / d * gamma / (1.0 - gamma))
+    else:
+        rx = 1.0 / (2.0 / d - 2.0 / d * gamma / (1.0 + gamma))
+    ry = 1.0 / (2.0 / d - 1.0 / (conformity * d))              # across the groove
+    ratio = ry / rx
+    k = 1.0339 * ratio ** 0.636
+    ell_e = 1.0003 + 0.5968 / ratio
+    ell_f = 1.5277 + 0.6023 * math.log(ratio)
+    rr = 1.0 / (1.0 / rx + 1.0 / ry)
+    e_prime = 2.0 * e_star
+    # delta = F [9 / (2 E R) (Q / (pi k E'))^2]^(1/3)  ->  Q = K delta^1.5
+    factor = ell_f * (9.0 / (2.0 * ell_e * rr)) ** (1.0 / 3.0) * (1.0 / (math.pi * k * e_prime)) \
+        ** (2.0 / 3.0)
+    return factor ** -1.5
+
+
+def main_bearing_stiffness(r: Reducer, conformity: float = 0.52) -> MainBearingStiffness:
+    """Radial, axial and tilting stiffness of the two main bearings (back to back, each with
+    ``main_ball_count`` balls, preloaded by ``main_preload`` of contact approach per ball).
+
+    Each ball's normal stiffness at the preload approach d0 is 1.5 K d0^0.5 (K of the inner
+    and outer contact in series).  A row of Z balls at contact angle alpha gives radial
+    Z/2 k cos^2(alpha) and axial Z k sin^2(alpha); a tilt theta of the carrier moves ball psi
+    by theta cos(psi) (sin(alpha) dm / 2 + cos(alpha) s / 2) along its contact line (rows at
+    +-s/2, contact lines spreading outwards), so the pair's tilting stiffness is
+    Z k (sin(alpha) dm/2 + cos(alpha) s/2)^2.
+    """
+    b, m = r.bearings, r.materials
+    e_star = effective_modulus(m.bushing, m.bushing)
+    alpha = b.main_contact_angle
+    k_in = ball_contact_coefficient(b.main_ball_diameter, b.main_pitch_diameter, alpha,
+                                    conformity, True, e_star)
+    k_out = ball_contact_coefficient(b.main_ball_diameter, b.main_pitch_diameter, alpha,
+                                     conformity, False, e_star)
+    k_ball_coef = (k_in ** (-2.0 / 3.0) + k_out ** (-2.0 / 3.0)) ** -1.5
+    d0 = max(b.main_preload, 1e-9)
+    k_ball = 1.5 * k_ball_coef * math.sqrt(d0)
+    z = b.main_ball_count
+    radial = 2.0 * 0.5 * z * k_ball * math.cos(alpha) ** 2
+    axial = 2.0 * z * k_ball * math.sin(alpha) ** 2
+    arm = math.sin(alpha) * 0.5 * b.main_pitch_diameter + math.cos(alpha) * 0.5 * b.main_span
+    tilting = z * k_ball * arm ** 2
+    preload = z * k_ball_coef * d0 ** 1.5 * math.sin(alpha)
+    return MainBearingStiffness(k_ball, radial, axial, tilting, tilting * RAD_PER_ARCMIN,
+                                preload)

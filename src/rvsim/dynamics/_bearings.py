@@ -1,0 +1,130 @@
+"""Laws of the crank bearings (numba; docs/model.md section "Bearings").
+
+* :func:`conforming_force`: a journal in a bushing bore of nearly the same radius (two
+  conforming interfaces in series, journal - bushing and bushing - bore, plus a linear
+  compliance).  Each interface follows Johnson's approach of two cylinders in contact
+  (K. L. Johnson, *Contact Mechanics*, 1985, Sec. 5.6, as reviewed for internal contact by
+  Pereira, Ramalho & Ambrosio 2011, Nonlinear Dyn. 63:681-697):
+
+      delta = F / (pi L E*) * (ln(4 pi L E* dR / F) - 1) = j F (ln(a / F) - 1),
+
+  j = 1 / (pi L E*), a = 4 pi L E* dR, dR the radial difference of the two surfaces.  The
+  Hertz half-width b of the conforming pair satisfies a / F = (4 R / b)^2, so the law holds
+  while b is small against R; where b would reach R (F = a / 16: the contact wraps the
+  journal) it is continued linearly with its tangent compliance there.
+* :func:`roller_set`: a rolling bearing without rings of its own or with them, every roller a
+  Palmgren line contact with both raceways in series, at angles that follow the cage.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+
+from ._cache_guard import invalidate_stale_cache
+from ._contact_law import contact
+
+invalidate_stale_cache(__file__)
+
+__all__ = ["WRAP_RATIO", "johnson_interface", "conforming_approach", "conforming_force",
+           "roller_set"]
+
+#: a / F at which the Hertz half-width of the conforming pair reaches the journal radius
+WRAP_RATIO = 16.0
+_LOG_WRAP = math.log(WRAP_RATIO)
+
+
+@numba.njit(cache=True)
+def johnson_interface(f, j, a):
+    """Approach, compliance d(delta)/dF and stored energy of one conforming interface at the
+    force ``f`` > 0 (Johnson's law, continued linearly beyond F = a / 16)."""
+    f_wrap = a / WRAP_RATIO
+    if f <= f_wrap:
+        log = math.log(a / f)
+        return j * f * (log - 1.0), j * (log - 2.0), j * f * f * (0.5 * log - 0.75)
+    slope = j * (_LOG_WRAP - 2.0)
+    delta_wrap = j * f_wrap * (_LOG_WRAP - 1.0)
+    energy_wrap = j * f_wrap * f_wrap * (0.5 * _LOG_WRAP - 0.75)
+    return (delta_wrap + slope * (f - f_wrap), slope,
+            energy_wrap + 0.5 * slope * (f * f - f_wrap * f_wrap))
+
+
+@numba.njit(cache=True)
+def conforming_approach(f, j1, a1, j2, a2, cb):
+    """Approach, compliance and energy of two conforming interfaces and a linear compliance
+    ``cb`` in series, at the force ``f`` > 0."""
+    d1, c1, e1 = johnson_interface(f, j1, a1)
+    d2, c2, e2 = johnson_interface(f, j2, a2)
+    return d1 + d2 + cb * f, c1 + c2 + cb, e1 + e2 + 0.5 * cb * f * f
+
+
+@numba.njit(cache=True)
+def conforming_force(delta, j1, a1, j2, a2, cb, guess):
+    """Force, tangent stiffness dF/d(delta) and stored energy of the conforming bushing at the
+    approach ``delta`` > 0 (inverse of :func:`conforming_approach`).
+
+    The approach is a concave increasing function of the force, so Newton's method converges
+    monotonically once an iterate lies below the root, and one step from above lands below
+    it; ``guess`` (the previous step's force, 0: none) saves most iterations.
+    """
+    f = guess
+    if not f > 0.0:
+        # the secant compliance is at least j1 + j2 + cb: an upper bound of the root
+        f = delta / (j1 + j2 + cb)
+    for _ in range(60):
+        d, c, _e = conforming_approach(f, j1, a1, j2, a2, cb)
+        step = (d - delta) / c
+        new = f - step
+        if new <= 0.0:
+            new = 0.01 * f
+        converged = abs(new - f) <= 1e-12 * new
+        f = new
+        if converged:
+            break
+    d, c, e = conforming_approach(f, j1, a1, j2, a2, cb)
+    return f, 1.0 / c, e
+
+
+@numba.njit(cache=True)
+def roller_set(rx, ry, vx, vy, count, cage, c, gap, cos_alpha, zeta, mass):
+    """Resultant of a rolling bearing's rollers on its inner raceway centre displaced by (rx,
+    ry) (velocity (vx, vy)) from the outer raceway centre.
+
+    Roller i sits at the angle cage + 2 pi i / count; its approach is (r . n_i - gap) cos
+    alpha (``gap`` = half the radial internal clearance, negative: preload), its force the
+    Palmgren law delta = c Q^0.9 of both raceway contacts in series (``c``), damped like every
+    contact (zeta, mass).  Returns (Sx, Sy, energy, dissipated power, largest roller force,
+    kxx, kxy, kyy, gx, gy): S = sum Q_i cos(alpha) n_i pushes the outer raceway away from the
+    inner one; k = dS/dr and g = dS/d(cage) of the elastic forces (the tangent stiffness).
+    """
+    sx = sy = energy = power = largest = 0.0
+    kxx = kxy = kyy = gx = gy = 0.0
+    pitch = 2.0 * math.pi / count
+    cos_p, sin_p = math.cos(pitch), math.sin(pitch)
+    n = int(count)
+    # roller directions by rotation from roller 0 (no trigonometric call per roller)
+    cx, cy = math.cos(cage), math.sin(cage)
+    for i in range(n):
+        nx, ny = cx, cy
+        cx, cy = nx * cos_p - ny * sin_p, nx * sin_p + ny * cos_p
+        delta = (rx * nx + ry * ny - gap) * cos_alpha
+        if delta <= 0.0:
+            continue
+        rate = (vx * nx + vy * ny) * cos_alpha
+        fn, e, pw, fel, k = contact(delta, rate, c, 0.0, zeta, mass, 0.0)
+        energy += e
+        power += pw
+        if fn > largest:
+            largest = fn
+        sx += fn * cos_alpha * nx
+        sy += fn * cos_alpha * ny
+        kc = k * cos_alpha * cos_alpha
+        kxx += kc * nx * nx
+        kxy += kc * nx * ny
+        kyy += kc * ny * ny
+        # d/dpsi of fel cos(alpha) n_i: the approach changes along the tangent (-ny, nx)
+        along = (-rx * ny + ry * nx) * k * cos_alpha * cos_alpha
+        gx += along * nx - fel * cos_alpha * ny
+        gy += along * ny + fel * cos_alpha * nx
+    return sx, sy, energy, power, largest, kxx, kxy, kyy, gx, gy
