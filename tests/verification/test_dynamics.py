@@ -141,21 +141,13 @@ def test_unstable_step_reports_status():
 
 
 # (te_mean_arcmin, te_pp_arcmin, max_pin_force_n) of the paper's runs at the default step,
-<<<<<<< HEAD
-# measured 2026-11-22 with operating.load_inertia = 0.3 kg m^2 (docs/validation.md), re-pinned
-# for the two-flank sun-planet mesh (before: run 1 (4.14760, 1.04502, 874.374), run 2 (9.26025,
-# 1.16189, 1328.42), run 3 (14.3729, 1.52627, 1727.08); docs/decisions.md)
-PINNED = {1: (4.146960367928007, 1.1956052215266286, 887.6682300584395),
-          2: (9.258358202859378, 1.4482189211863812, 1380.5591993612725),
-          3: (14.368977516909862, 1.5101578334856693, 1721.650336008477)}
-=======
 # measured 2026-11-22 with operating.load_inertia = 0.3 kg m^2 (docs/validation.md); re-pinned
-# for the conforming bushings and the 5e-6 s step of issue 10 (before: 4.1476, 1.0450, 874.37 /
-# 9.2602, 1.1619, 1328.42 / 14.3729, 1.5263, 1727.08)
-PINNED = {1: (3.374583257469813, 0.176084695193913, 767.6602480415614),
-          2: (8.10001756634417, 0.41279079944072894, 1211.855605677918),
-          3: (12.9616983568447, 0.6696071643000323, 1617.9190987058826)}
->>>>>>> h-bear
+# for the two-flank sun-planet mesh and the conforming bushings with the 5e-6 s step of issue 10
+# (before both: 4.1476, 1.0450, 874.37 / 9.2602, 1.1619, 1328.42 / 14.3729, 1.5263, 1727.08;
+# docs/decisions.md)
+PINNED = {1: (3.3745810629783386, 0.1742743314709907, 761.7890007333014),
+          2: (8.100121040256605, 0.41565929759822673, 1207.2903257609764),
+          3: (12.961114241408588, 0.6780180152296236, 1642.1394312128896)}
 
 
 @pytest.mark.parametrize("run", [1, 3])
