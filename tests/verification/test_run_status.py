@@ -37,8 +37,9 @@ def test_clearance_larger_than_the_tooth_height_is_a_parameter_error(values, fie
 
 
 @pytest.mark.parametrize("values, status", [
-    # bushings 10,000x softer than the conforming law: the discs rattle
-    ({"contact.bushing_stiffness_factor": 1e-4}, "energy_imbalance"),
+    # bushings 10,000x softer than the conforming law: the discs rattle and the output slips
+    # behind the input (with the one-flank mesh the energy residual failed first)
+    ({"contact.bushing_stiffness_factor": 1e-4}, "speed_ratio_off"),
     # mu = 1 with the regularised friction: far beyond the explicit step's stability
     ({"contact.friction_coefficient": 1.0}, "energy_imbalance"),
 ])
