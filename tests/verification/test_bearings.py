@@ -33,10 +33,12 @@ from rvsim.dynamics._bearings import (WRAP_RATIO, conforming_approach, conformin
                                       roller_set)
 from rvsim.dynamics.compliance import PALMGREN_REFERENCE
 from rvsim.errors import ParameterError
-from rvsim.parameters import BUILT_IN_SETS, paper_run_values, with_values
+from rvsim.parameters import paper_run_values, with_values
+from rvsim.parameters.rv40e_bearings import RV40E_ROLLING
 from rvsim.quasistatic import solve_path
 
-BEARINGS = BUILT_IN_SETS["RV-40E-bearings"]
+# the rolling bearings without the set's friction (friction has tests of its own)
+BEARINGS = RV40E_ROLLING
 STEEL = PALMGREN_REFERENCE
 C = roller_coefficient(0.012, STEEL, STEEL, STEEL)
 

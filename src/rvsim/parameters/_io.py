@@ -21,7 +21,8 @@ from ._schema import FieldSpec, field_specs
 from ._types import Reducer
 from .cycloid_drive import CYCLOID_DRIVE
 from .rv40e import RV40E, TABLE2_FACTORS
-from .rv40e_bearings import RV40E_BEARINGS
+from .friction_values import TYPICAL_FRICTION
+from .rv40e_bearings import RV40E_ROLLING
 
 __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assignment",
            "load_toml", "validate", "resolve_name", "BUILT_IN_SETS", "toml_string", "toml_text"]
@@ -30,8 +31,7 @@ __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assign
 SPECS: dict[str, FieldSpec] = {s.name: s for s in field_specs(Reducer)}
 
 #: named parameter sets shipped with rvsim
-BUILT_IN_SETS: dict[str, Reducer] = {"RV-40E": RV40E, "RV-40E-bearings": RV40E_BEARINGS,
-                                      "cycloid-drive": CYCLOID_DRIVE}
+BUILT_IN_SETS: dict[str, Reducer] = {"RV-40E": RV40E, "cycloid-drive": CYCLOID_DRIVE}
 
 _TRUE = {"true", "yes", "y", "1", "on"}
 _FALSE = {"false", "no", "n", "0", "off"}
@@ -347,3 +347,8 @@ def toml_text(reducer: Reducer) -> str:
         text = ("true" if value else "false") if isinstance(value, bool) else f"{value:.12g}"
         lines.append(f"{leaf} = {text}  # [{row['unit']}] {row['description']}")
     return "\n".join(lines) + "\n"
+
+
+# RV-40E-bearings: the rolling bearings with the friction of a greased reducer
+BUILT_IN_SETS["RV-40E-bearings"] = dataclasses.replace(
+    with_values(RV40E_ROLLING, TYPICAL_FRICTION, check=False), name="RV-40E-bearings")
