@@ -32,14 +32,16 @@ def _params(args: argparse.Namespace) -> int:
                 print(f"\n[{head}]")
                 section = head
             value = row["value"]
-            text = ("true" if value else "false") if isinstance(value, bool) else f"{value:.12g}"
+            text = (("true" if value else "false") if isinstance(value, bool)
+                    else toml_string(value) if isinstance(value, str) else f"{value:.12g}")
             print(f"{leaf} = {text}  # [{row['unit']}] {row['description']}")
         return 0
     print(f"{reducer.name}: {reducer.citation}")
     width = max(len(r["name"]) for r in rows)
     for row in rows:
         value = row["value"]
-        text = ("yes" if value else "no") if isinstance(value, bool) else f"{value:.6g}"
+        text = (("yes" if value else "no") if isinstance(value, bool)
+                else value if isinstance(value, str) else f"{value:.6g}")
         print(f"{row['name']:<{width}}  {text:>12}  {row['unit']:<7} {row['description']}")
     return 0
 
