@@ -154,6 +154,8 @@ class KernelModel:
     mesh_phase: np.ndarray
     q0: np.ndarray
     masses: MassProperties
+    #: the discs' finite-element compliance tables (2, m, m); (2, 0, 0) with closed-form bodies
+    fe: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((2, 0, 0)))
 
 
 def _station_weights(r: Reducer, z: float) -> tuple[float, float]:
@@ -204,7 +206,8 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     pin_load = r.rating.rated_torque / (2.0 * c.eccentricity * c.disc_teeth)
     root_radius = c.pin_circle_radius - c.pin_radius - c.eccentricity
     body = 0.0
-    if r.flexibility.cycloid_disc:
+    fe_disc = r.flexibility.cycloid_disc and r.flexibility.model == "fe"
+    if r.flexibility.cycloid_disc and not fe_disc:
         body += tooth_compliance(2.0 * c.eccentricity, 2.0 * math.pi * root_radius / c.disc_teeth,
                                  c.disc_width, m.cycloid_disc)
     if r.flexibility.pin:
@@ -267,7 +270,20 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
         d = L.DISC0 + L.DISC_STRIDE * kd
         q0[d] = P[L.ECC] * math.cos(kd * math.pi)
         q0[d + 1] = P[L.ECC] * math.sin(kd * math.pi)
-    return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses)
+    return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses,
+                       _fe_tables(r) if fe_disc else np.zeros((2, 0, 0)))
+
+
+def _fe_tables(r: Reducer) -> np.ndarray:
+    """The finite-element disc tables (rvsim.fe: meshed and condensed once per geometry)."""
+    from ..errors import ParameterError
+    from ..fe.disc import disc_tables
+
+    if r.contact.friction_coefficient > 0.0:
+        raise ParameterError("flexibility.model", "the finite-element disc does not take pin "
+                             "friction yet (set contact.friction_coefficient = 0 or use "
+                             "closed-form)")
+    return disc_tables(r)
 
 
 def _single_stage_constants(r: Reducer, P: np.ndarray) -> None:

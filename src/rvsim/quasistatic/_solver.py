@@ -63,7 +63,7 @@ ROUNDOFF_FACTOR = 1e3
 @numba.njit(cache=True)
 def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
               next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
-              mesh_hold):
+              mesh_hold, fe):
     """Residual Q, stiffness K and potential energy Pi at q (every pin evaluated); returns
     (Pi, the size of its terms, input torque, max pin penetration)."""
     K[:, :] = 0.0
@@ -71,7 +71,7 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
     energy, _, torque_in, worst = forces_at(
         P, q, v, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
         next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
-        mesh_hold)
+        mesh_hold, fe)
     work = torque * q[CARRIER]
     return energy + work, abs(energy) + abs(work), torque_in, worst
 
@@ -79,7 +79,7 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
 @numba.njit(cache=True)
 def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
-                Q, K, channel, mesh_state, mesh_hold):
+                Q, K, channel, mesh_state, mesh_hold, fe):
     """Move ``q`` to the static equilibrium at input angle ``theta_in`` under ``torque``, each
     mesh j with ``mesh_hold[j]`` = (tooth pairs, flank) held (zeros: those of the starting
     pose, stored into ``mesh_hold``; a mesh open there gets the flank it first engages with).
@@ -98,7 +98,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
     pi, size, torque_in, worst = _evaluate(P, q, theta_in, torque, pins, pin_angle, holes,
                                            crank_angles, mesh_phase, u, next_eval, pin_force,
                                            pin_elastic, arm_elastic, Q, K, channel,
-                                           mesh_state, v, mesh_hold)
+                                           mesh_state, v, mesh_hold, fe)
     for j in range(2):
         if mesh_hold[j, 0] == 0.0:
             mesh_hold[j, 0] = mesh_state[j, 2]
@@ -158,7 +158,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             pi_trial, size, torque_in, worst = _evaluate(
                 P, q_trial, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                 u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
-                mesh_hold)
+                mesh_hold, fe)
             drop = pi - pi_trial
             # below round-off of Pi's terms the energy cannot rank the points: the residual does
             flat = abs(drop) <= 1e-12 * size + 1e-18
@@ -186,7 +186,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 pi, size, torque_in, worst = _evaluate(
                     P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                     u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-                    mesh_state, v, mesh_hold)
+                    mesh_state, v, mesh_hold, fe)
                 if trust < 1e-16 or mu > 1e16:
                     # no step left above the round-off of the positions (1e-16 m): converged
                     # as far as double precision goes if the residual is near tol (very stiff
@@ -200,7 +200,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
 @numba.njit(cache=True)
 def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                  crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
-                 Q, K, channel, mesh_state):
+                 Q, K, channel, mesh_state, fe):
     """:func:`equilibrium` with each mesh's number of tooth pairs and engaged flank held at
     those of the starting pose (both are discontinuous in q: the rectangular-wave stiffness,
     and the kernel's one-flank rule where the crank is pressed towards the sun so far that both
@@ -220,7 +220,7 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
         status, iterations, torque_in = equilibrium(
             P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
             mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-            mesh_state, hold)
+            mesh_state, hold, fe)
         total += iterations
         if status != STATUS_OK and not retried:
             retried = True
@@ -322,7 +322,7 @@ def condensed_stiffness(K, scale):
 @numba.njit(cache=True)
 def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes, crank_angles,
           mesh_phase, q_out, pin_out, stress_out, channel_out, mesh_out, stiffness_out,
-          status_out, iterations_out, torque_in_out, output_pin_out):
+          status_out, iterations_out, torque_in_out, output_pin_out, fe):
     """Equilibria along a path of (input angle, output torque) pairs, each started from the
     previous one (continuation); the first from ``q_start``.
 
@@ -370,7 +370,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
         status, iterations, torque_in = _solve_point(
             P, q, theta_in[k], torque[k], scale, tol, max_iter, pins, pin_angle, holes,
             crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K,
-            channel, mesh_state)
+            channel, mesh_state, fe)
         status_out[k] = status
         iterations_out[k] = iterations
         torque_in_out[k] = torque_in

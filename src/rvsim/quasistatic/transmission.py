@@ -113,7 +113,7 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None) -> PathSo
                        out.channels[part], out.mesh_state[part],
                        out.torsional_stiffness[part], out.status_codes[part],
                        out.iterations[part], out.input_torque[part],
-                       out.output_pin_forces[part])
+                       out.output_pin_forces[part], model.fe)
         solved += done
         if done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK:
             break
