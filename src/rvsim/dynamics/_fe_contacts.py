@@ -29,7 +29,8 @@ invalidate_stale_cache(__file__)
 
 from ._contact_law import EXPONENT, spring_force  # noqa: E402
 
-__all__ = ["table_compliance", "coupled_forces", "apply_coupled", "MAX_NEWTON"]
+__all__ = ["table_compliance", "coupled_forces", "lagged_forces", "apply_coupled",
+           "MAX_NEWTON"]
 
 #: Newton iterations of the coupled contacts (2-4 needed from the previous forces)
 MAX_NEWTON = 30
@@ -126,12 +127,51 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
 
 
 @numba.njit(cache=True)
+def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance):
+    """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine: pin i's own law
+    in series with its own disc compliance C_ii is solved exactly, its neighbours' forces
+    taken as they are (already swept, or ``guess``, their forces of the previous step: the
+    coupling lags at most one time step).  Fills ``force`` and ``self_compliance``; returns
+    the potential energy."""
+    m = table.shape[0]
+    lo = np.empty(n, dtype=np.int64)
+    hi = np.empty(n, dtype=np.int64)
+    frac = np.empty(n)
+    for i in range(n):
+        lo[i], hi[i], frac[i] = _segment(foot[i], m)
+        force[i] = max(guess[i], 0.0)
+    energy = 0.0
+    for i in range(n):
+        a0, a1, fa = lo[i], hi[i], frac[i]
+        w = 0.0
+        for j in range(n):
+            if j == i or force[j] == 0.0:
+                continue
+            b0, b1, fb = lo[j], hi[j], frac[j]
+            cij = ((1.0 - fa) * ((1.0 - fb) * table[a0, b0] + fb * table[a0, b1])
+                   + fa * ((1.0 - fb) * table[a1, b0] + fb * table[a1, b1]))
+            w += cij * force[j]
+        cii = (1.0 - fa) * table[a0, a0] + fa * table[a1, a1]
+        self_compliance[i] = cii
+        own = delta[i] - w
+        if own > 0.0:
+            force[i], _, e = spring_force(own, c, cb + cii, force[i])
+            # the series law's energy holds F^2 C_ii / 2; the pair terms come once each
+            energy += e + 0.5 * w * force[i]
+        else:
+            force[i] = 0.0
+    return energy
+
+
+@numba.njit(cache=True)
 def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic, Q, K, d):
     """Solve the ``count`` touching pins of a disc together and add their forces to ``Q`` (and
     their stiffness to a 17 x 17 ``K``); ``work`` rows hold each pin's (approach, approach
     rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta) and ``slots`` its index.  The
     damping of a pin is 2 zeta sqrt(k m) at its series stiffness k = 1 / (1/k_contact + C_ii).
-    ``forces``/``elastic`` are the disc's rows.  Returns (energy, dissipated power,
+    ``forces``/``elastic`` are the disc's rows.  With ``K`` wanted (the quasi-static engine)
+    the system is solved to convergence (:func:`coupled_forces`); without (the dynamic
+    engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).  Returns (energy, dissipated power,
     converged)."""
     n = count
     delta = work[:n, 0].copy()
@@ -140,9 +180,17 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     for a in range(n):
         guess[a] = elastic[slots[a]]
     fel = np.empty(n)
+    cii = np.empty(n)
     want = K.shape[0] > 0
-    s = np.empty((n, n)) if want else np.empty((0, 0))
-    energy, _, converged = coupled_forces(table, delta, foot, guess, n, c, cb, fel, s)
+    if want:
+        s = np.empty((n, n))
+        energy, _, converged = coupled_forces(table, delta, foot, guess, n, c, cb, fel, s)
+        for a in range(n):
+            cii[a] = table_compliance(table, foot[a], foot[a], True)
+    else:
+        s = np.empty((0, 0))
+        energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii)
+        converged = True
     power = 0.0
     for a in range(n):
         i = slots[a]
@@ -151,7 +199,7 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
         if f > 0.0 and zeta > 0.0:
             # tangent stiffness of the contact's own law at f: 1 / (0.9 c f^-0.1 + cb)
             k_contact = 1.0 / (EXPONENT * c * f ** (EXPONENT - 1.0) + cb)
-            k = 1.0 / (1.0 / k_contact + table_compliance(table, foot[a], foot[a], True))
+            k = 1.0 / (1.0 / k_contact + cii[a])
             fn = f + 2.0 * zeta * math.sqrt(k * mass) * work[a, 1]
             if fn < 0.0:
                 fn = 0.0
