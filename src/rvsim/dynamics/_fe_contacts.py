@@ -34,6 +34,8 @@ __all__ = ["table_compliance", "coupled_forces", "lagged_forces", "apply_coupled
 
 #: Newton iterations of the coupled contacts (2-4 needed from the previous forces)
 MAX_NEWTON = 30
+#: Gauss-Seidel sweeps after a Newton solve that did not converge
+MAX_SWEEPS = 2000
 
 
 @numba.njit(cache=True)
@@ -56,6 +58,43 @@ def table_compliance(table, ui, uj, same):
     j0, j1, fj = _segment(uj, m)
     return ((1.0 - fi) * ((1.0 - fj) * table[i0, j0] + fj * table[i0, j1])
             + fi * ((1.0 - fj) * table[i1, j0] + fj * table[i1, j1]))
+
+
+@numba.njit(cache=True)
+def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance):
+    """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine: pin i's own law
+    in series with its own disc compliance C_ii is solved exactly, its neighbours' forces
+    taken as they are (already swept, or ``guess``, their forces of the previous step: the
+    coupling lags at most one time step).  Fills ``force`` and ``self_compliance``; returns
+    the potential energy."""
+    m = table.shape[0]
+    lo = np.empty(n, dtype=np.int64)
+    hi = np.empty(n, dtype=np.int64)
+    frac = np.empty(n)
+    for i in range(n):
+        lo[i], hi[i], frac[i] = _segment(foot[i], m)
+        force[i] = max(guess[i], 0.0)
+    energy = 0.0
+    for i in range(n):
+        a0, a1, fa = lo[i], hi[i], frac[i]
+        w = 0.0
+        for j in range(n):
+            if j == i or force[j] == 0.0:
+                continue
+            b0, b1, fb = lo[j], hi[j], frac[j]
+            cij = ((1.0 - fa) * ((1.0 - fb) * table[a0, b0] + fb * table[a0, b1])
+                   + fa * ((1.0 - fb) * table[a1, b0] + fb * table[a1, b1]))
+            w += cij * force[j]
+        cii = (1.0 - fa) * table[a0, a0] + fa * table[a1, a1]
+        self_compliance[i] = cii
+        own = delta[i] - w
+        if own > 0.0:
+            force[i], _, e = spring_force(own, c, cb + cii, force[i])
+            # the series law's energy holds F^2 C_ii / 2; the pair terms come once each
+            energy += e + 0.5 * w * force[i]
+        else:
+            force[i] = 0.0
+    return energy
 
 
 @numba.njit(cache=True)
@@ -101,6 +140,32 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
         step = np.linalg.solve(jac, g)
         for i in range(n):
             force[i] = max(force[i] - step[i], 0.0)
+    if not converged:
+        # Newton can cycle where pins open and close between iterations: Gauss-Seidel sweeps
+        # (a contraction, k C summed over the neighbours < 1) then finish the solve
+        cii = np.empty(n)
+        previous = np.empty(n)
+        for sweep in range(MAX_SWEEPS):
+            previous[:] = force
+            lagged_forces(table, delta, foot, previous, n, c, cb, force, cii)
+            change = 0.0
+            largest = 0.0
+            for i in range(n):
+                change = max(change, abs(force[i] - previous[i]))
+                largest = max(largest, force[i])
+            if change <= 1e-10 * largest + 1e-12:
+                converged = True
+                break
+        iterations += sweep + 1
+        for i in range(n):
+            w = 0.0
+            for j in range(n):
+                w += cm[i, j] * force[j]
+            own = delta[i] - w
+            if own > 0.0:
+                f[i], k[i], e[i] = spring_force(own, c, cb, force[i])
+            else:
+                f[i], k[i], e[i] = 0.0, 0.0, 0.0
     energy = 0.0
     for i in range(n):
         force[i] = f[i]
@@ -124,43 +189,6 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
                 stiffness[i, j] = mean
                 stiffness[j, i] = mean
     return energy, iterations, converged
-
-
-@numba.njit(cache=True)
-def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance):
-    """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine: pin i's own law
-    in series with its own disc compliance C_ii is solved exactly, its neighbours' forces
-    taken as they are (already swept, or ``guess``, their forces of the previous step: the
-    coupling lags at most one time step).  Fills ``force`` and ``self_compliance``; returns
-    the potential energy."""
-    m = table.shape[0]
-    lo = np.empty(n, dtype=np.int64)
-    hi = np.empty(n, dtype=np.int64)
-    frac = np.empty(n)
-    for i in range(n):
-        lo[i], hi[i], frac[i] = _segment(foot[i], m)
-        force[i] = max(guess[i], 0.0)
-    energy = 0.0
-    for i in range(n):
-        a0, a1, fa = lo[i], hi[i], frac[i]
-        w = 0.0
-        for j in range(n):
-            if j == i or force[j] == 0.0:
-                continue
-            b0, b1, fb = lo[j], hi[j], frac[j]
-            cij = ((1.0 - fa) * ((1.0 - fb) * table[a0, b0] + fb * table[a0, b1])
-                   + fa * ((1.0 - fb) * table[a1, b0] + fb * table[a1, b1]))
-            w += cij * force[j]
-        cii = (1.0 - fa) * table[a0, a0] + fa * table[a1, a1]
-        self_compliance[i] = cii
-        own = delta[i] - w
-        if own > 0.0:
-            force[i], _, e = spring_force(own, c, cb + cii, force[i])
-            # the series law's energy holds F^2 C_ii / 2; the pair terms come once each
-            energy += e + 0.5 * w * force[i]
-        else:
-            force[i] = 0.0
-    return energy
 
 
 @numba.njit(cache=True)

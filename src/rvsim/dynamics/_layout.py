@@ -104,6 +104,7 @@ OUT_CB         = 65        # linear compliance in series (none so far)
 
 
 # ---- finite-element bodies: 130-139 ------------------------------------------------------
+FE_DISC        = 130       # 1: the discs' pins are coupled through finite-element tables
 
 
 _P_INDEX = {name: value for name, value in dict(globals()).items()

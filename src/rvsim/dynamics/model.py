@@ -213,6 +213,7 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     if r.flexibility.pin:
         body += pin_compliance(c.pin_radius, c.disc_width, pin_load, m.pin)
     P[L.PIN_CB] = body
+    P[L.FE_DISC] = 1.0 if fe_disc else 0.0
     # stiffness x s at a given approach means compliance coefficient x s**-0.9
     bushing_scale = r.contact.bushing_stiffness_factor ** -0.9
     P[L.ARM_C] = bushing_scale * (palmgren_coefficient(c.disc_width, m.crankshaft, m.bushing)
