@@ -103,9 +103,21 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
     Newton from ``guess``.  Fills ``force`` (n) and, if ``stiffness`` is n x n, the tangent
     S = dF/d(delta).  Returns (potential energy, Newton iterations, converged)."""
     cm = np.empty((n, n))
+    m = table.shape[0]
+    lo = np.empty(n, dtype=np.int64)
+    hi = np.empty(n, dtype=np.int64)
+    frac = np.empty(n)
     for i in range(n):
-        for j in range(n):
-            cm[i, j] = table_compliance(table, foot[i], foot[j], i == j)
+        lo[i], hi[i], frac[i] = _segment(foot[i], m)
+    for i in range(n):
+        a0, a1, fa = lo[i], hi[i], frac[i]
+        cm[i, i] = (1.0 - fa) * table[a0, a0] + fa * table[a1, a1]
+        for j in range(i + 1, n):
+            b0, b1, fb = lo[j], hi[j], frac[j]
+            cij = ((1.0 - fa) * ((1.0 - fb) * table[a0, b0] + fb * table[a0, b1])
+                   + fa * ((1.0 - fb) * table[a1, b0] + fb * table[a1, b1]))
+            cm[i, j] = cij
+            cm[j, i] = cij
     f = np.empty(n)
     k = np.zeros(n)
     e = np.zeros(n)
@@ -238,12 +250,17 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
         Q[d + 1] += fn * work[a, 4]
         Q[d + 2] += fn * work[a, 5]
     if want:
+        # K_dd += G^T S G, G the rows (d gap / d(x, y, theta)) of the touching pins
+        sg = np.zeros((n, 3))
         for a in range(n):
             for b in range(n):
                 sab = s[a, b]
-                if sab == 0.0:
-                    continue
-                for p in range(3):
-                    for r in range(3):
-                        K[d + p, d + r] += sab * work[a, 3 + p] * work[b, 3 + r]
+                for r in range(3):
+                    sg[a, r] += sab * work[b, 3 + r]
+        for p in range(3):
+            for r in range(3):
+                total = 0.0
+                for a in range(n):
+                    total += work[a, 3 + p] * sg[a, r]
+                K[d + p, d + r] += total
     return energy, power, converged

@@ -100,7 +100,7 @@ def _compute(g: dict) -> tuple[np.ndarray, int, int]:
                          for e in range(s * per_segment, (s + 1) * per_segment)])
         for s in range(segments)]).tocsc()
     table = body.compliance(loads, supported)
-    return table, body.n_dofs, mesh.triangles.shape[1]
+    return table, int(body.n_dofs), int(mesh.triangles.shape[1])
 
 
 def disc_table(reducer: Reducer, disc: int = 0) -> DiscTable:
