@@ -48,6 +48,31 @@ def _segment(u, m):
 
 
 @numba.njit(cache=True)
+def _eliminate(a, b, n):
+    """Solve a x = b in place (b becomes x; a is overwritten) by Gaussian elimination without
+    pivoting: a = I + D C is diagonally dominant (k C summed over a row is below 1), and for
+    the 10-20 touching pins of a disc this is several times faster than a LAPACK call."""
+    m = b.shape[1]
+    for p in range(n):
+        inv = 1.0 / a[p, p]
+        for i in range(p + 1, n):
+            factor = a[i, p] * inv
+            if factor == 0.0:
+                continue
+            for j in range(p + 1, n):
+                a[i, j] -= factor * a[p, j]
+            for j in range(m):
+                b[i, j] -= factor * b[p, j]
+    for p in range(n - 1, -1, -1):
+        inv = 1.0 / a[p, p]
+        for j in range(m):
+            total = b[p, j]
+            for i in range(p + 1, n):
+                total -= a[p, i] * b[i, j]
+            b[p, j] = total * inv
+
+
+@numba.njit(cache=True)
 def table_compliance(table, ui, uj, same):
     """C(ui, uj) [m/N] from the segment table: linear along the diagonal for a contact with
     itself (``same``), bilinear between segment centres otherwise."""
@@ -125,6 +150,7 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
         force[i] = max(guess[i], 0.0)
     jac = np.empty((n, n))
     g = np.empty(n)
+    want = stiffness.shape[0] == n
     converged = False
     iterations = 0
     for iterations in range(1, MAX_NEWTON + 1):
@@ -149,7 +175,8 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
             for j in range(n):
                 jac[i, j] = k[i] * cm[i, j]
             jac[i, i] += 1.0
-        step = np.linalg.solve(jac, g)
+        step = g.copy()
+        _eliminate(jac, step.reshape((n, 1)), n)
         for i in range(n):
             force[i] = max(force[i] - step[i], 0.0)
     if not converged:
@@ -185,15 +212,14 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
     for i in range(n):
         for j in range(n):
             energy += 0.5 * force[i] * cm[i, j] * force[j]
-    if stiffness.shape[0] == n:
+    if want:
         for i in range(n):
             for j in range(n):
                 jac[i, j] = k[i] * cm[i, j]
+                stiffness[i, j] = 0.0
             jac[i, i] += 1.0
-        rhs = np.zeros((n, n))
-        for i in range(n):
-            rhs[i, i] = k[i]
-        stiffness[:, :] = np.linalg.solve(jac, rhs)
+            stiffness[i, i] = k[i]
+        _eliminate(jac, stiffness, n)
         # symmetric in exact arithmetic
         for i in range(n):
             for j in range(i + 1, n):
