@@ -16,7 +16,8 @@ __all__ = ["MODEL_PACKAGES", "model_source_files", "fingerprint_files", "model_f
 _ROOT = Path(__file__).parent
 
 #: sub-packages and modules of rvsim whose source determines a simulation's numbers
-MODEL_PACKAGES = ("dynamics", "geometry", "parameters", "units.py", "bearings.py")
+MODEL_PACKAGES = ("dynamics", "fe", "geometry", "parameters", "units.py", "bearings.py",
+                  "friction.py")
 
 
 def model_source_files(root: Path = _ROOT) -> list[Path]:

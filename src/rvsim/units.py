@@ -40,6 +40,7 @@ TO_SI: dict[str, float] = {
     "-": 1.0,
     "count": 1.0,
     "flag": 1.0,
+    "choice": 1.0,
 }
 
 

@@ -30,7 +30,8 @@ def _params(args: argparse.Namespace) -> int:
     width = max(len(r["name"]) for r in rows)
     for row in rows:
         value = row["value"]
-        text = ("yes" if value else "no") if isinstance(value, bool) else f"{value:.6g}"
+        text = (("yes" if value else "no") if isinstance(value, bool)
+                else value if isinstance(value, str) else f"{value:.6g}")
         print(f"{row['name']:<{width}}  {text:>12}  {row['unit']:<7} {row['description']}")
     return 0
 

@@ -23,6 +23,7 @@ from ..geometry._curve import pin_gap, profile_axes
 from ._bearings import conforming_force, roller_set
 from ._contact_law import EXPONENT, add_rank_one, contact, damped, spring_force  # noqa: F401
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
+from ._fe_contacts import apply_coupled
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
                       ARM_J2, ARM_KIND, ARM_ROLLERS, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
@@ -170,7 +171,8 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 
 
 @numba.njit(cache=True)
-def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic):
+def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
+                 fe):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
@@ -186,6 +188,10 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
 
     ``K`` (17 x 17, or 0 x 0) accumulates the material stiffness k g g^T of each contact, g the
     gradient of its gap (the profile-curvature term F d2gap/dq2 is left out).
+
+    ``fe`` (2, m, m): the discs' finite-element compliance tables; the touching pins of a disc
+    are then solved together (:func:`rvsim.dynamics._fe_contacts.apply_coupled`).  (2, 0, 0):
+    independent contacts.
     """
     d = DISC0 + DISC_STRIDE * disc
     ox, oy, th = q[d], q[d + 1], q[d + 2]
@@ -206,6 +212,10 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     worst = 0.0
     want = K.shape[0] > 0
     n = pins.shape[0]
+    coupled = fe.shape[1] > 0
+    slots = np.empty(n if coupled else 0, dtype=np.int64)
+    work = np.empty((n if coupled else 0, 6))
+    count = 0
     for i in range(n):
         if step < next_eval[disc, i]:
             forces[disc, i] = 0.0
@@ -230,15 +240,21 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         px, py = qx + runout_x, qy + runout_y
         lever = nx * py - ny * px                    # d(gap)/d(theta)
         gap_rate = -(nx * lvx + ny * lvy) + w * lever
+        # generalised forces Q = F d(gap)/dq on the disc
+        gx = -(cos_t * nx - sin_t * ny)                 # d(gap)/d(x, y) of the disc
+        gy = -(sin_t * nx + cos_t * ny)
+        if coupled:
+            slots[count] = i
+            work[count, 0], work[count, 1], work[count, 2] = delta, -gap_rate, ui
+            work[count, 3], work[count, 4], work[count, 5] = gx, gy, lever
+            count += 1
+            continue
         fn, e, pw, fel, k = contact(delta, -gap_rate, P[PIN_C], P[PIN_CB], P[ZETA],
                                     P[M_DISC], elastic[disc, i])
         forces[disc, i] = fn
         elastic[disc, i] = fel
         energy += e
         power += pw
-        # generalised forces Q = F d(gap)/dq on the disc
-        gx = -(cos_t * nx - sin_t * ny)                 # d(gap)/d(x, y) of the disc
-        gy = -(sin_t * nx + cos_t * ny)
         fx = fn * gx
         fy = fn * gy
         torque = fn * lever
@@ -260,6 +276,11 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         Q[d] += fx
         Q[d + 1] += fy
         Q[d + 2] += torque
+    if count > 0:
+        e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[PIN_CB], P[ZETA],
+                                 P[M_DISC], forces[disc], elastic[disc], Q, K, d)
+        energy += e
+        power += pw
     return energy, power, worst
 
 
@@ -450,7 +471,7 @@ def kinetic_energy(P, v):
 @numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-              channel, mesh_state, mesh_hold):
+              channel, mesh_state, mesh_hold, fe):
     """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
     ``torque_load``: the one evaluation of the force elements that both engines use.
 
@@ -498,11 +519,11 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         if ring:  # the pins turn with the output: contacts found in the ring's axes
             qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
             e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
-                                      step, pin_force, pin_elastic)
+                                      step, pin_force, pin_elastic, fe)
             ring_forces(q, qr, Qr, Kr, Q, K, disc)
         else:
             e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
-                                      pin_force, pin_elastic)
+                                      pin_force, pin_elastic, fe)
         energy += e
         power += pw
         if pen > worst:
@@ -537,7 +558,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
 
 @numba.njit(cache=True, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold):
+           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
     the run's schedule). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration, input angle, input speed)."""
@@ -546,7 +567,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     energy, power, torque_in, worst = forces_at(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-        mesh_state, mesh_hold)
+        mesh_state, mesh_hold, fe)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
@@ -568,7 +589,7 @@ def new_state(n_pins, n_channels, n_output_pins=0):
 @numba.njit(cache=True)
 def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes, crank_angles,
               mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic,
-              mesh_state, channel, counters, channels, pin_forces, energy):
+              mesh_state, channel, counters, channels, pin_forces, energy, fe):
     """Advance from step ``first_step`` to ``stop_step`` (exclusive) of a run of ``n_steps``
     steps of size P[DT] that starts at t = 0; returns (status, next step).
 
@@ -577,7 +598,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     ``energy``.  The last step, ``n_steps``, only evaluates and samples; after it the next step
     is ``n_steps + 1``.  Samples every ``sample_every`` steps into ``channels`` (rows) and
     ``pin_forces`` (rows x 2 discs x zp pins).  ``energy`` accumulates the steady-window
-    balance.
+    balance.  ``fe``: the discs' finite-element compliance tables, (2, 0, 0) for none.
     """
     dt = P[DT]
     Q = np.zeros(N_DOF)
@@ -594,7 +615,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             previous_stiffness[j] = mesh_state[j, 0]
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold)
+            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe)
         if in_window:
             # work done on the meshes by the stiffness change between steps (parametric)
             for j in range(2):

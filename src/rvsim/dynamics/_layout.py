@@ -137,6 +137,7 @@ RING_OUTPUT    = 120       # single-stage: 1.0 = the pin ring is the output (CAR
 
 
 # ---- finite-element bodies: 130-139 ------------------------------------------------------
+FE_DISC        = 130       # 1: the discs' pins are coupled through finite-element tables
 
 
 _P_INDEX = {name: value for name, value in dict(globals()).items()

@@ -173,6 +173,8 @@ class KernelModel:
     mesh_phase: np.ndarray
     q0: np.ndarray
     masses: MassProperties
+    #: the discs' finite-element compliance tables (2, m, m); (2, 0, 0) with closed-form bodies
+    fe: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((2, 0, 0)))
 
 
 def _station_weights(r: Reducer, z: float) -> tuple[float, float]:
@@ -227,13 +229,15 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     pin_load = disc_torque / (2.0 * c.eccentricity * c.disc_teeth)
     root_radius = c.pin_circle_radius - c.pin_radius - c.eccentricity
     body = 0.0
-    if r.flexibility.cycloid_disc:
+    fe_disc = r.flexibility.cycloid_disc and r.flexibility.model == "fe"
+    if r.flexibility.cycloid_disc and not fe_disc:
         body += tooth_compliance(2.0 * c.eccentricity, 2.0 * math.pi * root_radius / c.disc_teeth,
                                  c.disc_width, m.cycloid_disc)
     if r.flexibility.pin:
         body += pin_compliance(c.pin_radius, c.disc_width, pin_load, m.pin)
     P[L.PIN_CB] = body
     _bearing_constants(r, P)
+    P[L.FE_DISC] = 1.0 if fe_disc else 0.0
     P[L.ZETA] = r.contact.damping_ratio
     P[L.V_FRIC] = r.contact.friction_velocity
     fill_friction_constants(r, P)       # P[MU] and the friction block (docs/model.md sec. 15)
@@ -274,7 +278,20 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
         d = L.DISC0 + L.DISC_STRIDE * kd
         q0[d] = P[L.ECC] * math.cos(kd * math.pi)
         q0[d + 1] = P[L.ECC] * math.sin(kd * math.pi)
-    return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses)
+    return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses,
+                       _fe_tables(r) if fe_disc else np.zeros((2, 0, 0)))
+
+
+def _fe_tables(r: Reducer) -> np.ndarray:
+    """The finite-element disc tables (rvsim.fe: meshed and condensed once per geometry)."""
+    from ..errors import ParameterError
+    from ..fe.disc import disc_tables
+
+    if r.contact.friction_coefficient > 0.0:
+        raise ParameterError("flexibility.model", "the finite-element disc does not take pin "
+                             "friction yet (set contact.friction_coefficient = 0 or use "
+                             "closed-form)")
+    return disc_tables(r)
 
 
 def _bearing_constants(r: Reducer, P: np.ndarray) -> None:

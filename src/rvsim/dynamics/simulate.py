@@ -101,7 +101,8 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
             stop = min(step + CHUNK_STEPS, n_steps + 1)
             status, step = integrate(model.P, q, v, step, stop, n_steps, sample_every,
                                      model.pins, model.holes, model.crank_angles,
-                                     model.mesh_phase, *state, channels, pin_forces, energy)
+                                     model.mesh_phase, *state, channels, pin_forces, energy,
+                                     model.fe)
             if bar is not None:
                 bar.update(min(step, n_steps) * time_step - bar.n)
             if status != L.STATUS_OK or step > n_steps:

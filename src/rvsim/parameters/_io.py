@@ -61,6 +61,11 @@ def get_value(reducer: Reducer, name: str, *, user_units: bool = True) -> Any:
 
 def _coerce(spec: FieldSpec, raw: Any) -> Any:
     """Turn a user-supplied value (str, number, bool) into the field's SI value."""
+    if spec.kind == "choice":
+        text = str(raw).strip().lower()
+        if isinstance(raw, bool) or text not in spec.options:
+            raise ParameterError(spec.name, f"'{raw}' is not one of {', '.join(spec.options)}")
+        return text
     if spec.kind == "bool":
         if isinstance(raw, bool):
             return raw
@@ -181,6 +186,11 @@ def validate(reducer: Reducer) -> Reducer:
     """
     for spec in SPECS.values():
         value = get_value(reducer, spec.name, user_units=False)
+        if spec.kind == "choice":
+            if value not in spec.options:
+                raise ParameterError(spec.name, f"'{value}' is not one of "
+                                     f"{', '.join(spec.options)}")
+            continue
         if spec.kind == "bool":
             continue
         if not math.isfinite(value):
@@ -344,7 +354,8 @@ def toml_text(reducer: Reducer) -> str:
             lines.append(f"\n[{head}]")
             section = head
         value = row["value"]
-        text = ("true" if value else "false") if isinstance(value, bool) else f"{value:.12g}"
+        text = (("true" if value else "false") if isinstance(value, bool)
+                else toml_string(value) if isinstance(value, str) else f"{value:.12g}")
         lines.append(f"{leaf} = {text}  # [{row['unit']}] {row['description']}")
     return "\n".join(lines) + "\n"
 

@@ -11,7 +11,7 @@ import dataclasses
 import typing
 from typing import Any
 
-__all__ = ["quantity", "count", "flag", "FieldSpec", "field_specs"]
+__all__ = ["quantity", "count", "flag", "choice", "FieldSpec", "field_specs"]
 
 
 def quantity(default: float, unit: str, doc: str, *, minimum: float | None = 0.0,
@@ -39,6 +39,13 @@ def flag(default: bool, doc: str) -> Any:
         "positive": False, "maximum": None})
 
 
+def choice(default: str, options: tuple[str, ...], doc: str) -> Any:
+    """A field that takes one of a few named ``options`` (a text value)."""
+    return dataclasses.field(default=default, metadata={
+        "kind": "choice", "unit": "choice", "doc": f"{doc} ({' | '.join(options)})",
+        "minimum": None, "positive": False, "maximum": None, "options": tuple(options)})
+
+
 @dataclasses.dataclass(frozen=True)
 class FieldSpec:
     """Description of one leaf parameter, addressed by its dotted ``name``."""
@@ -50,6 +57,7 @@ class FieldSpec:
     minimum: float | None
     positive: bool
     maximum: float | None
+    options: tuple[str, ...] = ()
 
 
 def field_specs(cls: type, prefix: str = "") -> list[FieldSpec]:
@@ -63,5 +71,5 @@ def field_specs(cls: type, prefix: str = "") -> list[FieldSpec]:
         elif "kind" in f.metadata:
             m = f.metadata
             specs.append(FieldSpec(name, m["kind"], m["unit"], m["doc"], m["minimum"],
-                                   m["positive"], m["maximum"]))
+                                   m["positive"], m["maximum"], m.get("options", ())))
     return specs

@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from ._schema import count, flag, quantity
+from ._schema import choice, count, flag, quantity
 
 __all__ = [
     "Material", "Materials", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances",
@@ -185,6 +185,14 @@ class Flexibility:
     cycloid_disc: bool = flag(False, "A: cycloid disc flexible")
     pin: bool = flag(False, "B: pins flexible")
     arm_bushing: bool = flag(False, "C: arm bushing flexible")
+    model: str = choice("closed-form", ("closed-form", "fe"),
+                        "how the flexible parts deform: closed-form series compliances, or "
+                        "the disc from finite elements (rvsim.fe; cached per geometry)")
+    fe_element_size: float = quantity(1.6 * _MM, "mm", "finite-element size along the disc "
+                                      "profile and holes (the inside grows to 4x)",
+                                      positive=True)
+    fe_segments_per_tooth: int = count(8, "contact segments per disc tooth onto which the "
+                                       "finite-element disc is condensed", minimum=2)
 
 
 @dataclasses.dataclass(frozen=True)

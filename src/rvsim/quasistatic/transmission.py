@@ -142,7 +142,7 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
                        out.torsional_stiffness[part], out.status_codes[part],
                        out.iterations[part], out.input_torque[part],
                        out.output_pin_forces[part], P_fric, moving[part], turning[part],
-                       friction[part])
+                       friction[part], model.fe)
         solved += done
         if done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK:
             break

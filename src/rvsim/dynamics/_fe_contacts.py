@@ -1,0 +1,292 @@
+"""Pin contacts of a finite-element disc, solved together (numba; docs/model.md
+"Finite-element bodies").
+
+With ``flexibility.model = fe`` a disc's pins are not independent springs: the approach
+delta_i of pin i (the rigid overlap of its gap) is shared by its own contact (Palmgren line
+contact in series with the pin body, h_i(F) = c F^0.9 + cb F) and the disc's elastic
+displacement there, which every loaded pin causes:
+
+    delta_i = h_i(F_i) + sum_j C(u_i, u_j) F_j      for a loaded pin (F_i > 0),
+
+C the disc's condensed compliance table (:mod:`rvsim.fe.disc`) read at the contacts' foot
+parameters.  Written as F = f(delta - C F), f the contact's own force law (zero where its
+argument is not positive), the system is solved by semi-smooth Newton from the forces of the
+previous evaluation.  Its potential energy is sum of the contacts' energies + F^T C F / 2, its
+stiffness with respect to the approaches S = (I + D C)^-1 D, D = diag of the contacts' tangent
+stiffnesses: symmetric, the material stiffness G^T S G of the disc's coordinates.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ._cache_guard import invalidate_stale_cache
+
+invalidate_stale_cache(__file__)
+
+from ._contact_law import EXPONENT, spring_force  # noqa: E402
+
+__all__ = ["table_compliance", "coupled_forces", "lagged_forces", "apply_coupled",
+           "MAX_NEWTON"]
+
+#: Newton iterations of the coupled contacts (2-4 needed from the previous forces)
+MAX_NEWTON = 30
+#: Gauss-Seidel sweeps after a Newton solve that did not converge
+MAX_SWEEPS = 2000
+
+
+@numba.njit(cache=True)
+def _segment(u, m):
+    """Lower neighbouring segment centre and the weight of the upper one, for foot ``u``."""
+    s = (u / (2.0 * math.pi)) % 1.0 * m - 0.5
+    i0 = int(math.floor(s))
+    frac = s - i0
+    return i0 % m, (i0 + 1) % m, frac
+
+
+@numba.njit(cache=True)
+def _eliminate(a, b, n):
+    """Solve a x = b in place (b becomes x; a is overwritten) by Gaussian elimination without
+    pivoting: a = I + D C is diagonally dominant (k C summed over a row is below 1), and for
+    the 10-20 touching pins of a disc this is several times faster than a LAPACK call."""
+    m = b.shape[1]
+    for p in range(n):
+        inv = 1.0 / a[p, p]
+        for i in range(p + 1, n):
+            factor = a[i, p] * inv
+            if factor == 0.0:
+                continue
+            for j in range(p + 1, n):
+                a[i, j] -= factor * a[p, j]
+            for j in range(m):
+                b[i, j] -= factor * b[p, j]
+    for p in range(n - 1, -1, -1):
+        inv = 1.0 / a[p, p]
+        for j in range(m):
+            total = b[p, j]
+            for i in range(p + 1, n):
+                total -= a[p, i] * b[i, j]
+            b[p, j] = total * inv
+
+
+@numba.njit(cache=True)
+def table_compliance(table, ui, uj, same):
+    """C(ui, uj) [m/N] from the segment table: linear along the diagonal for a contact with
+    itself (``same``), bilinear between segment centres otherwise."""
+    m = table.shape[0]
+    i0, i1, fi = _segment(ui, m)
+    if same:
+        return (1.0 - fi) * table[i0, i0] + fi * table[i1, i1]
+    j0, j1, fj = _segment(uj, m)
+    return ((1.0 - fi) * ((1.0 - fj) * table[i0, j0] + fj * table[i0, j1])
+            + fi * ((1.0 - fj) * table[i1, j0] + fj * table[i1, j1]))
+
+
+@numba.njit(cache=True)
+def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance):
+    """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine: pin i's own law
+    in series with its own disc compliance C_ii is solved exactly, its neighbours' forces
+    taken as they are (already swept, or ``guess``, their forces of the previous step: the
+    coupling lags at most one time step).  Fills ``force`` and ``self_compliance``; returns
+    the potential energy."""
+    m = table.shape[0]
+    lo = np.empty(n, dtype=np.int64)
+    hi = np.empty(n, dtype=np.int64)
+    frac = np.empty(n)
+    for i in range(n):
+        lo[i], hi[i], frac[i] = _segment(foot[i], m)
+        force[i] = max(guess[i], 0.0)
+    energy = 0.0
+    for i in range(n):
+        a0, a1, fa = lo[i], hi[i], frac[i]
+        w = 0.0
+        for j in range(n):
+            if j == i or force[j] == 0.0:
+                continue
+            b0, b1, fb = lo[j], hi[j], frac[j]
+            cij = ((1.0 - fa) * ((1.0 - fb) * table[a0, b0] + fb * table[a0, b1])
+                   + fa * ((1.0 - fb) * table[a1, b0] + fb * table[a1, b1]))
+            w += cij * force[j]
+        cii = (1.0 - fa) * table[a0, a0] + fa * table[a1, a1]
+        self_compliance[i] = cii
+        own = delta[i] - w
+        if own > 0.0:
+            force[i], _, e = spring_force(own, c, cb + cii, force[i])
+            # the series law's energy holds F^2 C_ii / 2; the pair terms come once each
+            energy += e + 0.5 * w * force[i]
+        else:
+            force[i] = 0.0
+    return energy
+
+
+@numba.njit(cache=True)
+def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
+    """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot``,
+    Newton from ``guess``.  Fills ``force`` (n) and, if ``stiffness`` is n x n, the tangent
+    S = dF/d(delta).  Returns (potential energy, Newton iterations, converged)."""
+    cm = np.empty((n, n))
+    m = table.shape[0]
+    lo = np.empty(n, dtype=np.int64)
+    hi = np.empty(n, dtype=np.int64)
+    frac = np.empty(n)
+    for i in range(n):
+        lo[i], hi[i], frac[i] = _segment(foot[i], m)
+    for i in range(n):
+        a0, a1, fa = lo[i], hi[i], frac[i]
+        cm[i, i] = (1.0 - fa) * table[a0, a0] + fa * table[a1, a1]
+        for j in range(i + 1, n):
+            b0, b1, fb = lo[j], hi[j], frac[j]
+            cij = ((1.0 - fa) * ((1.0 - fb) * table[a0, b0] + fb * table[a0, b1])
+                   + fa * ((1.0 - fb) * table[a1, b0] + fb * table[a1, b1]))
+            cm[i, j] = cij
+            cm[j, i] = cij
+    f = np.empty(n)
+    k = np.zeros(n)
+    e = np.zeros(n)
+    for i in range(n):
+        force[i] = max(guess[i], 0.0)
+    jac = np.empty((n, n))
+    g = np.empty(n)
+    want = stiffness.shape[0] == n
+    converged = False
+    iterations = 0
+    for iterations in range(1, MAX_NEWTON + 1):
+        largest = 0.0
+        worst = 0.0
+        for i in range(n):
+            w = 0.0
+            for j in range(n):
+                w += cm[i, j] * force[j]
+            own = delta[i] - w
+            if own > 0.0:
+                f[i], k[i], e[i] = spring_force(own, c, cb, force[i])
+            else:
+                f[i], k[i], e[i] = 0.0, 0.0, 0.0
+            g[i] = force[i] - f[i]
+            largest = max(largest, f[i])
+            worst = max(worst, abs(g[i]))
+        if worst <= 1e-10 * largest + 1e-12:
+            converged = True
+            break
+        for i in range(n):
+            for j in range(n):
+                jac[i, j] = k[i] * cm[i, j]
+            jac[i, i] += 1.0
+        step = g.copy()
+        _eliminate(jac, step.reshape((n, 1)), n)
+        for i in range(n):
+            force[i] = max(force[i] - step[i], 0.0)
+    if not converged:
+        # Newton can cycle where pins open and close between iterations: Gauss-Seidel sweeps
+        # (a contraction, k C summed over the neighbours < 1) then finish the solve
+        cii = np.empty(n)
+        previous = np.empty(n)
+        for sweep in range(MAX_SWEEPS):
+            previous[:] = force
+            lagged_forces(table, delta, foot, previous, n, c, cb, force, cii)
+            change = 0.0
+            largest = 0.0
+            for i in range(n):
+                change = max(change, abs(force[i] - previous[i]))
+                largest = max(largest, force[i])
+            if change <= 1e-10 * largest + 1e-12:
+                converged = True
+                break
+        iterations += sweep + 1
+        for i in range(n):
+            w = 0.0
+            for j in range(n):
+                w += cm[i, j] * force[j]
+            own = delta[i] - w
+            if own > 0.0:
+                f[i], k[i], e[i] = spring_force(own, c, cb, force[i])
+            else:
+                f[i], k[i], e[i] = 0.0, 0.0, 0.0
+    energy = 0.0
+    for i in range(n):
+        force[i] = f[i]
+        energy += e[i]
+    for i in range(n):
+        for j in range(n):
+            energy += 0.5 * force[i] * cm[i, j] * force[j]
+    if want:
+        for i in range(n):
+            for j in range(n):
+                jac[i, j] = k[i] * cm[i, j]
+                stiffness[i, j] = 0.0
+            jac[i, i] += 1.0
+            stiffness[i, i] = k[i]
+        _eliminate(jac, stiffness, n)
+        # symmetric in exact arithmetic
+        for i in range(n):
+            for j in range(i + 1, n):
+                mean = 0.5 * (stiffness[i, j] + stiffness[j, i])
+                stiffness[i, j] = mean
+                stiffness[j, i] = mean
+    return energy, iterations, converged
+
+
+@numba.njit(cache=True)
+def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic, Q, K, d):
+    """Solve the ``count`` touching pins of a disc together and add their forces to ``Q`` (and
+    their stiffness to a 17 x 17 ``K``); ``work`` rows hold each pin's (approach, approach
+    rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta) and ``slots`` its index.  The
+    damping of a pin is 2 zeta sqrt(k m) at its series stiffness k = 1 / (1/k_contact + C_ii).
+    ``forces``/``elastic`` are the disc's rows.  With ``K`` wanted (the quasi-static engine)
+    the system is solved to convergence (:func:`coupled_forces`); without (the dynamic
+    engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).  Returns (energy, dissipated power,
+    converged)."""
+    n = count
+    delta = work[:n, 0].copy()
+    foot = work[:n, 2].copy()
+    guess = np.empty(n)
+    for a in range(n):
+        guess[a] = elastic[slots[a]]
+    fel = np.empty(n)
+    cii = np.empty(n)
+    want = K.shape[0] > 0
+    if want:
+        s = np.empty((n, n))
+        energy, _, converged = coupled_forces(table, delta, foot, guess, n, c, cb, fel, s)
+        for a in range(n):
+            cii[a] = table_compliance(table, foot[a], foot[a], True)
+    else:
+        s = np.empty((0, 0))
+        energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii)
+        converged = True
+    power = 0.0
+    for a in range(n):
+        i = slots[a]
+        f = fel[a]
+        fn = f
+        if f > 0.0 and zeta > 0.0:
+            # tangent stiffness of the contact's own law at f: 1 / (0.9 c f^-0.1 + cb)
+            k_contact = 1.0 / (EXPONENT * c * f ** (EXPONENT - 1.0) + cb)
+            k = 1.0 / (1.0 / k_contact + cii[a])
+            fn = f + 2.0 * zeta * math.sqrt(k * mass) * work[a, 1]
+            if fn < 0.0:
+                fn = 0.0
+            power += (fn - f) * work[a, 1]
+        forces[i] = fn
+        elastic[i] = f
+        Q[d] += fn * work[a, 3]
+        Q[d + 1] += fn * work[a, 4]
+        Q[d + 2] += fn * work[a, 5]
+    if want:
+        # K_dd += G^T S G, G the rows (d gap / d(x, y, theta)) of the touching pins
+        sg = np.zeros((n, 3))
+        for a in range(n):
+            for b in range(n):
+                sab = s[a, b]
+                for r in range(3):
+                    sg[a, r] += sab * work[b, 3 + r]
+        for p in range(3):
+            for r in range(3):
+                total = 0.0
+                for a in range(n):
+                    total += work[a, 3 + p] * sg[a, r]
+                K[d + p, d + r] += total
+    return energy, power, converged

@@ -1,0 +1,11 @@
+"""Finite-element bodies (issue 13): meshes from the parameter set (gmsh), plane-stress
+elements and static condensation (scikit-fem), an on-disk cache by geometry hash.
+
+``flexibility.model = fe`` uses :func:`rvsim.fe.disc.disc_tables` for the cycloid discs
+(docs/model.md section 17).  The submodules import gmsh and scikit-fem only when a mesh is
+built.
+"""
+
+from __future__ import annotations
+
+__all__ = ["cache", "disc", "elasticity", "mesh"]

@@ -1,0 +1,65 @@
+"""On-disk cache of condensed finite-element matrices, keyed by a hash of the geometry.
+
+Location: ``$RVSIM_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/rvsim``, else ``~/.cache/rvsim``;
+the finite-element matrices go to its ``fe/`` folder, one ``.npz`` file per geometry.  Deleting
+the folder only costs the recomputation.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["cache_dir", "geometry_key", "load", "store"]
+
+
+def cache_dir() -> Path:
+    """The folder of the finite-element cache (not created)."""
+    root = os.environ.get("RVSIM_CACHE_DIR")
+    if root:
+        return Path(root) / "fe"
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    base = Path(xdg) if xdg else Path.home() / ".cache"
+    return base / "rvsim" / "fe"
+
+
+def geometry_key(kind: str, values: dict) -> str:
+    """SHA-256 (first 24 hex digits) of ``kind`` and the geometry ``values`` (floats rounded to
+    1e-12 relative so that round-off does not split the cache)."""
+    def norm(v):
+        if isinstance(v, float):
+            return float(f"{v:.12g}")
+        if isinstance(v, (list, tuple)):
+            return [norm(x) for x in v]
+        return v
+    text = json.dumps({"kind": kind, **{k: norm(v) for k, v in sorted(values.items())}},
+                      sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:24]
+
+
+def load(key: str) -> dict | None:
+    """Arrays stored under ``key``, or None (missing or unreadable: recomputed)."""
+    path = cache_dir() / f"{key}.npz"
+    try:
+        with np.load(path) as data:
+            return {name: data[name] for name in data.files}
+    except (OSError, ValueError, EOFError):
+        return None
+
+
+def store(key: str, arrays: dict) -> Path | None:
+    """Write ``arrays`` under ``key`` atomically; None if the cache folder is not writable."""
+    folder = cache_dir()
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        tmp = folder / f".{key}.{os.getpid()}.npz"
+        np.savez(tmp, **arrays)
+        path = folder / f"{key}.npz"
+        os.replace(tmp, path)
+        return path
+    except OSError:
+        return None

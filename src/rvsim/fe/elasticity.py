@@ -1,0 +1,115 @@
+"""Plane-stress linear elasticity on quadratic triangles (scikit-fem) and static condensation
+onto boundary loads (docs/model.md "Finite-element bodies").
+
+The body is meshed with six-node (P2) triangles; its stiffness is that of a plate of
+``thickness`` in plane stress, Lame's first parameter lambda* = 2 lambda mu / (lambda + 2 mu).
+A *boundary load* is a unit resultant spread as a uniform traction over a set of straight
+boundary edges; the same vector read as a functional is the traction-weighted mean of the
+displacement over those edges.  The compliance between loads i and j is
+C_ij = b_i^T K^-1 b_j with the supports' degrees of freedom removed: symmetric and positive
+definite by construction (Maxwell-Betti).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+__all__ = ["PlaneStressBody", "edge_load"]
+
+
+class PlaneStressBody:
+    """Stiffness of a plane-stress plate on a :class:`rvsim.fe.mesh.PlaneMesh`-like mesh
+    (``points`` (2, n), ``triangles`` (3, m)), material E [Pa], nu [-], thickness [m]."""
+
+    def __init__(self, points: np.ndarray, triangles: np.ndarray, elastic_modulus: float,
+                 poisson_ratio: float, thickness: float):
+        from skfem import Basis, ElementTriP2, ElementVector, MeshTri, asm
+        from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+        self.mesh = MeshTri(points, triangles)
+        self.basis = Basis(self.mesh, ElementVector(ElementTriP2()))
+        lam, mu = lame_parameters(elastic_modulus, poisson_ratio)
+        lam_plane_stress = 2.0 * lam * mu / (lam + 2.0 * mu)
+        self.stiffness = (thickness * asm(linear_elasticity(lam_plane_stress, mu),
+                                          self.basis)).tocsc()
+        # facet index of each mesh edge (sorted node pair)
+        facets = self.mesh.facets
+        self._facet_of = {(int(a), int(b)): f for f, (a, b) in enumerate(facets.T)}
+
+    @property
+    def n_dofs(self) -> int:
+        return self.basis.N
+
+    def node_dofs(self, nodes: np.ndarray) -> np.ndarray:
+        """Degrees of freedom (x and y) of mesh vertices ``nodes``, shape (2, len(nodes))."""
+        return self.basis.nodal_dofs[:, nodes]
+
+    def edge_dofs(self, a: int, b: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(x, y) dofs of vertex a, vertex b and the edge's midside node."""
+        f = self._facet_of[(min(a, b), max(a, b))]
+        return (self.basis.nodal_dofs[:, a], self.basis.nodal_dofs[:, b],
+                self.basis.facet_dofs[:, f])
+
+    def supported_dofs(self, nodes: np.ndarray) -> np.ndarray:
+        """Every dof on the boundary through the vertices ``nodes`` (vertices and the midside
+        nodes of the boundary edges joining two of them): clamps a hole's edge."""
+        chosen = set(int(n) for n in nodes)
+        dofs = [self.basis.nodal_dofs[:, nodes].ravel()]
+        boundary = self.mesh.boundary_facets()
+        for f in boundary:
+            a, b = self.mesh.facets[:, f]
+            if int(a) in chosen and int(b) in chosen:
+                dofs.append(self.basis.facet_dofs[:, f])
+        return np.unique(np.concatenate(dofs))
+
+    def displacements(self, loads: np.ndarray, supported: np.ndarray) -> np.ndarray:
+        """K^-1 B for the columns of ``loads`` (n_dofs, k), ``supported`` dofs held at zero
+        (sparse Cholesky, cholespy; the stiffness is scaled to unit mean diagonal first)."""
+        from cholespy import CholeskySolverD, MatrixType
+
+        free = np.setdiff1d(np.arange(self.n_dofs), supported)
+        a = self.stiffness[free][:, free].tocoo()
+        scale = 1.0 / float(np.mean(a.diagonal()))
+        solver = CholeskySolverD(a.shape[0], a.row.astype(np.int32), a.col.astype(np.int32),
+                                 a.data * scale, MatrixType.COO)
+        rhs = np.ascontiguousarray(_dense(loads[free]))
+        x = np.zeros_like(rhs)
+        solver.solve(rhs, x)
+        u = np.zeros((self.n_dofs, loads.shape[1]))
+        u[free] = x * scale
+        return u
+
+    def compliance(self, loads: np.ndarray, supported: np.ndarray) -> np.ndarray:
+        """C = B^T K^-1 B for the columns of ``loads`` (n_dofs, k), ``supported`` dofs held at
+        zero, symmetrised (the asymmetry is round-off)."""
+        c = np.asarray(loads.T @ self.displacements(loads, supported))
+        return 0.5 * (c + c.T)
+
+
+def _dense(matrix) -> np.ndarray:
+    return matrix.toarray() if sp.issparse(matrix) else np.asarray(matrix)
+
+
+def edge_load(body: PlaneStressBody, edges: list[tuple[int, int]], direction: str = "inward"
+              ) -> np.ndarray:
+    """Load vector (sparse column, n_dofs x 1) of a unit resultant spread uniformly over straight boundary ``edges`` (vertex
+    pairs, counter-clockwise along the outer boundary), normal to each edge: ``inward`` pushes
+    into the body.  Consistent P2 load: 1/6 of an edge's share at each vertex, 2/3 at the
+    midside node."""
+    rows, values = [], []
+    pts = body.mesh.p
+    lengths = [float(np.linalg.norm(pts[:, b] - pts[:, a])) for a, b in edges]
+    total = sum(lengths)
+    sign = 1.0 if direction == "inward" else -1.0
+    for (a, b), length in zip(edges, lengths):
+        dx, dy = pts[:, b] - pts[:, a]
+        # outward normal of a counter-clockwise outer boundary: (dy, -dx) / length
+        nx, ny = sign * -dy / length, sign * dx / length
+        share = length / total
+        da, db, dm = body.edge_dofs(a, b)
+        for dofs, weight in ((da, 1.0 / 6.0), (db, 1.0 / 6.0), (dm, 2.0 / 3.0)):
+            rows += [int(dofs[0]), int(dofs[1])]
+            values += [weight * share * nx, weight * share * ny]
+    return sp.csc_matrix((values, (rows, np.zeros(len(rows), dtype=np.int64))),
+                         shape=(body.n_dofs, 1))

@@ -1,0 +1,70 @@
+"""flexibility.model = fe in both engines and the CLI (coarse meshes: the tests stay fast)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+COARSE = ("--set", "flexibility.fe_element_size=4", "--set",
+          "flexibility.fe_segments_per_tooth=2")
+SHORT = ("--set", "operating.duration=0.3", "--set", "operating.speed_ramp_time=0.1",
+         "--set", "operating.load_start=0.1", "--set", "operating.load_ramp_end=0.2",
+         "--set", "operating.steady_start=0.2")
+
+
+@pytest.fixture(autouse=True)
+def _private_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("RVSIM_CACHE_DIR", str(tmp_path))
+
+
+def _ltca(cli, *extra):
+    result = cli("ltca", "--positions", "24", "--torque", "412", "--json", "--set", "A=1",
+                 *extra)
+    assert result.code == 0, result.err
+    return json.loads(result.out)
+
+
+def test_ltca_with_the_fe_disc_is_softer_than_the_tooth_model(cli):
+    closed = _ltca(cli)
+    fe = _ltca(cli, "--set", "flexibility.model=fe", *COARSE)
+    assert fe["status"] == "ok"
+    # the web and the coupling add compliance (measured with the default mesh at the rated
+    # 412 N*m, 360 positions: stiffness 213.6 -> 208.1 N*m/arcmin, TE mean 2.143 -> 2.194
+    # arcmin)
+    assert fe["torsional_stiffness_nm_per_arcmin"] < closed["torsional_stiffness_nm_per_arcmin"]
+    assert fe["te_mean_arcmin"] > closed["te_mean_arcmin"]
+    assert fe["te_mean_arcmin"] < 1.1 * closed["te_mean_arcmin"]
+
+
+def test_switch_a_off_leaves_the_model_unchanged(cli):
+    rigid = cli("ltca", "--positions", "12", "--json")
+    fe = cli("ltca", "--positions", "12", "--json", "--set", "flexibility.model=fe", *COARSE)
+    drop = ("wall_s",)
+    a, b = json.loads(rigid.out), json.loads(fe.out)
+    assert {k: v for k, v in a.items() if k not in drop} == \
+        {k: v for k, v in b.items() if k not in drop}
+
+
+def test_simulate_with_the_fe_disc(cli):
+    closed = cli("simulate", "--json", "--set", "A=1", *SHORT)
+    fe = cli("simulate", "--json", "--set", "A=1", "--set", "flexibility.model=fe", *COARSE,
+             *SHORT)
+    assert fe.code == 0, fe.err
+    a, b = json.loads(closed.out), json.loads(fe.out)
+    assert b["status"] == "ok"
+    assert b["te_mean_arcmin"] > a["te_mean_arcmin"]
+
+
+def test_bad_model_name_is_one_line(cli):
+    result = cli("ltca", "--set", "flexibility.model=ansys")
+    assert result.code == 2
+    assert result.err == ("rvsim: error: parameter 'flexibility.model': 'ansys' is not one "
+                          "of closed-form, fe\n")
+
+
+def test_friction_with_the_fe_disc_is_refused(cli):
+    result = cli("ltca", "--set", "A=1", "--set", "flexibility.model=fe", "--set",
+                 "contact.friction_coefficient=0.05", *COARSE)
+    assert result.code == 2
+    assert "flexibility.model" in result.err and "friction" in result.err
