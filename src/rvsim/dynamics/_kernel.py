@@ -19,9 +19,10 @@ from ._cache_guard import invalidate_stale_cache
 # so clear the cache when those change (_cache_guard.DEPENDENCIES)
 invalidate_stale_cache()
 
-from ..geometry._curve import pin_gap, profile_axes
+from ..geometry._curve import deviated_gap, pin_gap, pin_opening, profile_axes
 from ._contact_law import EXPONENT, add_rank_one, contact, spring_force  # noqa: F401
 from ._single_stage import input_shaft, output_pin
+from ._layout import (BORE_DR0, BORE_DT0, ECC_ERR0, ECC_PHASE0)
 from ._layout import (A_GEN, ARM_C, ARM_CB, ARM_CLEAR, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
@@ -198,8 +199,9 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
             continue
         qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, runout_x, runout_y)
         nominal = pin_angle[i] - angle
-        gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp, clearance,
-                                  step > 0)
+        gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp,
+                                  clearance + pin_opening(pins, i), step > 0)
+        gap, nx, ny = deviated_gap(pins, disc, ui, gap, nx, ny, rg, a, zp)  # per-part errors
         u[disc, i] = ui - nominal
         if gap >= 0.0:
             forces[disc, i] = 0.0
@@ -280,8 +282,8 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     + F n . d2r/dq2 (the eccentric's and the hole's rotation)."""
     ax, ay, avx, avy = crank_point(q, v, crank, wl, wu)
     b = CRANK0 + CRANK_STRIDE * crank
-    phi = q[b + 4] + disc * math.pi
-    ecc = P[ECC]
+    phi = q[b + 4] + disc * math.pi + P[ECC_PHASE0 + 2 * crank + disc]
+    ecc = P[ECC] + P[ECC_ERR0 + 2 * crank + disc]
     cos_p, sin_p = math.cos(phi), math.sin(phi)
     ex = ax + ecc * cos_p
     ey = ay + ecc * sin_p
@@ -324,8 +326,9 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle):
     :func:`arm_bushing`)."""
     b = CRANK0 + CRANK_STRIDE * crank + (2 if upper else 0)
     carrier_angle = q[CARRIER] + crank_angle
-    bx = P[CENTRE_DIST] * math.cos(carrier_angle)
-    by = P[CENTRE_DIST] * math.sin(carrier_angle)
+    radius = P[CENTRE_DIST] + P[BORE_DR0 + crank]
+    bx = radius * math.cos(carrier_angle) - P[BORE_DT0 + crank] * math.sin(carrier_angle)
+    by = radius * math.sin(carrier_angle) + P[BORE_DT0 + crank] * math.cos(carrier_angle)
     rx, ry = q[b] - bx, q[b + 1] - by
     dist = math.sqrt(rx * rx + ry * ry)
     clearance = P[SUP_CLEAR_U] if upper else P[SUP_CLEAR_L]
@@ -414,8 +417,12 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         for disc in range(n_discs):
             wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
             wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
-            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, holes[j, 0], holes[j, 1], wl,
-                                       wu, arm_elastic)
+            hole_x, hole_y = holes[j, 0], holes[j, 1]
+            if holes.shape[1] > 2:          # per-disc hole offsets (per-part errors)
+                hole_x += holes[j, 2 + 2 * disc]
+                hole_y += holes[j, 3 + 2 * disc]
+            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
+                                       arm_elastic)
             channel[CH_ARM_F00 + 2 * j + disc] = force
             energy += e
             power += pw

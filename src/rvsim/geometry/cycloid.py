@@ -121,9 +121,11 @@ def _disc_gaps(reducer: Reducer, crank_angle: float, disc: int, extra_rotation: 
     angle = rot + extra_rotation - disc * math.pi / reducer.cycloid.disc_teeth + prof.rotation
     shift_x, shift_y = profile_offset(reducer, disc)
     clearance = prof.offset - (reducer.cycloid.pin_radius - reducer.errors.pin_radius)
-    return pin_gaps_at(pin_centres(reducer), x + offset[0], y + offset[1], angle, shift_x,
+    from .deviations import pin_table
+
+    return pin_gaps_at(pin_table(reducer), x + offset[0], y + offset[1], angle, shift_x,
                        shift_y, prof.generating_radius, prof.eccentricity,
-                       float(prof.pin_count), clearance), angle
+                       float(prof.pin_count), clearance, disc), angle
 
 
 def pin_gaps(reducer: Reducer, crank_angle: float, *, disc: int = 0,

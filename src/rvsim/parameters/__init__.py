@@ -1,7 +1,7 @@
 """Reducer parameter sets: dataclasses (SI inside), the paper's RV-40E, TOML and overrides."""
 
 from ._types import (Clearances, ContactModel, Crankshaft, CycloidStage, Errors, Flexibility,
-                     GearStage, Material, Materials, Operating, Rating, Reducer)
+                     GearStage, Material, Materials, Operating, PartErrors, Rating, Reducer)
 from .rv40e import (CITATION, RV40E, TABLE2_FACTORS, FactorSpec, paper_l36_scheme,
                     paper_run_values)
 from ._io import (BUILT_IN_SETS, SPECS, get_value, load_toml, parameter_table, parse_assignment,
@@ -9,7 +9,8 @@ from ._io import (BUILT_IN_SETS, SPECS, get_value, load_toml, parameter_table, p
 
 __all__ = [
     "Reducer", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances", "Flexibility",
-    "Operating", "ContactModel", "Rating", "Material", "Materials", "RV40E", "CITATION",
+    "Operating", "ContactModel", "Rating", "Material", "Materials", "PartErrors", "RV40E",
+    "CITATION",
     "TABLE2_FACTORS",
     "FactorSpec", "paper_l36_scheme", "paper_run_values", "BUILT_IN_SETS", "SPECS", "get_value", "load_toml", "parameter_table",
     "parse_assignment", "resolve_name", "validate", "with_values",
