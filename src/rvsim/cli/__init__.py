@@ -10,7 +10,7 @@ import sys
 
 from .. import __version__
 from ..errors import RvsimError
-from . import _geometry, _quasistatic, _simulate, _study
+from . import _geometry, _quasistatic, _simulate, _study, _tolerance
 from ._common import EXAMPLES, Parser
 
 __all__ = ["main", "build_parser"]
@@ -29,6 +29,7 @@ def build_parser() -> argparse.ArgumentParser:
     _simulate.register(sub)
     _quasistatic.register(sub)
     _study.register(sub)
+    _tolerance.register(sub)
     return parser
 
 

@@ -110,6 +110,8 @@ class ToleranceStudy:
     seed: int = 0
     positions: int = 360
     params: str = "RV-40E"
+    #: the file's [cost.NAME] tables for the allocation: ((name, ((key, value), ...)), ...)
+    cost: tuple = ()
 
     def __post_init__(self) -> None:
         seen = set()
@@ -297,7 +299,7 @@ def load_tolerance_study(path: str | Path) -> ToleranceStudy:
 
     path = Path(path)
     data = _read_toml(path)
-    known = {"name", "params", "samples", "seed", "positions", "set", "tolerances"}
+    known = {"name", "params", "samples", "seed", "positions", "set", "tolerances", "cost"}
     extra = set(data) - known
     if extra:
         raise InputFileError(f"{path}: unknown key(s) {', '.join(sorted(extra))} (a tolerance "
@@ -321,9 +323,16 @@ def load_tolerance_study(path: str | Path) -> ToleranceStudy:
         raise InputFileError(f"{path}: 'name' must be a non-empty text string")
     study = ToleranceStudy(name=name, tolerances=tolerances, base=base, fixed=fixed,
                            samples=data.get("samples", 1000), seed=seed,
-                           positions=data.get("positions", 360), params=params)
+                           positions=data.get("positions", 360), params=params,
+                           cost=_cost(data.get("cost", {}), path))
     study.nominal     # the nominal reducer must be valid
     return study
+
+
+def _cost(raw, path) -> tuple:
+    if not isinstance(raw, dict) or not all(isinstance(v, dict) for v in raw.values()):
+        raise InputFileError(f"{path}: 'cost' must hold [cost.NAME] tables")
+    return tuple((name, tuple(spec.items())) for name, spec in raw.items())
 
 
 def _fixed(raw, path) -> tuple:
