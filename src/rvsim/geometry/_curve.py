@@ -31,7 +31,7 @@ import numba
 import numpy as np
 
 __all__ = ["curve_point", "foot_point", "nearest_point", "curvature", "profile_points",
-           "profile_axes", "pin_gap", "pin_gaps_at", "pin_opening", "profile_deviation",
+           "profile_axes", "pin_gap", "pin_gaps_at", "pin_opening", "profile_deviation", "lever_arms",
            "deviated_gap",
            "TRACKING_LIMIT"]
 
@@ -173,6 +173,17 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track):
     nx = ty / norm
     ny = -tx / norm
     return (qx - x) * nx + (qy - y) * ny + clearance, u, nx, ny
+
+
+@numba.njit(cache=True)
+def lever_arms(u, rg, a, zp):
+    """n x q of the pin-centre curve at parameters ``u`` (n the unit outward normal): the
+    gap's derivative with respect to the disc's rotation for a pin on the curve [m]."""
+    out = np.empty(u.shape[0])
+    for i in range(u.shape[0]):
+        x, y, tx, ty, _, _ = curve_point(u[i], rg, a, zp)
+        out[i] = (ty * y + tx * x) / math.sqrt(tx * tx + ty * ty)
+    return out
 
 
 @numba.njit(cache=True, inline="always")

@@ -25,13 +25,13 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..parameters import Reducer
-from ._curve import curve_point
+from ._curve import lever_arms
 
 __all__ = ["check_parts", "pin_table", "profile_deviation_samples", "eccentric_errors",
            "hole_offsets", "bore_offsets", "SAMPLES_PER_TOOTH"]
 
 #: samples of a disc's profile deviation per tooth (linear interpolation between them)
-SAMPLES_PER_TOOTH = 32
+SAMPLES_PER_TOOTH = 64
 
 
 def _discs(r: Reducer) -> int:
@@ -98,11 +98,7 @@ def profile_deviation_samples(r: Reducer, disc: int, u: np.ndarray) -> np.ndarra
         if len(table):
             out += np.interp(u, table[:, 0], table[:, 1], period=2.0 * np.pi)
     if p.disc_pitch or p.disc_phase:
-        lever = np.empty(u.shape)
-        for i, ui in enumerate(u):
-            x, y, tx, ty, _, _ = curve_point(float(ui), rg, c.eccentricity, float(c.pin_count))
-            norm = math.hypot(tx, ty)
-            lever[i] = (ty * y + tx * x) / norm          # n x q with n = (ty, -tx) / |t|
+        lever = lever_arms(u, rg, c.eccentricity, float(c.pin_count))
         out -= _tooth_rotation(r, disc, u) * lever
     return out
 

@@ -88,6 +88,11 @@ def run_samples(study: ToleranceStudy, folder: Path, designs: dict[str, tuple[in
 
                     if scheduler:
                         _run_dask(todo, options, scheduler, store_result)
+                    elif workers == 1:        # in this process: no worker start-up
+                        from .engine import evaluate_sample
+
+                        for key, reducer in todo.items():
+                            store_result(key, evaluate_sample(reducer, study.positions))
                     else:
                         _run_local(todo, options, workers, store_result)
     finally:
