@@ -57,7 +57,7 @@ def parse_targets(text: str) -> list[Target]:
         item = item.strip()
         if not item:
             continue
-        match = re.fullmatch(r"([a-z_]+)_p(\d{1,2}(?:\.\d+)?)=(.+)", item)
+        match = re.fullmatch(r"([a-z_]+)_p(\d+(?:\.\d+)?)=(.+)", item)
         if not match or match.group(1) not in _SHORT:
             raise ParameterError("--target", f"'{item}' is not METRIC_pNN=VALUE with METRIC one "
                                  f"of {', '.join(_SHORT)} (e.g. ate_p95=0.5)")
