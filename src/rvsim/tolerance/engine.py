@@ -34,6 +34,7 @@ def evaluate_sample(reducer, positions: int = 360) -> dict:
     from ..quasistatic import hysteresis, ltca
 
     start = time.perf_counter()
+    cpu = time.process_time()
     try:
         worst = max(assembly_overlaps(reducer), key=lambda o: o.approach)
         if worst.approach > CONTACT_TOLERANCE:
@@ -47,7 +48,8 @@ def evaluate_sample(reducer, positions: int = 360) -> dict:
                    "max_pin_force_n": run["max_pin_force_n"],
                    "lost_motion_arcmin": loop["lost_motion_arcmin"],
                    "backlash_arcmin": loop["backlash_arcmin"],
-                   "torsional_rigidity_nm_per_arcmin": loop["torsional_rigidity_nm_per_arcmin"]}
+                   "torsional_rigidity_nm_per_arcmin": loop["torsional_rigidity_nm_per_arcmin"],
+                   "cpu_s": time.process_time() - cpu}
         return {"status": "ok", "metrics": metrics, "wall_s": time.perf_counter() - start}
     except SimulationError as exc:
         return {"status": exc.status, "error": str(exc), "metrics": {},
