@@ -58,7 +58,8 @@ def interaction_anova(table: pd.DataFrame, response: str, factors: list[str]) ->
     frame = frame.rename(columns={"df": "DF", "sum_sq": "SS", "PR(>F)": "P"})
     frame["MS"] = frame["SS"] / frame["DF"]
     total = float(np.sum((data["y"] - data["y"].mean()) ** 2))
-    frame.loc["Total"] = [len(data) - 1, total, math.nan, math.nan, math.nan]
+    frame.loc["Total"] = {"DF": len(data) - 1, "SS": total, "F": math.nan, "P": math.nan,
+                          "MS": math.nan}
     frame["share"] = frame["SS"] / total
     effects = frame.drop(index=["Error", "Total"]).sort_values("SS", ascending=False)
     return pd.concat([effects, frame.loc[["Error", "Total"]]])[["DF", "SS", "MS", "F", "P",

@@ -31,7 +31,7 @@ import numba
 import numpy as np
 
 __all__ = ["curve_point", "foot_point", "nearest_point", "curvature", "profile_points",
-           "profile_axes", "pin_gap", "pin_gaps_at", "pin_opening", "profile_deviation", "lever_arms",
+           "profile_axes", "pin_gap", "pin_gaps_at", "pin_opening", "profile_deviation", "lever_arms", "curvatures",
            "deviated_gap",
            "TRACKING_LIMIT"]
 
@@ -173,6 +173,15 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track):
     nx = ty / norm
     ny = -tx / norm
     return (qx - x) * nx + (qy - y) * ny + clearance, u, nx, ny
+
+
+@numba.njit(cache=True)
+def curvatures(u, rg, a, zp):
+    """:func:`curvature` at each of the parameters ``u``."""
+    out = np.empty(u.shape[0])
+    for i in range(u.shape[0]):
+        out[i] = curvature(u[i], rg, a, zp)
+    return out
 
 
 @numba.njit(cache=True)

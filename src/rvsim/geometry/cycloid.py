@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..parameters import Reducer
-from ._curve import curvature, pin_gaps_at, profile_points
+from ._curve import curvatures, pin_gaps_at, profile_points
 
 __all__ = [
     "CycloidProfile", "profile_of", "pin_centres", "profile_offset", "nominal_disc_pose",
@@ -170,8 +170,7 @@ def undercut_ratio(reducer: Reducer, samples: int = 2000) -> float:
     """
     prof = profile_of(reducer)
     u = np.linspace(0.0, 2.0 * np.pi / prof.teeth, samples)
-    kappa = np.array([curvature(ui, prof.generating_radius, prof.eccentricity,
-                                float(prof.pin_count)) for ui in u])
+    kappa = curvatures(u, prof.generating_radius, prof.eccentricity, float(prof.pin_count))
     return float(np.max(kappa) * prof.offset)
 
 

@@ -19,6 +19,7 @@ per disc (docs/tolerances.md).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -104,7 +105,14 @@ def profile_deviation_samples(r: Reducer, disc: int, u: np.ndarray) -> np.ndarra
 
 
 def pin_table(r: Reducer) -> np.ndarray:
-    """The kernel's ``pins`` array (module docstring)."""
+    """The kernel's ``pins`` array (module docstring), a fresh copy (built once per reducer:
+    the assembly check, the model and both quasi-static tests of a Monte Carlo reducer share
+    it)."""
+    return _pin_table(r).copy()
+
+
+@functools.lru_cache(maxsize=8)
+def _pin_table(r: Reducer) -> np.ndarray:
     from .cycloid import pin_centres
 
     check_parts(r)
