@@ -121,3 +121,14 @@ def test_bad_targets_are_one_line(tmp_path, small, cli, target, text):
     res = cli("allocate", str(small), "--target", target, "--out", str(tmp_path / "o"),
               "--samples", "2", "--workers", "1")
     assert res.code == 2 and res.err.count("\n") == 1 and text in res.err, res.err
+
+
+def test_single_stage_tolerance_study(tmp_path):
+    import dataclasses
+
+    from rvsim.tolerance import cycloid_drive_tolerances, tolerance_analysis
+
+    study = dataclasses.replace(cycloid_drive_tolerances(), positions=12)
+    summary = tolerance_analysis(study, tmp_path / "cd", samples=3, workers=1, report=False)
+    assert summary["ok"] + summary["binds"] == 3 and summary["failed"] == 0
+    assert summary["metrics"]["ate_arcmin"]["n"] == summary["ok"]
