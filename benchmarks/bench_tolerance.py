@@ -69,7 +69,7 @@ def _dask(samples: int, sizes: list[int]) -> dict:
         with distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                       host="127.0.0.1", dashboard_address=None) as cluster:
             with tempfile.TemporaryDirectory() as warm:   # load the JIT cache in each worker
-                tolerance_analysis(study, warm, samples=n, report=False,
+                tolerance_analysis(study, warm, samples=max(2, n), report=False,
                                    scheduler=cluster.scheduler_address)
             with tempfile.TemporaryDirectory() as folder:
                 start = time.perf_counter()
