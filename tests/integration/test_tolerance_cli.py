@@ -132,3 +132,15 @@ def test_single_stage_tolerance_study(tmp_path):
     summary = tolerance_analysis(study, tmp_path / "cd", samples=3, workers=1, report=False)
     assert summary["ok"] + summary["binds"] == 3 and summary["failed"] == 0
     assert summary["metrics"]["ate_arcmin"]["n"] == summary["ok"]
+
+
+def test_a_full_factorial_study_gets_the_interaction_anova(tmp_path, cli):
+    from tests.integration.conftest import write_study
+
+    study = write_study(tmp_path, design="full", extra='engine = "quasi-static"')
+    res = cli("study", str(study), "--out", str(tmp_path / "f"), "--workers", "1",
+              "--no-report")
+    assert res.code == 0, res.err
+    analysis = json.loads((tmp_path / "f" / "analysis.json").read_text())
+    assert {"H x I", "H x E", "I x E", "Error", "Total"} <= set(analysis["interactions"])
+    assert (tmp_path / "f" / "interactions.png").exists()
