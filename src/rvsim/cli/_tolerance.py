@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..errors import InputFileError, ParameterError
+from ..errors import InputFileError
 from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
                       scheduler_address)
 

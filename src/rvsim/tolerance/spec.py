@@ -132,16 +132,22 @@ class ToleranceStudy:
         """The nominal reducer: the base set with the [set] values (validated)."""
         return with_values(self.base, dict(self.fixed))
 
-    def sizes(self) -> list[int]:
-        """Random variables of each tolerance (columns of the unit vector)."""
+    def part_counts(self) -> dict[str, int]:
+        """Parts (values) of each per-part error of the base reducer."""
         r = self.base
         zp, zc = r.cycloid.pin_count, r.cycloid.disc_teeth
         discs = r.layout.disc_count if r.layout.single_stage else 2
         cranks = 1 if r.layout.single_stage else 2
-        per_part = {"pin_radial": zp, "pin_tangential": zp, "pin_radius": zp,
-                    "disc_pitch": discs * zc, "disc_phase": discs,
-                    "eccentricity": 2 * cranks, "eccentric_phase": 2 * cranks,
-                    "disc_holes": discs * cranks * 2, "carrier_holes": cranks * 2}
+        return {"pin_radial": zp, "pin_tangential": zp, "pin_radius": zp,
+                "disc_pitch": discs * zc, "disc_phase": discs,
+                "eccentricity": 2 * cranks, "eccentric_phase": 2 * cranks,
+                "disc_holes": discs * cranks * 2, "carrier_holes": cranks * 2}
+
+    def sizes(self) -> list[int]:
+        """Random variables of each tolerance (columns of the unit vector)."""
+        r = self.base
+        discs = r.layout.disc_count if r.layout.single_stage else 2
+        per_part = self.part_counts()
         out = []
         for t in self.tolerances:
             if t.name == "profile_form":
@@ -170,7 +176,7 @@ class ToleranceStudy:
         r = nominal or self.nominal
         values, parts = {}, {}
         discs = r.layout.disc_count if r.layout.single_stage else 2
-        cranks = 1 if r.layout.single_stage else 2
+        counts = self.part_counts()
         start = 0
         for t, size in zip(self.tolerances, self.sizes()):
             u = np.asarray(unit[start:start + size])
@@ -197,11 +203,7 @@ class ToleranceStudy:
                 parts["profile_harmonics"] = tuple(rows)
                 continue
             dev = si * _deviation(u, t.distribution)
-            n = {"pin_radial": r.cycloid.pin_count, "pin_tangential": r.cycloid.pin_count,
-                 "pin_radius": r.cycloid.pin_count, "disc_pitch": discs * r.cycloid.disc_teeth,
-                 "disc_phase": discs, "eccentricity": 2 * cranks,
-                 "eccentric_phase": 2 * cranks, "disc_holes": discs * cranks * 2,
-                 "carrier_holes": cranks * 2}[t.name]
+            n = counts[t.name]
             if t.per == "feature":
                 dev = np.full(n, dev[0])
             dev = tuple(float(x) for x in dev)
