@@ -144,3 +144,36 @@ def test_a_full_factorial_study_gets_the_interaction_anova(tmp_path, cli):
     analysis = json.loads((tmp_path / "f" / "analysis.json").read_text())
     assert {"H x I", "H x E", "I x E", "Error", "Total"} <= set(analysis["interactions"])
     assert (tmp_path / "f" / "interactions.png").exists()
+
+
+def test_measured_profile_from_csv(tmp_path):
+    import dataclasses
+    import math
+
+    from rvsim.geometry import pin_gaps
+    from rvsim.parameters import PartErrors, with_values
+    from rvsim.tolerance import load_tolerance_study
+
+    rows = ["disc,angle_deg,deviation_um"]
+    rows += [f"{d},{a},1.5" for d in (1, 2) for a in range(0, 360, 3)]
+    (tmp_path / "profile.csv").write_text("\n".join(rows) + "\n")
+    (tmp_path / "s.toml").write_text(SMALL.replace('seed = 3',
+                                                   'seed = 3\nprofile_csv = "profile.csv"'))
+    study = load_tolerance_study(tmp_path / "s.toml")
+    nominal = study.nominal
+    # 1.5 um of excess material everywhere = an equidistant modification 1.5 um smaller
+    plain = dataclasses.replace(with_values(nominal, {"I": 0.010 - 0.0015}, check=False),
+                                parts=PartErrors())
+    assert max(abs(pin_gaps(nominal, 0.3) - pin_gaps(plain, 0.3))) < 1e-12
+    drawn = study.realise(study.unit_sample(0))
+    assert drawn.parts.profile_points == nominal.parts.profile_points
+    assert drawn.parts.pin_radius                       # the drawn errors are added to it
+    assert not math.isnan(pin_gaps(drawn, 0.3)[0])
+
+
+def test_bad_profile_csv_is_one_line(tmp_path, cli):
+    (tmp_path / "profile.csv").write_text("disc,angle\n1,0\n")
+    path = tmp_path / "s.toml"
+    path.write_text(SMALL.replace('seed = 3', 'seed = 3\nprofile_csv = "profile.csv"'))
+    res = cli("tolerance", str(path), "--out", str(tmp_path / "o"))
+    assert res.code == 2 and res.err.count("\n") == 1 and "deviation_um" in res.err, res.err

@@ -29,7 +29,7 @@ from ..parameters import Reducer
 from ._curve import lever_arms
 
 __all__ = ["check_parts", "pin_table", "profile_deviation_samples", "eccentric_errors",
-           "hole_offsets", "bore_offsets", "SAMPLES_PER_TOOTH"]
+           "hole_offsets", "bore_offsets", "SAMPLES_PER_TOOTH", "read_profile_csv"]
 
 #: samples of a disc's profile deviation per tooth (linear interpolation between them)
 SAMPLES_PER_TOOTH = 64
@@ -168,3 +168,38 @@ def bore_offsets(r: Reducer) -> np.ndarray:
     for crank in range(len(holes) // 2):
         out[crank] = holes[2 * crank:2 * crank + 2]
     return out
+
+
+def read_profile_csv(path, discs: int = 2) -> tuple:
+    """Measured normal deviations of the discs' profiles from a CSV file with the columns
+    ``disc`` (1-based), ``angle_deg`` (the profile parameter u in degrees) and
+    ``deviation_um`` (positive: excess material), one row per measured point, as a gear
+    measuring machine exports them; returns :attr:`PartErrors.profile_points` (SI)."""
+    import pandas as pd
+
+    from ..errors import InputFileError
+
+    try:
+        frame = pd.read_csv(path)
+    except (OSError, ValueError, UnicodeDecodeError) as exc:
+        raise InputFileError(f"{path}: cannot read as CSV ({exc})") from None
+    missing = {"disc", "angle_deg", "deviation_um"} - set(frame.columns)
+    if missing:
+        raise InputFileError(f"{path}: needs the columns disc, angle_deg, deviation_um "
+                             f"(missing {', '.join(sorted(missing))})")
+    try:
+        data = frame[["disc", "angle_deg", "deviation_um"]].astype(float).to_numpy()
+    except ValueError:
+        raise InputFileError(f"{path}: disc, angle_deg and deviation_um must be numbers") \
+            from None
+    if not np.all(np.isfinite(data)):
+        raise InputFileError(f"{path}: disc, angle_deg and deviation_um must be finite")
+    bad = ~np.isin(data[:, 0], np.arange(1, discs + 1))
+    if bad.any():
+        raise InputFileError(f"{path}: disc must be 1..{discs} (row {int(np.argmax(bad)) + 2})")
+    out = []
+    for disc in range(1, discs + 1):
+        rows = data[data[:, 0] == disc]
+        rows = rows[np.argsort(rows[:, 1])]
+        out.append(tuple((math.radians(a), d * 1e-6) for _, a, d in rows))
+    return tuple(out)

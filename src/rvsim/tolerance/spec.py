@@ -113,6 +113,9 @@ class ToleranceStudy:
     params: str = "RV-40E"
     #: the file's [cost.NAME] tables for the allocation: ((name, ((key, value), ...)), ...)
     cost: tuple = ()
+    #: measured profile deviations of every reducer (PartErrors.profile_points; a study
+    #: file's ``profile_csv``, rvsim.geometry.deviations.read_profile_csv)
+    profile_points: tuple = ()
 
     def __post_init__(self) -> None:
         seen = set()
@@ -129,8 +132,15 @@ class ToleranceStudy:
 
     @property
     def nominal(self) -> Reducer:
-        """The nominal reducer: the base set with the [set] values (validated)."""
-        return with_values(self.base, dict(self.fixed))
+        """The nominal reducer: the base set with the [set] values and the measured profile
+        deviations (validated)."""
+        r = with_values(self.base, dict(self.fixed), check=not self.profile_points)
+        if self.profile_points:
+            from ..parameters import validate
+
+            r = validate(dataclasses.replace(r, parts=PartErrors(
+                profile_points=self.profile_points)))
+        return r
 
     def part_counts(self) -> dict[str, int]:
         """Parts (values) of each per-part error of the base reducer."""
@@ -214,12 +224,14 @@ class ToleranceStudy:
         if values:
             r = with_values(r, values, check=False)
         if parts:
-            r = dataclasses.replace(r, parts=PartErrors(**parts))
+            r = dataclasses.replace(r, parts=dataclasses.replace(r.parts, **parts))
         return r
 
     def definition(self) -> dict:
         """What identifies the study's samples (study.json; the run keys hash it)."""
         return {"name": self.name, "kind": "tolerance", "params": self.params,
+                "profile_points": len(self.profile_points) and
+                hashlib.sha256(repr(self.profile_points).encode()).hexdigest(),
                 "seed": self.seed, "positions": self.positions,
                 "fixed": [[k, v] for k, v in self.fixed],
                 "tolerances": [dataclasses.asdict(t) for t in self.tolerances]}
@@ -302,7 +314,8 @@ def load_tolerance_study(path: str | Path) -> ToleranceStudy:
 
     path = Path(path)
     data = _read_toml(path)
-    known = {"name", "params", "samples", "seed", "positions", "set", "tolerances", "cost"}
+    known = {"name", "params", "samples", "seed", "positions", "set", "tolerances", "cost",
+             "profile_csv"}
     extra = set(data) - known
     if extra:
         raise InputFileError(f"{path}: unknown key(s) {', '.join(sorted(extra))} (a tolerance "
@@ -327,9 +340,21 @@ def load_tolerance_study(path: str | Path) -> ToleranceStudy:
     study = ToleranceStudy(name=name, tolerances=tolerances, base=base, fixed=fixed,
                            samples=data.get("samples", 1000), seed=seed,
                            positions=data.get("positions", 360), params=params,
-                           cost=_cost(data.get("cost", {}), path))
+                           cost=_cost(data.get("cost", {}), path),
+                           profile_points=_profile(data.get("profile_csv"), base, path))
     study.nominal     # the nominal reducer must be valid
     return study
+
+
+def _profile(name, base: Reducer, path) -> tuple:
+    if name is None:
+        return ()
+    if not isinstance(name, str) or not name.strip():
+        raise InputFileError(f"{path}: 'profile_csv' must be a file name")
+    from ..geometry.deviations import read_profile_csv
+
+    discs = base.layout.disc_count if base.layout.single_stage else 2
+    return read_profile_csv(Path(path).parent / name, discs)
 
 
 def _cost(raw, path) -> tuple:
