@@ -24,7 +24,7 @@ import time
 
 
 def _local(samples: int, workers: int | None, seconds: float | None) -> dict:
-    import _thread
+    import signal
 
     from rvsim.doe.store import ResultStore
     from rvsim.tolerance import rv40e_tolerances, tolerance_analysis
@@ -33,7 +33,9 @@ def _local(samples: int, workers: int | None, seconds: float | None) -> dict:
     with tempfile.TemporaryDirectory() as folder:
         timer = None
         if seconds:
-            timer = threading.Timer(seconds, _thread.interrupt_main)
+            # SIGTERM, not SIGINT: a job started in the background of a script ignores SIGINT;
+            # the study runner turns SIGTERM into StudyTerminated (a KeyboardInterrupt)
+            timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGTERM))
             timer.start()
         start = time.perf_counter()
         complete = True
