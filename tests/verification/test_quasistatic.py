@@ -134,7 +134,7 @@ def test_pin_forces_balance_output_and_input_torque(run):
             _, _, nx, ny, _, _ = pin_gaps_at(
                 model.pins, q[d], q[d + 1], turn, P[L.RUNOUT_X0 + 2 * disc],
                 P[L.RUNOUT_Y0 + 2 * disc], P[L.RG], P[L.A_GEN], P[L.ZP],
-                P[L.PROFILE_OFFSET] - P[L.PIN_RADIUS])
+                P[L.PROFILE_OFFSET] - P[L.PIN_RADIUS], disc)
             c, s = math.cos(turn), math.sin(turn)
             fx = -path.pin_forces[k, disc] * (c * nx - s * ny)      # pins on the disc
             fy = -path.pin_forces[k, disc] * (s * nx + c * ny)

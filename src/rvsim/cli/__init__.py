@@ -10,7 +10,7 @@ import sys
 
 from .. import __version__
 from ..errors import RvsimError
-from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig
+from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig, _tolerance
 from ._common import EXAMPLES, Parser
 
 __all__ = ["main", "build_parser"]
@@ -31,6 +31,7 @@ def build_parser() -> argparse.ArgumentParser:
     _efficiency.register(sub)
     _study.register(sub)
     _testrig.register(sub)
+    _tolerance.register(sub)
     return parser
 
 

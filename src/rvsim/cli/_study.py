@@ -24,7 +24,13 @@ def _response_column(table, response: str | None) -> str:
 
 def _study(args: argparse.Namespace) -> int:
     from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
+    from ..tolerance.spec import BUILT_IN_TOLERANCE_STUDIES, is_tolerance_file
 
+    if args.study in BUILT_IN_TOLERANCE_STUDIES or (Path(args.study).suffix == ".toml"
+                                                    and is_tolerance_file(args.study)):
+        from ._tolerance import load_any_tolerance_study, run_tolerance_command
+
+        return run_tolerance_command(load_any_tolerance_study(args.study), args)
     if args.study in BUILT_IN_STUDIES:
         study = BUILT_IN_STUDIES[args.study]()
     elif Path(args.study).suffix == ".toml":
@@ -146,7 +152,8 @@ def register(sub) -> None:
                     ["rvsim study paper-l36 --out study",
                     "rvsim study my_study.toml --out tol --workers 2",
                     "rvsim study paper-l36 --out study --scheduler tcp://127.0.0.1:8786"])
-    p.add_argument("study", help="'paper-l36' or a study .toml file")
+    p.add_argument("study", help="'paper-l36', a tolerance study ('rv40e-tolerances': runs "
+                   "as 'rvsim tolerance' does) or a study .toml file")
     p.add_argument("--out", required=True, metavar="DIR", type=path_text, help="study folder")
     p.add_argument("--workers", type=positive_int,
                    help="local worker processes (default: one per core)")

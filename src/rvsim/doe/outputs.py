@@ -37,6 +37,7 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
 
         figure = main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
                                    ylabel="mean TE [arcmin]")
+    interactions = _interactions(ok, factors, analysis)
     try:
         atomic_write_text(folder / "results.csv", results.to_csv(index=False))
         atomic_write_text(folder / "analysis.json", dumps(analysis, indent=2))
@@ -46,7 +47,32 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
             figure_to_png(figure, folder / "main_effects.png")
         else:  # a figure of an earlier analysis would contradict analysis.json
             (folder / "main_effects.png").unlink(missing_ok=True)
+        if interactions is not None:
+            from ..plots import figure_to_png
+
+            figure_to_png(interactions, folder / "interactions.png")
+        else:
+            (folder / "interactions.png").unlink(missing_ok=True)
     except OSError as exc:
         raise InputFileError(f"{folder}: cannot write the study outputs "
                              f"({exc.strerror or exc})") from None
     return analysis
+
+
+def _interactions(ok: pd.DataFrame, factors: list[str], analysis: dict):
+    """ANOVA with two-factor interactions into ``analysis["interactions"]`` when the design
+    leaves the degrees of freedom (issue 11); returns the interaction plots of the strongest
+    pairs (None when it does not)."""
+    from ..analysis.interactions import interaction_anova, interaction_degrees, \
+        interaction_plots
+
+    if "te_mean_arcmin" not in ok.columns or len(factors) < 2:
+        return None
+    need, have = interaction_degrees(ok, factors)
+    if need >= have:
+        return None
+    table = interaction_anova(ok, "te_mean_arcmin", factors)
+    analysis["interactions"] = {name: {k: (None if v != v else float(v)) for k, v in row.items()}
+                                for name, row in table.iterrows()}
+    pairs = [tuple(name.split(" x ")) for name in table.index if " x " in name][:6]
+    return interaction_plots(ok, "te_mean_arcmin", pairs, ylabel="mean TE [arcmin]")

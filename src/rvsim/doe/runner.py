@@ -34,14 +34,20 @@ __all__ = ["run", "evaluate", "compact_history", "StudyTerminated"]
 
 
 def evaluate(reducer: Reducer, time_step: float, engine: str = "dynamic",
-             hysteresis: bool = False) -> dict:
+             hysteresis: bool = False, positions: int = 360) -> dict:
     """Evaluate one run; never raises (the outcome carries status and error).
 
     ``engine`` is "dynamic" (a simulation at ``time_step``) or "quasi-static"
     (:func:`rvsim.doe.engines.evaluate_quasi_static`, with the torque-reversal test when
     ``hysteresis``).  A simulation that stops (even at step 0) keeps its own status; "error" is
-    reserved for an exception of the code itself.
+    reserved for an exception of the code itself.  ``engine`` "tolerance" evaluates one
+    Monte Carlo reducer (:func:`rvsim.tolerance.engine.evaluate_sample`, ``positions`` per
+    output revolution).
     """
+    if engine == "tolerance":
+        from ..tolerance.engine import evaluate_sample
+
+        return evaluate_sample(reducer, positions)
     if engine == "quasi-static":
         from .engines import evaluate_quasi_static
 

@@ -99,6 +99,17 @@ class ResultStore:
         return {k: {"status": s, "error": e, "metrics": json.loads(m) if m else {},
                     "wall_s": w} for k, s, e, m, w in rows}
 
+    def get_many(self, keys: list[str]) -> dict[str, dict]:
+        """Stored rows of ``keys`` (those finished), as :meth:`finished` gives them."""
+        out = {}
+        for start in range(0, len(keys), 500):
+            part = keys[start:start + 500]
+            rows = self._db.execute("SELECT key, status, error, metrics, wall_s FROM runs WHERE "
+                                    f"key IN ({','.join('?' * len(part))})", part)
+            out.update({k: {"status": s, "error": e, "metrics": json.loads(m) if m else {},
+                            "wall_s": w} for k, s, e, m, w in rows})
+        return out
+
     def put(self, key: str, outcome: dict) -> None:
         """Store one run's outcome, commit and checkpoint; wait out other processes' locks."""
         row = (key, outcome["status"], outcome.get("error"),

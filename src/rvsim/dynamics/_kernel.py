@@ -19,12 +19,13 @@ from ._cache_guard import invalidate_stale_cache
 # so clear the cache when those change (_cache_guard.DEPENDENCIES)
 invalidate_stale_cache()
 
-from ..geometry._curve import pin_gap, profile_axes
+from ..geometry._curve import deviated_gap, pin_gap, pin_opening, profile_axes
 from ._bearings import conforming_force, roller_set
 from ._contact_law import EXPONENT, add_rank_one, contact, damped, spring_force  # noqa: F401
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
+from ._layout import (BORE_DR0, BORE_DT0, ECC_ERR0, ECC_PHASE0)
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
                       ARM_J2, ARM_KIND, ARM_ROLLERS, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
                       SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, BACKLASH, BASE_PITCH, CARRIER,
@@ -223,8 +224,9 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
             continue
         qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, runout_x, runout_y)
         nominal = pin_angle[i] - angle
-        gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp, clearance,
-                                  step > 0)
+        gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp,
+                                  clearance + pin_opening(pins, i), step > 0)
+        gap, nx, ny = deviated_gap(pins, disc, ui, gap, nx, ny, rg, a, zp)  # per-part errors
         u[disc, i] = ui - nominal
         if gap >= 0.0:
             forces[disc, i] = 0.0
@@ -359,8 +361,8 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     force (:func:`arm_stiffness`).  Returns (resultant force, energy, dissipated power)."""
     ax, ay, avx, avy = crank_point(q, v, crank, wl, wu)
     b = CRANK0 + CRANK_STRIDE * crank
-    phi = q[b + 4] + disc * math.pi
-    ecc = P[ECC]
+    phi = q[b + 4] + disc * math.pi + P[ECC_PHASE0 + 2 * crank + disc]
+    ecc = P[ECC] + P[ECC_ERR0 + 2 * crank + disc]
     cos_p, sin_p = math.cos(phi), math.sin(phi)
     ex = ax + ecc * cos_p
     ey = ay + ecc * sin_p
@@ -415,8 +417,9 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle):
     b = CRANK0 + CRANK_STRIDE * crank + (2 if upper else 0)
     phi = CRANK0 + CRANK_STRIDE * crank + 4
     carrier_angle = q[CARRIER] + crank_angle
-    bx = P[CENTRE_DIST] * math.cos(carrier_angle)
-    by = P[CENTRE_DIST] * math.sin(carrier_angle)
+    radius = P[CENTRE_DIST] + P[BORE_DR0 + crank]
+    bx = radius * math.cos(carrier_angle) - P[BORE_DT0 + crank] * math.sin(carrier_angle)
+    by = radius * math.sin(carrier_angle) + P[BORE_DT0 + crank] * math.cos(carrier_angle)
     rx, ry = q[b] - bx, q[b + 1] - by
     wc = v[CARRIER]
     vx, vy = v[b] + wc * by, v[b + 1] - wc * bx
@@ -532,8 +535,12 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         for disc in range(n_discs):
             wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
             wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
-            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, holes[j, 0], holes[j, 1], wl,
-                                       wu, arm_elastic)
+            hole_x, hole_y = holes[j, 0], holes[j, 1]
+            if holes.shape[1] > 2:          # per-disc hole offsets (per-part errors)
+                hole_x += holes[j, 2 + 2 * disc]
+                hole_y += holes[j, 3 + 2 * disc]
+            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
+                                       arm_elastic)
             channel[CH_ARM_F00 + 2 * j + disc] = force
             energy += e
             power += pw

@@ -129,6 +129,12 @@ FRICTION_ON    = 94        # 1: some bearing or mesh friction to evaluate (0: sk
 
 
 # ---- per-part manufacturing errors (tolerances): 100-119 ---------------------------------
+# (rvsim.geometry.deviations; per-pin and per-tooth errors travel in the ``pins`` array,
+# per-disc crank-hole offsets in ``holes`` columns 2-5)
+ECC_ERR0       = 100       # eccentric of crank j for disc k larger by P[ECC_ERR0 + 2 j + k]
+ECC_PHASE0     = 104       # ... and turned forwards by P[ECC_PHASE0 + 2 j + k] [rad]
+BORE_DR0       = 108       # crank j's carrier bores moved outwards by P[BORE_DR0 + j] ...
+BORE_DT0       = 110       # ... and along the crank circle by P[BORE_DT0 + j] [m]
 
 
 # ---- mesh, variants: 120-129 -------------------------------------------------------------

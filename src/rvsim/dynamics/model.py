@@ -11,7 +11,8 @@ import math
 
 import numpy as np
 
-from ..geometry.cycloid import pin_centres, profile_offset
+from ..geometry.cycloid import profile_offset
+from ..geometry.deviations import bore_offsets, eccentric_errors, hole_offsets, pin_table
 from ..geometry.involute import gear_geometry
 from ..friction import fill_constants as fill_friction_constants
 from ..parameters import Reducer
@@ -255,7 +256,13 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.W_G_L], P[L.W_G_U] = _station_weights(r, k.gear_z)
     P[L.PEN_LIMIT] = 0.2e-3
 
-    pins = pin_centres(r)
+    pins = pin_table(r)       # pin centres, and per-pin / per-tooth errors when there are any
+    size, phase = eccentric_errors(r)
+    P[L.ECC_ERR0:L.ECC_ERR0 + 4] = size
+    P[L.ECC_PHASE0:L.ECC_PHASE0 + 4] = phase
+    bores = bore_offsets(r)
+    P[L.BORE_DR0:L.BORE_DR0 + 2] = bores[:, 0]
+    P[L.BORE_DT0:L.BORE_DT0 + 2] = bores[:, 1]
     P[L.RUNOUT_X0], P[L.RUNOUT_Y0] = profile_offset(r, 0)
     P[L.RUNOUT_X1], P[L.RUNOUT_Y1] = profile_offset(r, 1)
     P[L.STAGES] = r.layout.stages
@@ -273,7 +280,13 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     q0 = np.zeros(L.N_DOF)
     for j in range(2):
         b = L.CRANK0 + L.CRANK_STRIDE * j
-        q0[b:b + 4] = [holes[j, 0], holes[j, 1], holes[j, 0], holes[j, 1]]
+        # the crank starts on its carrier bores' centre
+        c_j, s_j = math.cos(crank_angles[j]), math.sin(crank_angles[j])
+        x = holes[j, 0] + bores[j, 0] * c_j - bores[j, 1] * s_j
+        y = holes[j, 1] + bores[j, 0] * s_j + bores[j, 1] * c_j
+        q0[b:b + 4] = [x, y, x, y]
+    if r.parts.disc_holes:
+        holes = np.hstack([holes, hole_offsets(r)])
     for kd in range(2):
         d = L.DISC0 + L.DISC_STRIDE * kd
         q0[d] = P[L.ECC] * math.cos(kd * math.pi)

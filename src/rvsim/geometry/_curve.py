@@ -31,7 +31,9 @@ import numba
 import numpy as np
 
 __all__ = ["curve_point", "foot_point", "nearest_point", "curvature", "profile_points",
-           "profile_axes", "pin_gap", "pin_gaps_at", "TRACKING_LIMIT"]
+           "profile_axes", "pin_gap", "pin_gaps_at", "pin_opening", "profile_deviation", "lever_arms", "curvatures",
+           "deviated_gap",
+           "TRACKING_LIMIT"]
 
 #: largest Newton correction [rad of u] accepted when a foot point is tracked from the previous
 #: one; beyond it the foot is searched again robustly (:func:`pin_gap`)
@@ -174,7 +176,86 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track):
 
 
 @numba.njit(cache=True)
-def pin_gaps_at(pins, ox, oy, angle, shift_x, shift_y, rg, a, zp, clearance):
+def curvatures(u, rg, a, zp):
+    """:func:`curvature` at each of the parameters ``u``."""
+    out = np.empty(u.shape[0])
+    for i in range(u.shape[0]):
+        out[i] = curvature(u[i], rg, a, zp)
+    return out
+
+
+@numba.njit(cache=True)
+def lever_arms(u, rg, a, zp):
+    """n x q of the pin-centre curve at parameters ``u`` (n the unit outward normal): the
+    gap's derivative with respect to the disc's rotation for a pin on the curve [m]."""
+    out = np.empty(u.shape[0])
+    for i in range(u.shape[0]):
+        x, y, tx, ty, _, _ = curve_point(u[i], rg, a, zp)
+        out[i] = (ty * y + tx * x) / math.sqrt(tx * tx + ty * ty)
+    return out
+
+
+@numba.njit(cache=True, inline="always")
+def pin_opening(pins, i):
+    """Pin i's own opening of its gap [m]: column 2 of a per-part ``pins`` array (its radius
+    deviation and the pin-hole clearance, rvsim.geometry.deviations.pin_table), else 0."""
+    return pins[i, 2] if pins.shape[1] > 2 else 0.0
+
+
+@numba.njit(cache=True, inline="always")
+def _deviation_sample(pins, base, per_row, n, j):
+    j = j % n
+    return pins[j // per_row, base + j % per_row]
+
+
+@numba.njit(cache=True, inline="always")
+def profile_deviation(pins, disc, u):
+    """Normal deviation of disc ``disc``'s profile at parameter ``u`` [m] (positive: excess
+    material), interpolated in the samples that columns 3 .. of a per-part ``pins`` array hold
+    (rvsim.geometry.deviations.pin_table), and its slope d/du; zeros without them.
+
+    Catmull-Rom (cubic Hermite) interpolation: the deviation's slope is continuous, so the
+    contact force and the equilibrium residual are (a linear interpolation's kinks leave
+    positions where no equilibrium exists to the solver's tolerance)."""
+    columns = pins.shape[1]
+    if columns <= 3:
+        return 0.0, 0.0
+    per_row = (columns - 3) // 2
+    n = pins.shape[0] * per_row
+    x = u / (2.0 * math.pi)
+    x = (x - math.floor(x)) * n
+    j = int(math.floor(x))
+    f = x - j
+    base = 3 + disc * per_row
+    p0 = _deviation_sample(pins, base, per_row, n, j - 1)
+    p1 = _deviation_sample(pins, base, per_row, n, j)
+    p2 = _deviation_sample(pins, base, per_row, n, j + 1)
+    p3 = _deviation_sample(pins, base, per_row, n, j + 2)
+    c1 = p2 - p0
+    c2 = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3
+    c3 = 3.0 * (p1 - p2) + p3 - p0
+    value = p1 + 0.5 * f * (c1 + f * (c2 + f * c3))
+    slope = 0.5 * (c1 + f * (2.0 * c2 + 3.0 * f * c3)) * n / (2.0 * math.pi)
+    return value, slope
+
+
+@numba.njit(cache=True, inline="always")
+def deviated_gap(pins, disc, u, gap, nx, ny, rg, a, zp):
+    """A pin's gap and gap gradient (the profile normal tilted by the deviation's slope) with
+    disc ``disc``'s profile deviation at foot parameter ``u`` (:func:`profile_deviation`):
+    gap - d(u), and n - d'(u) t / |t|^2, t = dq/du, so that the contact force stays the
+    gradient of the contact energy."""
+    if pins.shape[1] <= 3:
+        return gap, nx, ny
+    value, slope = profile_deviation(pins, disc, u)
+    _, _, tx, ty, _, _ = curve_point(u, rg, a, zp)
+    speed = math.sqrt(tx * tx + ty * ty)
+    # unit tangent (-ny, nx); du/dQ = t / |t|^2
+    return gap - value, nx + slope * ny / speed, ny - slope * nx / speed
+
+
+@numba.njit(cache=True)
+def pin_gaps_at(pins, ox, oy, angle, shift_x, shift_y, rg, a, zp, clearance, disc):
     """Robust :func:`pin_gap` of every pin (rows of ``pins``, housing axes) to one disc.
 
     Pin i's nominal foot parameter is gamma_i - angle, gamma_i = 2 pi i / n (exact in the
@@ -188,7 +269,9 @@ def pin_gaps_at(pins, ox, oy, angle, shift_x, shift_y, rg, a, zp, clearance):
     for i in range(n):
         qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, shift_x, shift_y)
         nominal = 2.0 * math.pi * i / n - angle
-        gap, u, nx, ny = pin_gap(qx, qy, nominal, nominal, rg, a, zp, clearance, False)
+        gap, u, nx, ny = pin_gap(qx, qy, nominal, nominal, rg, a, zp,
+                                 clearance + pin_opening(pins, i), False)
+        gap, nx, ny = deviated_gap(pins, disc, u, gap, nx, ny, rg, a, zp)
         out[0, i] = gap
         out[1, i] = u
         out[2, i] = nx

@@ -14,13 +14,16 @@ angle 0 with the crank's eccentricity a - G, at rest.  In that pose:
   assemble: the exact gaps decide.
 * **bushings**: the eccentric and journal centres coincide with their bore centres, so the
   radial approach is minus the clearance (K + M, O + L, O + N), never an overlap for the
-  non-negative clearances validation allows.  It is computed all the same, so a future pose or
-  parameter cannot slip through.
+  non-negative clearances validation allows, unless per-part errors (each eccentric's size and
+  phase, the crank holes in each disc, the bores in the carrier:
+  :class:`~rvsim.parameters.PartErrors`) move them apart and make them overlap.
 * **rolling bearings** (``bearings.arm_needles`` / ``support_rollers``): the needles must fit
   the radial space between the eccentric and the disc hole (``crank.arm_bushing_thickness``):
   a needle diameter larger than that space plus K + M is an interference; a bearing's own
   preload (negative internal clearance) is intended and not reported.  The tapered support
   bearings start centred like the bushings.
+* **per-part errors** of pins (position, size) and discs (pitch, phase, profile form) enter
+  the exact pin gaps (:mod:`rvsim.geometry.deviations`).
 * **sun-planet meshes**: the cranks start at zero phase with the input at zero, so the mesh
   deflection along the line of action is zero and the approach is minus half the backlash.
 
@@ -80,16 +83,27 @@ def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
     arm_clearance = cl.crank_arm_bushing + cl.disc_arm_bushing
     eccentric = reducer.cycloid.eccentricity - reducer.errors.eccentricity
     result = []
+    from .deviations import bore_offsets, eccentric_errors, hole_offsets
+    from .layout import crank_angles
+
+    size, turn = eccentric_errors(reducer)            # per-part errors (zero without them)
+    holes_off, bores = hole_offsets(reducer), bore_offsets(reducer)
     for crank, hole in enumerate(crank_holes(reducer)):
+        c_j, s_j = (math.cos(crank_angles(reducer)[crank]),
+                    math.sin(crank_angles(reducer)[crank]))
+        axis = hole + np.array([bores[crank, 0] * c_j - bores[crank, 1] * s_j,
+                                bores[crank, 0] * s_j + bores[crank, 1] * c_j])
         for disc in range(disc_count(reducer)):
-            # eccentric of crank ``crank`` for disc ``disc`` (crank centred, phase 0) ...
-            phase = disc * math.pi
-            pin = hole + eccentric * np.array([math.cos(phase), math.sin(phase)])
+            # eccentric of crank ``crank`` for disc ``disc`` (crank centred in its carrier
+            # bores, phase 0) ...
+            k = 2 * crank + disc
+            phase = disc * math.pi + turn[k]
+            pin = axis + (eccentric + size[k]) * np.array([math.cos(phase), math.sin(phase)])
             # ... and the disc's crank hole, carried by the disc's assembled pose
             x, y, angle = nominal_disc_pose(reducer, 0.0, disc)
             cos_t, sin_t = math.cos(angle), math.sin(angle)
-            bore = np.array([x + cos_t * hole[0] - sin_t * hole[1],
-                             y + sin_t * hole[0] + cos_t * hole[1]])
+            hx, hy = hole + holes_off[crank, 2 * disc:2 * disc + 2]
+            bore = np.array([x + cos_t * hx - sin_t * hy, y + sin_t * hx + cos_t * hy])
             offset = float(np.linalg.norm(pin - bore))
             if reducer.bearings.arm_needles:
                 # needles between eccentric and hole: they must fit the radial space (a
@@ -152,6 +166,8 @@ def _closing_parameters(reducer: Reducer) -> str:
         value = get_value(reducer, name)
         if (value < 0.0) if name in _OPENING else (value != 0.0):
             named.append(f"{name} = {value:g} {SPECS[name].unit}")
+    if reducer.parts.any:
+        named.append("per-part errors (reducer.parts)")
     if not named:
         return ""
     return (f" (clearance closed by {' and '.join(named)}, not opened enough by positive F, H, "

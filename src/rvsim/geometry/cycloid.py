@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..parameters import Reducer
-from ._curve import curvature, pin_gaps_at, profile_points
+from ._curve import curvatures, pin_gaps_at, profile_points
 
 __all__ = [
     "CycloidProfile", "profile_of", "pin_centres", "profile_offset", "nominal_disc_pose",
@@ -121,9 +121,11 @@ def _disc_gaps(reducer: Reducer, crank_angle: float, disc: int, extra_rotation: 
     angle = rot + extra_rotation - disc * math.pi / reducer.cycloid.disc_teeth + prof.rotation
     shift_x, shift_y = profile_offset(reducer, disc)
     clearance = prof.offset - (reducer.cycloid.pin_radius - reducer.errors.pin_radius)
-    return pin_gaps_at(pin_centres(reducer), x + offset[0], y + offset[1], angle, shift_x,
+    from .deviations import pin_table
+
+    return pin_gaps_at(pin_table(reducer), x + offset[0], y + offset[1], angle, shift_x,
                        shift_y, prof.generating_radius, prof.eccentricity,
-                       float(prof.pin_count), clearance), angle
+                       float(prof.pin_count), clearance, disc), angle
 
 
 def pin_gaps(reducer: Reducer, crank_angle: float, *, disc: int = 0,
@@ -168,8 +170,7 @@ def undercut_ratio(reducer: Reducer, samples: int = 2000) -> float:
     """
     prof = profile_of(reducer)
     u = np.linspace(0.0, 2.0 * np.pi / prof.teeth, samples)
-    kappa = np.array([curvature(ui, prof.generating_radius, prof.eccentricity,
-                                float(prof.pin_count)) for ui in u])
+    kappa = curvatures(u, prof.generating_radius, prof.eccentricity, float(prof.pin_count))
     return float(np.max(kappa) * prof.offset)
 
 

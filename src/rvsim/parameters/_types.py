@@ -11,11 +11,13 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from ._parts import PartErrors
 from ._schema import choice, count, flag, quantity
 
 __all__ = [
     "Material", "Materials", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances",
     "Flexibility", "Operating", "ContactModel", "Rating", "Layout", "Friction", "Bearings", "Reducer",
+    "PartErrors",
 ]
 
 #: ``layout.stages`` of the RV reducer (involute + cycloid stage) and of the single-stage drive
@@ -165,6 +167,9 @@ class Errors:
                                              "and along the circle by uniform random amounts "
                                              "within +-this (Table 1 delta t_Sigma)")
     pin_position_seed: int = count(0, "seed of the random pin position errors", minimum=0)
+    pin_hole_clearance: float = quantity(0.0, "mm", "diametral clearance of each pin in its "
+                                         "housing hole (Table 1 row 4): a loaded pin moves "
+                                         "back by half of it")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -380,6 +385,8 @@ class Reducer:
     layout: Layout = dataclasses.field(default_factory=Layout)
     friction: Friction = dataclasses.field(default_factory=Friction)
     bearings: Bearings = dataclasses.field(default_factory=Bearings)
+    #: per-part errors (issue 11; not in TOML / --set: a tolerance study draws them)
+    parts: PartErrors = dataclasses.field(default_factory=PartErrors)
 
     @property
     def ratio(self) -> float:

@@ -1,0 +1,92 @@
+"""Two-factor interactions of a design: ANOVA with interaction terms, interaction plots.
+
+The model is y = mean + main effects + every two-factor interaction (all categorical), fitted
+with statsmodels; sums of squares are type II (for a balanced full factorial they equal the
+sequential ones).  The design must leave degrees of freedom for the error after the main
+effects and the interactions (a full factorial, or a resolution V fraction): otherwise
+:func:`interaction_anova` raises InputFileError saying how many are missing.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pandas as pd
+
+from ..errors import InputFileError
+
+__all__ = ["interaction_anova", "interaction_degrees", "interaction_plots"]
+
+
+def interaction_degrees(table: pd.DataFrame, factors: list[str]) -> tuple[int, int]:
+    """(degrees of freedom the main effects and two-factor interactions need, runs - 1)."""
+    levels = {f: table[f].nunique() for f in factors}
+    need = sum(n - 1 for n in levels.values())
+    need += sum((levels[a] - 1) * (levels[b] - 1) for a, b in itertools.combinations(factors, 2))
+    return need, len(table) - 1
+
+
+def interaction_anova(table: pd.DataFrame, response: str, factors: list[str]) -> pd.DataFrame:
+    """ANOVA rows (main effects, A x B, Error, Total) with DF, SS, MS, F, P and each source's
+    share of the total sum of squares, largest first (Error and Total last)."""
+    import statsmodels.api as sm
+    from statsmodels.formula.api import ols
+
+    need, have = interaction_degrees(table, factors)
+    if need >= have:
+        raise InputFileError(f"the design has {have} degrees of freedom; the main effects and "
+                             f"two-factor interactions of {len(factors)} factors need {need} "
+                             "plus at least one for the error (run a full factorial or a "
+                             "resolution V design)")
+    # patsy reserves C, I and Q: rename the columns
+    names = {f: f"f{i}" for i, f in enumerate(factors)}
+    data = table[factors + [response]].rename(columns=names | {response: "y"})
+    terms = [f"C({names[f]})" for f in factors]
+    pairs = [f"C({names[a]}):C({names[b]})" for a, b in itertools.combinations(factors, 2)]
+    model = ols("y ~ " + " + ".join(terms + pairs), data=data).fit()
+    frame = sm.stats.anova_lm(model, typ=2)
+    back = {f"C({v})": k for k, v in names.items()}
+
+    def label(term: str) -> str:
+        if term == "Residual":
+            return "Error"
+        return " x ".join(back[p] for p in term.split(":"))
+
+    frame.index = [label(t) for t in frame.index]
+    frame = frame.rename(columns={"df": "DF", "sum_sq": "SS", "PR(>F)": "P"})
+    frame["MS"] = frame["SS"] / frame["DF"]
+    total = float(np.sum((data["y"] - data["y"].mean()) ** 2))
+    frame.loc["Total"] = {"DF": len(data) - 1, "SS": total, "F": math.nan, "P": math.nan,
+                          "MS": math.nan}
+    frame["share"] = frame["SS"] / total
+    effects = frame.drop(index=["Error", "Total"]).sort_values("SS", ascending=False)
+    return pd.concat([effects, frame.loc[["Error", "Total"]]])[["DF", "SS", "MS", "F", "P",
+                                                                  "share"]]
+
+
+def interaction_plots(table: pd.DataFrame, response: str, pairs: list[tuple[str, str]],
+                      ylabel: str | None = None):
+    """One panel per pair (A, B): the mean response at each level of A, a line per level of B
+    (parallel lines: no interaction)."""
+    from ..plots import _pyplot
+
+    plt = _pyplot()
+    n = max(1, len(pairs))
+    cols = min(3, n)
+    rows = math.ceil(n / cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.3 * rows), squeeze=False)
+    for ax, (a, b) in zip(axes.flat, pairs):
+        means = table.groupby([b, a])[response].mean().unstack(a)
+        for level, row in means.iterrows():
+            ax.plot(range(1, row.size + 1), row.values, marker="o", label=f"{b} = {level}")
+        ax.set_xticks(range(1, means.shape[1] + 1), [str(c) for c in means.columns])
+        ax.set_xlabel(f"level of {a}")
+        ax.set_ylabel(ylabel or response)
+        ax.set_title(f"{a} x {b}")
+        ax.legend(fontsize=7)
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
+    fig.tight_layout()
+    return fig

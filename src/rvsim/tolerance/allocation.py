@@ -1,0 +1,232 @@
+"""Tolerance allocation: the cheapest (loosest) tolerances that meet percentile targets.
+
+Cost model (docs/decisions.md, "Tolerance allocation"): each toleranced error k costs
+``weight_k * (reference_k / t_k) ** exponent_k`` (the reciprocal-power cost-tolerance curve of
+Chase, Greenwood et al. 1990; reference_k = the study's tolerance, so every error costs its
+weight there); the total is their sum.  Each error's tolerance is searched between
+``tightest_k`` and ``loosest_k`` (default a quarter and four times the study's).  A study
+file's ``[cost.NAME]`` tables (weight, exponent, tightest, loosest) edit them.
+
+The constraints are Monte Carlo percentiles of ``samples`` reducers with common random
+numbers (the same uniform numbers, only the tolerances scale them), so they are smooth
+functions of the tolerances; the optimiser is SciPy's COBYLA on the logarithms of the
+tolerances.  Every evaluation is stored in the study store (a repeated point is not re-run).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+
+import numpy as np
+
+from ..errors import InputFileError, ParameterError
+from .engine import METRICS
+from .spec import ToleranceStudy
+
+__all__ = ["CostModel", "parse_targets", "allocate", "Target"]
+
+#: the optimiser's targets are this much (relative) tighter than the user's (see allocate)
+MARGIN = 0.01
+_SHORT = {short: name for name, (short, _) in METRICS.items()}
+#: metrics where a larger value is better (the target is a lower bound)
+_LOWER_BOUND = {"torsional_rigidity_nm_per_arcmin"}
+
+
+@dataclasses.dataclass(frozen=True)
+class Target:
+    metric: str          # summary key, e.g. ate_arcmin
+    percentile: float    # 0-100
+    value: float
+    text: str
+
+    @property
+    def lower_bound(self) -> bool:
+        return self.metric in _LOWER_BOUND
+
+    def margin(self, achieved: float) -> float:
+        """>= 0 when met (relative to the target)."""
+        scale = abs(self.value) or 1.0
+        return ((achieved - self.value) if self.lower_bound else (self.value - achieved)) / scale
+
+
+def parse_targets(text: str) -> list[Target]:
+    """``ate_p95=0.5,lost_motion_p95=1.2`` (arcmin; torsional_rigidity_p5=200 N*m/arcmin is
+    a lower bound)."""
+    targets = []
+    for item in (text or "").split(","):
+        item = item.strip()
+        if not item:
+            continue
+        match = re.fullmatch(r"([a-z_]+)_p(\d+(?:\.\d+)?)=(.+)", item)
+        if not match or match.group(1) not in _SHORT:
+            raise ParameterError("--target", f"'{item}' is not METRIC_pNN=VALUE with METRIC one "
+                                 f"of {', '.join(_SHORT)} (e.g. ate_p95=0.5)")
+        percentile = float(match.group(2))
+        if not 0 < percentile < 100:
+            raise ParameterError("--target", f"'{item}': percentile must be between 0 and 100")
+        try:
+            value = float(match.group(3))
+        except ValueError:
+            raise ParameterError("--target", f"'{item}': value is not a number") from None
+        if not math.isfinite(value) or value <= 0:
+            raise ParameterError("--target", f"'{item}': value must be a positive number")
+        targets.append(Target(_SHORT[match.group(1)], percentile, value, item))
+    if not targets:
+        raise ParameterError("--target", "needs at least one target, e.g. ate_p95=0.5")
+    return targets
+
+
+@dataclasses.dataclass(frozen=True)
+class CostModel:
+    """Per error: weight, exponent, tightest and loosest tolerance (user units)."""
+
+    weight: dict
+    exponent: dict
+    tightest: dict
+    loosest: dict
+    reference: dict
+
+    @classmethod
+    def default(cls, study: ToleranceStudy, table: dict | None = None) -> "CostModel":
+        names = [t.name for t in study.tolerances]
+        ref = {t.name: t.tolerance for t in study.tolerances}
+        out = {"weight": {n: 1.0 for n in names}, "exponent": {n: 1.0 for n in names},
+               "tightest": {n: 0.25 * ref[n] for n in names},
+               "loosest": {n: 4.0 * ref[n] for n in names}}
+        for name, spec in (table or {}).items():
+            if name not in ref:
+                raise ParameterError(f"cost.{name}", "not a toleranced error of this study")
+            if not isinstance(spec, dict) or set(spec) - set(out):
+                raise ParameterError(f"cost.{name}", f"a table of {', '.join(out)}")
+            for key, value in spec.items():
+                if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                        or not math.isfinite(value) or value <= 0:
+                    raise ParameterError(f"cost.{name}.{key}", "must be a positive number")
+                out[key][name] = float(value)
+        for n in names:
+            if ref[n] <= 0:
+                raise ParameterError(f"tolerances.{n}.tolerance", "allocation needs a "
+                                     "positive tolerance to scale")
+            if not out["tightest"][n] < out["loosest"][n]:
+                raise ParameterError(f"cost.{n}", "tightest must be below loosest")
+        return cls(reference=ref, **out)
+
+    def cost(self, tolerances: dict) -> float:
+        return float(sum(self.weight[n] * (self.reference[n] / tolerances[n])
+                         ** self.exponent[n] for n in tolerances))
+
+
+def _evaluate(study, store, folder, samples, tolerances, targets, workers, scheduler):
+    from .montecarlo import collect, monte_carlo_units, run_samples
+
+    rounded = {k: float(f"{v:.6g}") for k, v in tolerances.items()}
+    keys = run_samples(study, folder, {"allocation": (samples, lambda: monte_carlo_units(
+        study, samples))}, workers=workers, scheduler=scheduler, tolerances=rounded,
+        store=store)["allocation"]
+    status, values = collect(store, keys, {t.metric for t in targets})
+    achieved = {}
+    for t in targets:
+        x = values[t.metric][np.isfinite(values[t.metric])]
+        achieved[t.text] = float(np.percentile(x, t.percentile)) if x.size else math.nan
+    binds = int(np.sum(status == "binds"))
+    return achieved, binds / max(1, int(np.sum((status == "ok") | (status == "binds"))))
+
+
+def allocate(study: ToleranceStudy, targets: list[Target], folder, *, samples: int = 200,
+             cost: CostModel | None = None, workers: int | None = None,
+             scheduler: str | None = None, max_evaluations: int = 60) -> dict:
+    """The loosest tolerances (least cost) whose Monte Carlo percentiles meet ``targets``
+    (module docstring).  ParameterError naming the target that cannot be met even with every
+    tolerance at its tightest."""
+    from pathlib import Path
+
+    from scipy.optimize import minimize
+
+    from ..doe.folder import check_same_study, lock_folder
+    from ..doe.store import ResultStore
+    from .spec import check_samples
+
+    check_samples(samples)
+    cost = cost or CostModel.default(study, {n: dict(v) for n, v in study.cost})
+    names = [t.name for t in study.tolerances]
+    low = np.log([cost.tightest[n] for n in names])
+    high = np.log([cost.loosest[n] for n in names])
+    folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise InputFileError(f"{folder}: exists and is not a folder")
+    study.nominal
+    folder.mkdir(parents=True, exist_ok=True)
+    history = []
+    with lock_folder(folder):
+        store = ResultStore(folder)
+        try:
+            check_same_study(folder, study.definition(), bool(store.finished()))
+            import json
+
+            from .._files import atomic_write_text
+
+            atomic_write_text(folder / "study.json", json.dumps(study.definition(), indent=2,
+                                                                default=str))
+
+            def run(x):
+                tol = dict(zip(names, np.exp(np.clip(x, low, high))))
+                achieved, share = _evaluate(study, store, folder, samples, tol, targets,
+                                            workers, scheduler)
+                history.append({"tolerances": tol, "achieved": achieved,
+                                "binding_share": share, "cost": cost.cost(tol)})
+                return achieved
+
+            tight = run(low)
+            for t in targets:
+                if not t.margin(tight[t.text]) >= 0:
+                    raise ParameterError("--target", f"{t.text} cannot be met even at the "
+                                         f"tightest tolerances (there p{t.percentile:g} = "
+                                         f"{tight[t.text]:.4g})")
+            cache = {}
+
+            def achieved_at(x):
+                key = tuple(np.round(x, 9))
+                if key not in cache:
+                    cache[key] = run(x)
+                return cache[key]
+
+            scale = np.log([cost.reference[n] for n in names])
+
+            def objective(x):
+                return cost.cost(dict(zip(names, np.exp(np.clip(x, low, high)))))
+
+            # the optimiser works to targets 1 % tighter: COBYLA ends on the constraint's
+            # boundary, approached from either side; the result must meet the real target
+            constraints = [{"type": "ineq",
+                            "fun": (lambda x, t=t: t.margin(achieved_at(x)[t.text]) - MARGIN)}
+                           for t in targets]
+            constraints += [{"type": "ineq", "fun": (lambda x, i=i: x[i] - low[i])}
+                            for i in range(len(names))]
+            constraints += [{"type": "ineq", "fun": (lambda x, i=i: high[i] - x[i])}
+                            for i in range(len(names))]
+            start = np.clip(scale, low, high)
+            result = minimize(objective, start, method="COBYLA", constraints=constraints,
+                              options={"maxiter": max_evaluations, "rhobeg": 0.5,
+                                       "catol": 1e-4})
+            feasible = [h for h in history if all(
+                t.margin(h["achieved"][t.text]) >= 0.0 for t in targets)]
+            best = min(feasible, key=lambda h: h["cost"])
+        finally:
+            store.close()
+    return {
+        "study": study.name, "samples": samples, "evaluations": len(history),
+        "status": "ok" if result.success else f"stopped: {result.message}",
+        "cost": best["cost"], "cost_start": cost.cost(dict(zip(names, np.exp(start)))),
+        "binding_share": best["binding_share"],
+        "tolerances": [{"name": n, "unit": t.unit, "given": t.tolerance,
+                        "allocated": float(best["tolerances"][n]),
+                        "tightest": cost.tightest[n], "loosest": cost.loosest[n],
+                        "weight": cost.weight[n], "exponent": cost.exponent[n]}
+                       for n, t in zip(names, study.tolerances)],
+        "targets": [{"target": t.text, "metric": t.metric, "percentile": t.percentile,
+                     "limit": t.value, "achieved": best["achieved"][t.text],
+                     "at_tightest": tight[t.text]} for t in targets],
+        "history": history,
+    }

@@ -1,0 +1,71 @@
+"""``rvsim tolerance``: Monte Carlo (and Sobol) of a tolerance study into a folder.
+
+The folder holds the study runner's store (results.sqlite: resumable, one row per reducer),
+study.json, results.csv (one row per Monte Carlo reducer), summary.json and report.html.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ..errors import InputFileError
+from .montecarlo import (collect, monte_carlo_units, run_samples, summarise,
+                         write_json, write_results_csv)
+from .sensitivity import check_base, sobol_count, sobol_indices, sobol_units
+from .spec import ToleranceStudy, check_samples
+
+__all__ = ["tolerance_analysis"]
+
+
+def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: int | None = None,
+                       sobol: int = 0, workers: int | None = None,
+                       scheduler: str | None = None, progress: bool = False,
+                       report: bool = True) -> dict:
+    """Run the study's Monte Carlo (``samples`` reducers, default the study's) and, with
+    ``sobol`` > 0, the Sobol design of base size ``sobol``; write the folder's files and
+    return the summary."""
+    from .._files import atomic_write_text
+    from ..doe.folder import check_same_study, lock_folder
+    from ..doe.runner import _check_scheduler, _termination_interrupts
+    from ..doe.store import ResultStore
+
+    folder = Path(folder)
+    n = check_samples(study.samples if samples is None else samples)
+    if sobol:
+        check_base(sobol)
+    if folder.exists() and not folder.is_dir():
+        raise InputFileError(f"{folder}: exists and is not a folder")
+    if scheduler:
+        _check_scheduler(scheduler)
+    study.nominal                                     # validated before anything is written
+    definition = study.definition()
+    designs = {"monte-carlo": (n, lambda: monte_carlo_units(study, n))}
+    if sobol:
+        designs["sobol"] = (sobol_count(study, sobol), lambda: iter(sobol_units(study, sobol)))
+    folder.mkdir(parents=True, exist_ok=True)
+    with lock_folder(folder), _termination_interrupts():
+        store = ResultStore(folder)
+        try:
+            check_same_study(folder, definition, bool(store.finished()))
+            atomic_write_text(folder / "study.json", json.dumps(definition, indent=2,
+                                                                default=str))
+            keys = run_samples(study, folder, designs, workers=workers, scheduler=scheduler,
+                               progress=progress, store=store)
+            status, values = collect(store, keys["monte-carlo"])
+            summary = {"study": study.name, "reducer": study.base.name,
+                       "torque_nm": study.nominal.operating.load_torque,
+                       "positions": study.positions, "seed": study.seed,
+                       "tolerances": definition["tolerances"], **summarise(status, values)}
+            write_results_csv(folder / "results.csv", status, values, keys["monte-carlo"])
+            if sobol:
+                s_status, s_values = collect(store, keys["sobol"])
+                summary.update(sobol_indices(study, s_values, s_status))
+        finally:
+            store.close()
+        write_json(folder / "summary.json", summary)
+        if report:
+            from .report import write_tolerance_report
+
+            write_tolerance_report(folder, summary, values, status)
+    return summary

@@ -1,0 +1,179 @@
+"""rvsim tolerance / rvsim allocate as a user runs them, and their bad input (issue 11)."""
+
+import json
+
+import pytest
+
+SMALL = """name = "small"
+samples = 6
+seed = 3
+positions = 12
+[set]
+"operating.load_torque" = 412
+"errors.equidistant_modification" = 0.010
+"clearances.crank_arm_bushing" = 0.005
+[tolerances.pin_radius]
+tolerance = 0.002
+distribution = "normal"
+[tolerances.disc_holes]
+tolerance = 0.004
+[tolerances."clearances.crank_arm_bushing"]
+tolerance = 0.003
+"""
+
+
+@pytest.fixture
+def small(tmp_path):
+    path = tmp_path / "small.toml"
+    path.write_text(SMALL)
+    return path
+
+
+def test_tolerance_writes_summary_results_and_report(tmp_path, small, cli):
+    out = tmp_path / "o"
+    res = cli("tolerance", str(small), "--out", str(out), "--workers", "1", "--sobol", "2")
+    assert res.code == 0, res.err
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["samples"] == 6 and summary["ok"] + summary["binds"] == 6
+    for metric in ("ate_arcmin", "te_mean_arcmin", "lost_motion_arcmin",
+                   "torsional_rigidity_nm_per_arcmin"):
+        m = summary["metrics"][metric]
+        assert m["p5"] <= m["p50"] <= m["p95"] and "binding_share" in m
+    assert set(summary["sobol"]["ate_arcmin"]) == {"pin_radius", "disc_holes",
+                                                   "clearances.crank_arm_bushing"}
+    assert {"S1", "ST", "S1_conf", "ST_conf"} <= set(
+        summary["sobol"]["ate_arcmin"]["pin_radius"])
+    assert (out / "report.html").read_text().count("<img") >= 4
+    assert len((out / "results.csv").read_text().splitlines()) == 7
+    # re-running resumes: nothing is evaluated again, the same numbers come out
+    again = cli("tolerance", str(small), "--out", str(out), "--workers", "1", "--sobol", "2",
+                "--json")
+    assert again.code == 0 and json.loads(again.out)["metrics"] == summary["metrics"]
+
+
+def test_identical_seeds_identical_results_locally_and_on_dask(tmp_path, small):
+    distributed = pytest.importorskip("distributed")
+    from rvsim.tolerance import load_tolerance_study, tolerance_analysis
+
+    study = load_tolerance_study(small)
+    local = tolerance_analysis(study, tmp_path / "local", samples=4, workers=1, report=False)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None) as cluster:
+        remote = tolerance_analysis(study, tmp_path / "dask", samples=4, report=False,
+                                    scheduler=cluster.scheduler_address)
+    assert remote["metrics"] == local["metrics"]
+
+
+def test_study_command_runs_a_tolerance_study(tmp_path, small, cli):
+    res = cli("study", str(small), "--out", str(tmp_path / "s"), "--workers", "1")
+    assert res.code == 0, res.err
+    assert (tmp_path / "s" / "summary.json").exists()
+
+
+def test_allocate_loosens_tolerances_within_the_target(tmp_path, small, cli):
+    out = tmp_path / "a"
+    res = cli("allocate", str(small), "--target", "ate_p95=0.5", "--out", str(out),
+              "--samples", "4", "--workers", "1", "--max-evaluations", "8", "--json")
+    assert res.code == 0, res.err
+    result = json.loads(res.out)
+    assert result["cost"] <= result["cost_start"]
+    assert result["targets"][0]["achieved"] <= 0.5 * (1 + 1e-4)
+    assert (out / "allocation.json").exists() and (out / "report.html").exists()
+
+
+def _bad(tmp_path, body):
+    path = tmp_path / "bad.toml"
+    path.write_text(body)
+    return str(path)
+
+
+@pytest.mark.parametrize("body, field", [
+    (SMALL.replace("[tolerances.pin_radius]", "[tolerances.pin_colour]"), "pin_colour"),
+    (SMALL.replace("tolerance = 0.002", "tolerance = -0.002"), "tolerance"),
+    (SMALL.replace('distribution = "normal"', 'distribution = "cauchy"'), "distribution"),
+    (SMALL.replace('distribution = "normal"', 'per = "batch"'), "per"),
+    (SMALL.replace("samples = 6", "samples = 1"), "samples"),
+])
+def test_bad_tolerance_files_are_one_line(tmp_path, cli, body, field):
+    res = cli("tolerance", _bad(tmp_path, body), "--out", str(tmp_path / "o"))
+    assert res.code == 2 and res.err.count("\n") == 1 and field in res.err, res.err
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("args, text", [
+    (["--samples", "0"], "samples"),
+    (["--samples", "2000000"], "samples"),
+    (["--sobol", "3"], "power of 2"),
+])
+def test_bad_options_are_one_line(tmp_path, small, cli, args, text):
+    res = cli("tolerance", str(small), "--out", str(tmp_path / "o"), *args)
+    assert res.code == 2 and res.err.count("\n") == 1 and text in res.err, res.err
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("target, text", [
+    ("ate_p95=0.0001", "cannot be met even at the tightest tolerances"),
+    ("colour_p95=1", "not METRIC_pNN=VALUE"),
+    ("ate_p95=-1", "positive"),
+    ("ate_p100=1", "percentile"),
+])
+def test_bad_targets_are_one_line(tmp_path, small, cli, target, text):
+    res = cli("allocate", str(small), "--target", target, "--out", str(tmp_path / "o"),
+              "--samples", "2", "--workers", "1")
+    assert res.code == 2 and res.err.count("\n") == 1 and text in res.err, res.err
+
+
+def test_single_stage_tolerance_study(tmp_path):
+    import dataclasses
+
+    from rvsim.tolerance import cycloid_drive_tolerances, tolerance_analysis
+
+    study = dataclasses.replace(cycloid_drive_tolerances(), positions=12)
+    summary = tolerance_analysis(study, tmp_path / "cd", samples=3, workers=1, report=False)
+    assert summary["ok"] + summary["binds"] == 3 and summary["failed"] == 0
+    assert summary["metrics"]["ate_arcmin"]["n"] == summary["ok"]
+
+
+def test_a_full_factorial_study_gets_the_interaction_anova(tmp_path, cli):
+    from tests.integration.conftest import write_study
+
+    study = write_study(tmp_path, design="full", extra='engine = "quasi-static"')
+    res = cli("study", str(study), "--out", str(tmp_path / "f"), "--workers", "1",
+              "--no-report")
+    assert res.code == 0, res.err
+    analysis = json.loads((tmp_path / "f" / "analysis.json").read_text())
+    assert {"H x I", "H x E", "I x E", "Error", "Total"} <= set(analysis["interactions"])
+    assert (tmp_path / "f" / "interactions.png").exists()
+
+
+def test_measured_profile_from_csv(tmp_path):
+    import dataclasses
+    import math
+
+    from rvsim.geometry import pin_gaps
+    from rvsim.parameters import PartErrors, with_values
+    from rvsim.tolerance import load_tolerance_study
+
+    rows = ["disc,angle_deg,deviation_um"]
+    rows += [f"{d},{a},1.5" for d in (1, 2) for a in range(0, 360, 3)]
+    (tmp_path / "profile.csv").write_text("\n".join(rows) + "\n")
+    (tmp_path / "s.toml").write_text(SMALL.replace('seed = 3',
+                                                   'seed = 3\nprofile_csv = "profile.csv"'))
+    study = load_tolerance_study(tmp_path / "s.toml")
+    nominal = study.nominal
+    # 1.5 um of excess material everywhere = an equidistant modification 1.5 um smaller
+    plain = dataclasses.replace(with_values(nominal, {"I": 0.010 - 0.0015}, check=False),
+                                parts=PartErrors())
+    assert max(abs(pin_gaps(nominal, 0.3) - pin_gaps(plain, 0.3))) < 1e-12
+    drawn = study.realise(study.unit_sample(0))
+    assert drawn.parts.profile_points == nominal.parts.profile_points
+    assert drawn.parts.pin_radius                       # the drawn errors are added to it
+    assert not math.isnan(pin_gaps(drawn, 0.3)[0])
+
+
+def test_bad_profile_csv_is_one_line(tmp_path, cli):
+    (tmp_path / "profile.csv").write_text("disc,angle\n1,0\n")
+    path = tmp_path / "s.toml"
+    path.write_text(SMALL.replace('seed = 3', 'seed = 3\nprofile_csv = "profile.csv"'))
+    res = cli("tolerance", str(path), "--out", str(tmp_path / "o"))
+    assert res.code == 2 and res.err.count("\n") == 1 and "deviation_um" in res.err, res.err
