@@ -116,11 +116,24 @@ def test_bad_options_are_one_line(tmp_path, small, cli, args, text):
     ("colour_p95=1", "not METRIC_pNN=VALUE"),
     ("ate_p95=-1", "positive"),
     ("ate_p100=1", "percentile"),
+    ("ate_p95=1,ate_p95=2", "given twice"),
 ])
 def test_bad_targets_are_one_line(tmp_path, small, cli, target, text):
     res = cli("allocate", str(small), "--target", target, "--out", str(tmp_path / "o"),
               "--samples", "2", "--workers", "1")
     assert res.code == 2 and res.err.count("\n") == 1 and text in res.err, res.err
+    assert not (tmp_path / "o").exists()          # no partial folder
+
+
+@pytest.mark.filterwarnings("error::UserWarning")
+def test_every_reducer_binding_is_reported_without_warnings(tmp_path, small, cli):
+    """A tolerance so loose that every reducer binds: summary and report, nothing on stderr."""
+    path = _bad(tmp_path, SMALL.replace("tolerance = 0.002", "tolerance = 5.0"))
+    res = cli("tolerance", path, "--out", str(tmp_path / "o"), "--workers", "1",
+              "--samples", "2")
+    assert res.code == 0 and res.err == "", res.err
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["binds"] == 2 and summary["binding_share"] == 1.0
 
 
 def test_single_stage_tolerance_study(tmp_path):

@@ -18,6 +18,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+import shutil
 
 import numpy as np
 
@@ -72,7 +73,11 @@ def parse_targets(text: str) -> list[Target]:
             raise ParameterError("--target", f"'{item}': value is not a number") from None
         if not math.isfinite(value) or value <= 0:
             raise ParameterError("--target", f"'{item}': value must be a positive number")
-        targets.append(Target(_SHORT[match.group(1)], percentile, value, item))
+        target = Target(_SHORT[match.group(1)], percentile, value, item)
+        if any((t.metric, t.percentile) == (target.metric, target.percentile)
+               for t in targets):
+            raise ParameterError("--target", f"'{item}': {item.split('=')[0]} is given twice")
+        targets.append(target)
     if not targets:
         raise ParameterError("--target", "needs at least one target, e.g. ate_p95=0.5")
     return targets
@@ -142,22 +147,34 @@ def allocate(study: ToleranceStudy, targets: list[Target], folder, *, samples: i
     tolerance at its tightest."""
     from pathlib import Path
 
-    from scipy.optimize import minimize
-
-    from ..doe.folder import check_same_study, lock_folder
-    from ..doe.store import ResultStore
     from .spec import check_samples
 
     check_samples(samples)
     cost = cost or CostModel.default(study, {n: dict(v) for n, v in study.cost})
-    names = [t.name for t in study.tolerances]
-    low = np.log([cost.tightest[n] for n in names])
-    high = np.log([cost.loosest[n] for n in names])
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
         raise InputFileError(f"{folder}: exists and is not a folder")
     study.nominal
+    created = not folder.exists()
     folder.mkdir(parents=True, exist_ok=True)
+    try:
+        return _allocate(study, targets, folder, samples, cost, workers, scheduler,
+                         max_evaluations)
+    except (ParameterError, InputFileError):
+        if created:       # bad input (an impossible target) leaves no partial folder
+            shutil.rmtree(folder, ignore_errors=True)
+        raise
+
+
+def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_evaluations):
+    from scipy.optimize import minimize
+
+    from ..doe.folder import check_same_study, lock_folder
+    from ..doe.store import ResultStore
+
+    names = [t.name for t in study.tolerances]
+    low = np.log([cost.tightest[n] for n in names])
+    high = np.log([cost.loosest[n] for n in names])
     history = []
     with lock_folder(folder):
         store = ResultStore(folder)

@@ -33,7 +33,8 @@ def distribution_figure(name: str, x: np.ndarray, stats: dict):
     left.set_ylabel("reducers")
     right.set_xlabel(name)
     right.set_ylabel("cumulative share")
-    right.legend(loc="lower right", fontsize=8)
+    if x.size:             # every reducer bound or failed: nothing drawn, no legend
+        right.legend(loc="lower right", fontsize=8)
     fig.tight_layout()
     return fig
 
