@@ -9,7 +9,10 @@ time, the time per reducer and the extrapolation to 10 000 reducers.
 worker processes each (one thread each) and reports the speed-up against one worker.
 
 ``--seconds S`` stops the local run after S seconds (the store keeps what finished) and
-reports the throughput of what finished.  Prints one JSON object.
+reports the throughput of what finished.  ``--positions P`` overrides the study's 360
+positions (a cheap run for the memory figure: ``--workers 1 --positions 12`` at two N).
+Every run reports the peak resident memory of this process and of its largest worker
+(``resource.getrusage``) and the CPU time.  Prints one JSON object.
 """
 
 from __future__ import annotations
@@ -23,13 +26,17 @@ import threading
 import time
 
 
-def _local(samples: int, workers: int | None, seconds: float | None) -> dict:
+def _local(samples: int, workers: int | None, seconds: float | None,
+           positions: int | None = None) -> dict:
+    import dataclasses
     import signal
 
     from rvsim.doe.store import ResultStore
     from rvsim.tolerance import rv40e_tolerances, tolerance_analysis
 
     study = rv40e_tolerances()
+    if positions:
+        study = dataclasses.replace(study, positions=positions)
     with tempfile.TemporaryDirectory() as folder:
         timer = None
         if seconds:
@@ -53,7 +60,7 @@ def _local(samples: int, workers: int | None, seconds: float | None) -> dict:
     out = {"samples_asked": samples, "samples_done": done, "complete": complete,
            "wall_s": wall, "s_per_reducer": wall / max(done, 1),
            "extrapolated_10000_s": wall / max(done, 1) * 10000, "workers": workers or
-           os.cpu_count()}
+           os.cpu_count(), "positions": study.positions}
     if summary:
         out["p95"] = {k: v["p95"] for k, v in summary["metrics"].items()}
         out["binding_share"] = summary["binding_share"]
@@ -94,6 +101,7 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=None)
     parser.add_argument("--seconds", type=float, default=None)
     parser.add_argument("--dask", default=None, help="comma-separated worker counts")
+    parser.add_argument("--positions", type=int, default=None)
     args = parser.parse_args()
     info = {"machine": f"{platform.machine()}, {os.cpu_count()} cores, Python "
                        f"{platform.python_version()}",
@@ -102,8 +110,16 @@ def main() -> None:
     if args.dask:
         info.update(_dask(args.samples, [int(x) for x in args.dask.split(",")]))
     else:
-        info.update(_local(args.samples, args.workers, args.seconds))
+        info.update(_local(args.samples, args.workers, args.seconds, args.positions))
     info["load_average_at_end"] = os.getloadavg()
+    import resource
+
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    info["max_rss_mb"] = {"this_process": own.ru_maxrss / 1024,    # Linux: kilobytes
+                          "largest_worker": children.ru_maxrss / 1024}
+    info["cpu_s"] = {"this_process": own.ru_utime + own.ru_stime,
+                     "workers": children.ru_utime + children.ru_stime}
     print(json.dumps(info, indent=2))
 
 
