@@ -132,3 +132,17 @@ def test_both_engines_see_the_same_per_part_errors():
 
 def _steady(reducer):
     return reducer.operating.steady_start - 1e-12
+
+
+def test_the_example_file_is_the_built_in_study():
+    """examples/rv40e_tolerances.toml draws the reducers of rv40e-tolerances."""
+    from pathlib import Path
+
+    from rvsim.tolerance import load_tolerance_study
+
+    path = Path(__file__).resolve().parents[2] / "examples" / "rv40e_tolerances.toml"
+    file, built = load_tolerance_study(path), rv40e_tolerances()
+    assert (file.samples, file.seed, file.positions) == (built.samples, built.seed,
+                                                         built.positions)
+    for i in (0, 7):
+        assert file.realise(file.unit_sample(i)) == built.realise(built.unit_sample(i))
