@@ -78,6 +78,10 @@ def test_allocate_loosens_tolerances_within_the_target(tmp_path, small, cli):
     result = json.loads(res.out)
     assert result["cost"] <= result["cost_start"]
     assert result["targets"][0]["achieved"] <= 0.5 * (1 + 1e-4)
+    # no more reducers bind than with the tolerances as given (a constraint of its own)
+    share = result["targets"][1]
+    assert share["metric"] == "binding_share" and "(as given)" in share["target"]
+    assert result["binding_share"] <= share["limit"]
     assert (out / "allocation.json").exists() and (out / "report.html").exists()
 
 
@@ -117,6 +121,8 @@ def test_bad_options_are_one_line(tmp_path, small, cli, args, text):
     ("ate_p95=-1", "positive"),
     ("ate_p100=1", "percentile"),
     ("ate_p95=1,ate_p95=2", "given twice"),
+    ("binding_share=0.1", "at least one percentile target"),
+    ("ate_p95=1,binding_share=1.5", "from 0 to below 1"),
 ])
 def test_bad_targets_are_one_line(tmp_path, small, cli, target, text):
     res = cli("allocate", str(small), "--target", target, "--out", str(tmp_path / "o"),
@@ -126,6 +132,17 @@ def test_bad_targets_are_one_line(tmp_path, small, cli, target, text):
 
 
 @pytest.mark.filterwarnings("error::UserWarning")
+def test_a_binding_share_target_that_cannot_be_met_is_one_line(tmp_path, cli):
+    """disc holes so loose that reducers bind even at a quarter of the tolerance"""
+    body = SMALL.replace("[tolerances.disc_holes]\ntolerance = 0.004",
+                         "[tolerances.disc_holes]\ntolerance = 0.03")
+    res = cli("allocate", _bad(tmp_path, body), "--target", "ate_p95=5,binding_share=0",
+              "--out", str(tmp_path / "o"), "--samples", "4", "--workers", "1")
+    assert res.code == 2 and res.err.count("\n") == 1, res.err
+    assert "binding_share=0 cannot be met even at the tightest" in res.err
+    assert not (tmp_path / "o").exists()
+
+
 def test_every_reducer_binding_is_reported_without_warnings(tmp_path, small, cli):
     """A tolerance so loose that every reducer binds: summary and report, nothing on stderr."""
     path = _bad(tmp_path, SMALL.replace("tolerance = 0.002", "tolerance = 5.0"))

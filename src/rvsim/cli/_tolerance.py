@@ -148,7 +148,9 @@ def register(sub) -> None:
     _common(p)
     p.add_argument("--target", required=True, metavar="METRIC_pNN=VALUE[,...]",
                    help="e.g. ate_p95=0.3,lost_motion_p95=2.5 (arcmin); "
-                        "torsional_rigidity_p5=200 is a lower bound")
+                        "torsional_rigidity_p5=200 is a lower bound; binding_share=0.01 "
+                        "limits the reducers that bind on assembly (default: no more than "
+                        "with the tolerances as given)")
     p.add_argument("--max-evaluations", type=positive_int, default=60,
                    help="optimiser iterations (default 60)")
     p.set_defaults(func=_allocate)

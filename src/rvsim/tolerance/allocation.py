@@ -7,7 +7,10 @@ weight there); the total is their sum.  Each error's tolerance is searched betwe
 ``tightest_k`` and ``loosest_k`` (default a quarter and four times the study's).  A study
 file's ``[cost.NAME]`` tables (weight, exponent, tightest, loosest) edit them.
 
-The constraints are Monte Carlo percentiles of ``samples`` reducers with common random
+The reducers that bind on assembly are scrap: the binding share is a constraint too, at most
+``binding_share=VALUE`` of ``--target`` or, when not given, at most the share of the study's
+own tolerances (so the allocation never buys its savings with more scrap than the drawing as
+given).  The constraints are Monte Carlo percentiles of ``samples`` reducers with common random
 numbers (the same uniform numbers, only the tolerances scale them), so they are smooth
 functions of the tolerances; the optimiser is SciPy's COBYLA on the logarithms of the
 tolerances.  Every evaluation is stored in the study store (a repeated point is not re-run).
@@ -33,6 +36,8 @@ MARGIN = 0.01
 _SHORT = {short: name for name, (short, _) in METRICS.items()}
 #: metrics where a larger value is better (the target is a lower bound)
 _LOWER_BOUND = {"torsional_rigidity_nm_per_arcmin"}
+#: the share of reducers that bind on assembly (a target without percentile)
+BINDING = "binding_share"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -47,8 +52,8 @@ class Target:
         return self.metric in _LOWER_BOUND
 
     def margin(self, achieved: float) -> float:
-        """>= 0 when met (relative to the target)."""
-        scale = abs(self.value) or 1.0
+        """>= 0 when met (relative to the target; the binding share: absolute)."""
+        scale = 1.0 if self.metric == BINDING else (abs(self.value) or 1.0)
         return ((achieved - self.value) if self.lower_bound else (self.value - achieved)) / scale
 
 
@@ -60,10 +65,23 @@ def parse_targets(text: str) -> list[Target]:
         item = item.strip()
         if not item:
             continue
+        if item.split("=")[0].strip() == BINDING:
+            try:
+                value = float(item.split("=", 1)[1])
+            except (IndexError, ValueError):
+                raise ParameterError("--target", f"'{item}': value is not a number") from None
+            if not 0.0 <= value < 1.0:
+                raise ParameterError("--target", f"'{item}': the binding share must be from 0 "
+                                     "to below 1")
+            if any(t.metric == BINDING for t in targets):
+                raise ParameterError("--target", f"'{item}': {BINDING} is given twice")
+            targets.append(Target(BINDING, math.nan, value, item))
+            continue
         match = re.fullmatch(r"([a-z_]+)_p(\d+(?:\.\d+)?)=(.+)", item)
         if not match or match.group(1) not in _SHORT:
             raise ParameterError("--target", f"'{item}' is not METRIC_pNN=VALUE with METRIC one "
-                                 f"of {', '.join(_SHORT)} (e.g. ate_p95=0.5)")
+                                 f"of {', '.join(_SHORT)} (e.g. ate_p95=0.5), or "
+                                 f"{BINDING}=VALUE")
         percentile = float(match.group(2))
         if not 0 < percentile < 100:
             raise ParameterError("--target", f"'{item}': percentile must be between 0 and 100")
@@ -78,8 +96,9 @@ def parse_targets(text: str) -> list[Target]:
                for t in targets):
             raise ParameterError("--target", f"'{item}': {item.split('=')[0]} is given twice")
         targets.append(target)
-    if not targets:
-        raise ParameterError("--target", "needs at least one target, e.g. ate_p95=0.5")
+    if not any(t.metric != BINDING for t in targets):
+        raise ParameterError("--target", "needs at least one percentile target, e.g. "
+                             "ate_p95=0.5")
     return targets
 
 
@@ -130,13 +149,17 @@ def _evaluate(study, store, folder, samples, tolerances, targets, workers, sched
     keys = run_samples(study, folder, {"allocation": (samples, lambda: monte_carlo_units(
         study, samples))}, workers=workers, scheduler=scheduler, tolerances=rounded,
         store=store)["allocation"]
-    status, values = collect(store, keys, {t.metric for t in targets})
+    status, values = collect(store, keys, {t.metric for t in targets if t.metric != BINDING})
+    binds = int(np.sum(status == "binds"))
+    share = binds / max(1, int(np.sum((status == "ok") | (status == "binds"))))
     achieved = {}
     for t in targets:
+        if t.metric == BINDING:
+            achieved[t.text] = share
+            continue
         x = values[t.metric][np.isfinite(values[t.metric])]
         achieved[t.text] = float(np.percentile(x, t.percentile)) if x.size else math.nan
-    binds = int(np.sum(status == "binds"))
-    return achieved, binds / max(1, int(np.sum((status == "ok") | (status == "binds"))))
+    return achieved, share
 
 
 def allocate(study: ToleranceStudy, targets: list[Target], folder, *, samples: int = 200,
@@ -191,17 +214,36 @@ def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_eva
                 tol = dict(zip(names, np.exp(np.clip(x, low, high))))
                 achieved, share = _evaluate(study, store, folder, samples, tol, targets,
                                             workers, scheduler)
+                for t in targets:
+                    if t.metric == BINDING:
+                        achieved[t.text] = share
                 history.append({"tolerances": tol, "achieved": achieved,
                                 "binding_share": share, "cost": cost.cost(tol)})
                 return achieved
 
+            start = np.clip(np.log([cost.reference[n] for n in names]), low, high)
+            if not any(t.metric == BINDING for t in targets):
+                # no more scrap than the tolerances as given
+                run(start)
+                given = history[-1]["binding_share"]
+                targets = [*targets, Target(BINDING, math.nan, given,
+                                            f"{BINDING}<={given:.4g} (as given)")]
+                for h in history:
+                    h["achieved"][targets[-1].text] = h["binding_share"]
             tight = run(low)
-            for t in targets:
+            for t in sorted(targets, key=lambda t: t.metric != BINDING):
                 if not t.margin(tight[t.text]) >= 0:
+                    if t.metric == BINDING:
+                        there = f"there the binding share is {tight[t.text]:.4g}"
+                    elif math.isnan(tight[t.text]):
+                        there = "there no reducer assembles and solves"
+                    else:
+                        there = f"there p{t.percentile:g} = {tight[t.text]:.4g}"
                     raise ParameterError("--target", f"{t.text} cannot be met even at the "
-                                         f"tightest tolerances (there p{t.percentile:g} = "
-                                         f"{tight[t.text]:.4g})")
+                                         f"tightest tolerances ({there})")
             cache = {}
+            if len(history) == 2:                  # the start point is evaluated already
+                cache[tuple(np.round(start, 9))] = history[0]["achieved"]
 
             def achieved_at(x):
                 key = tuple(np.round(x, 9))
@@ -209,21 +251,20 @@ def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_eva
                     cache[key] = run(x)
                 return cache[key]
 
-            scale = np.log([cost.reference[n] for n in names])
-
             def objective(x):
                 return cost.cost(dict(zip(names, np.exp(np.clip(x, low, high)))))
 
             # the optimiser works to targets 1 % tighter: COBYLA ends on the constraint's
             # boundary, approached from either side; the result must meet the real target
+            # (the binding share moves in steps of 1 / samples: no margin)
             constraints = [{"type": "ineq",
-                            "fun": (lambda x, t=t: t.margin(achieved_at(x)[t.text]) - MARGIN)}
+                            "fun": (lambda x, t=t: t.margin(achieved_at(x)[t.text])
+                                    - (0.0 if t.metric == BINDING else MARGIN))}
                            for t in targets]
             constraints += [{"type": "ineq", "fun": (lambda x, i=i: x[i] - low[i])}
                             for i in range(len(names))]
             constraints += [{"type": "ineq", "fun": (lambda x, i=i: high[i] - x[i])}
                             for i in range(len(names))]
-            start = np.clip(scale, low, high)
             result = minimize(objective, start, method="COBYLA", constraints=constraints,
                               options={"maxiter": max_evaluations, "rhobeg": 0.5,
                                        "catol": 1e-4})
@@ -242,7 +283,8 @@ def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_eva
                         "tightest": cost.tightest[n], "loosest": cost.loosest[n],
                         "weight": cost.weight[n], "exponent": cost.exponent[n]}
                        for n, t in zip(names, study.tolerances)],
-        "targets": [{"target": t.text, "metric": t.metric, "percentile": t.percentile,
+        "targets": [{"target": t.text, "metric": t.metric,
+                     "percentile": None if t.metric == BINDING else t.percentile,
                      "limit": t.value, "achieved": best["achieved"][t.text],
                      "at_tightest": tight[t.text]} for t in targets],
         "history": history,
