@@ -16,7 +16,7 @@ from typing import Callable, Iterable
 
 import numpy as np
 
-from .._files import atomic_write_text
+from .._files import atomic_write, atomic_write_text
 from ..errors import InputFileError
 from .engine import BINDS, METRICS
 from .spec import ToleranceStudy
@@ -149,7 +149,8 @@ def write_results_csv(path: Path, status: np.ndarray, values: dict, keys: list[s
 
     frame = pd.DataFrame({"sample": np.arange(len(keys)), "status": status, **values,
                           "key": [k[:16] for k in keys]})
-    atomic_write_text(path, frame.to_csv(index=False))
+    # pandas writes the file in chunks: no string of the whole table in memory
+    atomic_write(path, lambda tmp: frame.to_csv(tmp, index=False))
 
 
 def write_json(path: Path, data: dict) -> None:
