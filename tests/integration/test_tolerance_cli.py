@@ -115,6 +115,14 @@ def test_bad_options_are_one_line(tmp_path, small, cli, args, text):
     assert not (tmp_path / "o").exists()
 
 
+def test_too_few_evaluations_are_one_line(tmp_path, small, cli):
+    res = cli("allocate", str(small), "--target", "ate_p95=0.5", "--out", str(tmp_path / "o"),
+              "--max-evaluations", "4")
+    assert res.code == 2 and res.err.count("\n") == 1, res.err
+    assert "--max-evaluations" in res.err and "at least 5" in res.err
+    assert not (tmp_path / "o").exists()
+
+
 @pytest.mark.parametrize("target, text", [
     ("ate_p95=0.0001", "cannot be met even at the tightest tolerances"),
     ("colour_p95=1", "not METRIC_pNN=VALUE"),

@@ -174,6 +174,10 @@ def allocate(study: ToleranceStudy, targets: list[Target], folder, *, samples: i
 
     check_samples(samples)
     cost = cost or CostModel.default(study, {n: dict(v) for n, v in study.cost})
+    if max_evaluations < len(study.tolerances) + 2:      # COBYLA's least (it would warn)
+        raise ParameterError("--max-evaluations", f"must be at least "
+                             f"{len(study.tolerances) + 2} for {len(study.tolerances)} "
+                             f"toleranced errors (got {max_evaluations})")
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
         raise InputFileError(f"{folder}: exists and is not a folder")
