@@ -16,11 +16,11 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
-import tomllib
 from pathlib import Path
 
 import numpy as np
 
+from .._files import read_toml
 from ..errors import InputFileError
 
 __all__ = ["Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map",
@@ -152,14 +152,7 @@ def read_column_map(path: str | Path) -> ColumnMap:
     ``[input_angle]`` with ``column = "enc1"``, ``unit = "counts"``,
     ``counts_per_revolution = 4096``."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputFileError(f"{path}: file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputFileError(f"{path}: cannot read ({exc})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputFileError(f"{path}: not valid TOML ({exc})") from None
+    data = read_toml(path, "column map TOML file")
     ratio = _ratio(data.pop("ratio"), str(path)) if "ratio" in data else None
     columns = {}
     for quantity, table in data.items():
