@@ -21,24 +21,15 @@ os.environ["RVSIM_CACHE_DIR"] = tempfile.mkdtemp(prefix="rvsim-bench-fe-")
 import argparse  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
-import statistics  # noqa: E402
 import time  # noqa: E402
+
+from _timing import timed  # noqa: E402
 
 
 #: a short schedule for the warm-up run
 SHORT = {"operating.duration": 0.3, "operating.speed_ramp_time": 0.1,
          "operating.load_start": 0.1, "operating.load_ramp_end": 0.2,
          "operating.steady_start": 0.2}
-
-
-def _timed(function, repeat):
-    walls, cpus = [], []
-    for _ in range(repeat):
-        wall, cpu = time.perf_counter(), time.process_time()
-        function()
-        walls.append(time.perf_counter() - wall)
-        cpus.append(time.process_time() - cpu)
-    return statistics.median(walls), statistics.median(cpus)
 
 
 def main() -> None:
@@ -71,12 +62,12 @@ def main() -> None:
            "disc_dofs": table.n_dofs, "disc_triangles": table.n_triangles,
            "segments": table.segments}
     for name, r in (("rigid", rigid), ("tooth", tooth), ("fe", fe)):
-        out[f"ltca360_{name}_wall_s"], out[f"ltca360_{name}_cpu_s"] = _timed(
+        out[f"ltca360_{name}_wall_s"], out[f"ltca360_{name}_cpu_s"] = timed(
             lambda: ltca(r, torque=torque), args.repeat)
     out["ltca_fe_over_rigid"] = out["ltca360_fe_wall_s"] / out["ltca360_rigid_wall_s"]
     for name, r in (("rigid", rigid), ("tooth", tooth), ("fe", fe)):
         simulate(with_values(r, SHORT))         # load the compiled kernel
-        out[f"simulate4s_{name}_wall_s"], out[f"simulate4s_{name}_cpu_s"] = _timed(
+        out[f"simulate4s_{name}_wall_s"], out[f"simulate4s_{name}_cpu_s"] = timed(
             lambda: simulate(r), args.dynamic_repeat)
     out["simulate_fe_over_rigid"] = out["simulate4s_fe_wall_s"] / out["simulate4s_rigid_wall_s"]
     print(json.dumps(out, indent=2))

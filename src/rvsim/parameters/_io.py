@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from .._files import read_toml
-from ..errors import InputFileError, ParameterError
+from ..errors import ParameterError
 from ..units import TO_SI
 from ._schema import FieldSpec, field_specs
 from ._types import Reducer
