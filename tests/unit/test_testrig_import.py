@@ -96,3 +96,36 @@ def test_binned_sweep_of_a_noiseless_loop_gives_the_catalogue_values():
     assert catalogue.backlash(t, a, b) == pytest.approx(2e-4, rel=1e-9)
     # the last bin's mean is below the extreme (99.5 N*m): read to 99 N*m
     assert catalogue.torsional_rigidity(t, a, 99.0, branch=b) == pytest.approx(1e5, rel=1e-6)
+
+
+def _there_and_back(n=3000, revolutions=1.1, ratio=121.0, offset=2e-5):
+    """A TE run forward then backward: TE 1e-5 sin(40 phi), +-offset/2 by direction [rad]."""
+    phi = np.r_[np.linspace(0.0, revolutions * 2 * np.pi, n),
+                np.linspace(revolutions * 2 * np.pi, 0.0, n)[1:]]
+    sense = np.r_[np.ones(n), -np.ones(n - 1)]
+    te = 1e-5 * np.sin(40 * phi) + 0.5 * offset * sense
+    return pd.DataFrame({"time_s": np.arange(phi.size) * 0.01,
+                         "input_angle_deg": np.degrees(ratio * phi),
+                         "output_angle_deg": np.degrees(phi - te)}), n
+
+
+def test_forward_and_backward_in_separate_files_give_the_offset_with_a_note(tmp_path):
+    frame, n = _there_and_back()
+    frame.to_csv(tmp_path / "both_300Nm.csv", index=False)
+    (one,) = analyse_path(tmp_path / "both_300Nm.csv", RV40E)
+    single = point_summary(one, RV40E)
+    folder = tmp_path / "split"
+    folder.mkdir()
+    # alphabetical order puts the backward file first; the orders are still the forward ones
+    frame.iloc[:n].to_csv(folder / "b_fwd_300Nm.csv", index=False)
+    frame.iloc[n - 1:].to_csv(folder / "a_bwd_300Nm.csv", index=False)
+    (two,) = analyse_path(folder, RV40E)
+    split = point_summary(two, RV40E)
+    arcmin = math.pi / 10800
+    assert single["forward_backward_offset_arcmin"] == pytest.approx(2e-5 / arcmin, rel=1e-3)
+    assert split["forward_backward_offset_arcmin"] == pytest.approx(
+        single["forward_backward_offset_arcmin"], rel=1e-9)
+    assert "forward_backward_offset_note" not in single
+    assert "b_fwd_300Nm.csv" in split["forward_backward_offset_note"]
+    assert split["orders"] == single["orders"]
+    assert split["orders"][0]["order"] == 40.0

@@ -88,6 +88,8 @@ def _print_point(s: dict) -> None:
               f"{s['te_rms_arcsec']:.3f} arcsec; leading orders: {lines}")
     if "forward_backward_offset_arcmin" in s:
         print(f"  forward/backward offset {s['forward_backward_offset_arcmin']:.4f} arcmin")
+        if "forward_backward_offset_note" in s:
+            print(f"    ({s['forward_backward_offset_note']})")
     if "lost_motion_arcmin" in s:
         print(f"  lost motion {s['lost_motion_arcmin']:.4f} arcmin, backlash "
               f"{s['backlash_arcmin']:.4f} arcmin, hysteresis loss "

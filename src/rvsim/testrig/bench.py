@@ -53,6 +53,12 @@ class PointResult:
     point: dict
     files: list
 
+    def leading_direction(self):
+        """The TE direction whose spectrum stands for the point: the first forward one of any
+        file, else the first direction (None without TE)."""
+        found = [d for f in self.files for d in f.directions or []]
+        return next((d for d in found if d.direction > 0), found[0] if found else None)
+
 
 def list_files(path: str | Path) -> list[tuple[Path, dict]]:
     """(file, declared point and options) of a file or folder (see the module docstring)."""

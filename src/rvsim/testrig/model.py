@@ -83,7 +83,8 @@ def point_summary(point: PointResult, reducer) -> dict:
     if te:
         out["ate_pp_arcmin"] = max(s["ate_pp_arcmin"] for s in te)
         out["te_rms_arcsec"] = float(np.sqrt(np.mean([s["te_rms_arcsec"] ** 2 for s in te])))
-        out["orders"] = te[0]["orders"]
+        lead = point.leading_direction()
+        out["orders"] = A.leading_orders(*lead.spectrum(), marks)
         directions: dict = {}
         for f, s in zip([f for f in point.files if f.directions], te):
             for name, values in s["directions"].items():
@@ -94,6 +95,8 @@ def point_summary(point: PointResult, reducer) -> dict:
                    if "forward_backward_offset_arcmin" in s]
         if offsets:
             out["forward_backward_offset_arcmin"] = offsets[0]
+        else:
+            out.update(_offset_across_files(point))
     else:
         out.update(ate_pp_arcmin=None, te_rms_arcsec=None, orders=[])
     loops = [f.loop for f in point.files if f.loop is not None]
@@ -109,6 +112,26 @@ def point_summary(point: PointResult, reducer) -> dict:
     if samples:
         out["samples"] = samples
     return out
+
+
+def _offset_across_files(point: PointResult) -> dict:
+    """Forward/backward offset of a point whose forward and backward runs are in different
+    files: mean TE of the forward files minus that of the backward ones, with a note (it holds
+    only if the encoder zeros did not change between the recordings); {} without both."""
+    means: dict = {1: [], -1: []}
+    names: dict = {1: [], -1: []}
+    for f in point.files:
+        for d in f.directions or []:
+            means[d.direction].append(d.mean)
+            names[d.direction].append(f.path.name)
+    if not (means[1] and means[-1]):
+        return {}
+    return {"forward_backward_offset_arcmin": (np.mean(means[1]) - np.mean(means[-1]))
+            / A.ARCMIN,
+            "forward_backward_offset_note": (
+                f"forward ({', '.join(names[1])}) and backward ({', '.join(names[-1])}) are "
+                "different files: the offset holds only if the encoder zeros did not change "
+                "between the recordings")}
 
 
 def _curve_difference(measured: PointResult, simulated: PointResult) -> dict:
@@ -139,6 +162,7 @@ def compare_point(point: PointResult, reducer, *, points: int = A.DEFAULT_POINTS
         summary["simulated"] = {"status": exc.status, "error": str(exc)}
         return summary, None
     sim = point_summary(simulated, reducer)
+    sim.pop("forward_backward_offset_note", None)       # the model has one nominal zero
     sim["status"] = "ok"
     sim["note"] = ("quasi-static model: speed and oil temperature do not enter; efficiency is "
                    "not modelled (no friction in this engine)")
