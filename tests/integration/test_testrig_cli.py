@@ -85,7 +85,9 @@ def test_calibrate_writes_params_the_other_commands_accept(tmp_path, capsys):
     estimate = payload["parameters"]["contact.bushing_stiffness_factor"]["estimate"]
     assert 0.7 < estimate < 0.9
     assert main(["params", "--params", str(out / "fitted.toml"), "--json"]) == 0
-    rows = json.loads(capsys.readouterr().out)["parameters"]
+    shown = json.loads(capsys.readouterr().out)
+    assert shown["name"] == "bench start, calibrated to testrig"
+    rows = shown["parameters"]
     value = next(r["value"] for r in rows if r["name"] == "contact.bushing_stiffness_factor")
     assert value == pytest.approx(estimate, rel=1e-9)
 

@@ -8,6 +8,7 @@ that fails prints its status and exits 1.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from pathlib import Path
@@ -125,7 +126,10 @@ def _calibrate(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     payload = result.to_dict()
     fitted = out / "fitted.toml"
-    atomic_write_text(fitted, toml_text(result.reducer))
+    # the fitted set says what it is (its name shows in every report made with it)
+    calibrated = dataclasses.replace(result.reducer, name=f"{reducer.name}, calibrated to "
+                                     f"{Path(args.path).name}")
+    atomic_write_text(fitted, toml_text(calibrated))
     payload["fitted_params"] = str(fitted)
     atomic_write_text(out / "calibration.json",
                       json.dumps(to_json_safe(payload), indent=2, allow_nan=False) + "\n")
