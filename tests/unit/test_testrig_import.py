@@ -1,6 +1,7 @@
 """Reading bench files: formats, mapping, units, points, manifests; the sampled-sweep helpers."""
 
 import math
+import re
 import sys
 
 import numpy as np
@@ -129,3 +130,28 @@ def test_forward_and_backward_in_separate_files_give_the_offset_with_a_note(tmp_
     assert "b_fwd_300Nm.csv" in split["forward_backward_offset_note"]
     assert split["orders"] == single["orders"]
     assert split["orders"][0]["order"] == 40.0
+
+
+def test_angles_within_one_revolution_are_unwrapped(tmp_path):
+    # absolute encoders reporting 0-360 deg: the same numbers as the continuous angles
+    frame, _ = _there_and_back()
+    frame.to_csv(tmp_path / "continuous.csv", index=False)
+    wrapped = frame.assign(input_angle_deg=np.mod(frame.input_angle_deg, 360.0),
+                           output_angle_deg=np.mod(frame.output_angle_deg + 300.0, 360.0))
+    wrapped.to_csv(tmp_path / "wrapped.csv", index=False)
+    a, b = (point_summary(analyse_path(tmp_path / name, RV40E)[0], RV40E)
+            for name in ("continuous.csv", "wrapped.csv"))
+    assert b["ratio_measured"] == pytest.approx(a["ratio_measured"], rel=1e-9)
+    for key in ("ate_pp_arcmin", "te_rms_arcsec", "forward_backward_offset_arcmin"):
+        assert b[key] == pytest.approx(a[key], rel=1e-6), key
+
+
+def test_a_loop_without_both_branches_is_an_error_naming_the_file(tmp_path):
+    torque = np.linspace(100.0, -100.0, 2000)        # one way only: no increasing branch
+    path = tmp_path / "oneway.csv"
+    pd.DataFrame({"time_s": np.arange(torque.size) * 0.01, "input_angle_deg": 0.0,
+                  "output_angle_deg": 1e-4 * torque, "output_torque_nm": torque}).to_csv(
+        path, index=False)
+    with pytest.raises(InputFileError,
+                       match=re.escape(f"{path}: read as a torque reversal recording: ")):
+        analyse_path(path, RV40E)
