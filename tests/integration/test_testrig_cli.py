@@ -101,3 +101,15 @@ def test_compare_refuses_a_file_ratio_that_is_not_the_models(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.startswith(f"rvsim: error: {path}: its ratio 81 differs from the parameter "
                           "set's 121")
+
+
+def test_calibrate_says_when_the_model_fails_next_to_the_start(tmp_path, capsys):
+    # the RV-40E's teeth do not assemble with any disc runout: starting at zero, the fit must
+    # say so (scipy's relative step, 1e-3 of |x|, stayed at 1e-15 m and claimed an interval)
+    out = tmp_path / "fit"
+    assert main(["calibrate", EXAMPLE, "--fit", "errors.disc_runout", "--positions", "64",
+                 "--out", str(out), "--json"]) == 1
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["status"] == "model_fails"
+    assert payload["parameters"]["errors.disc_runout"]["ci95"] == [None, None]
+    assert any("fails on both sides" in n and "overlaps" in n for n in payload["notes"])
