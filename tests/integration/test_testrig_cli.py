@@ -113,3 +113,12 @@ def test_calibrate_says_when_the_model_fails_next_to_the_start(tmp_path, capsys)
     assert payload["status"] == "model_fails"
     assert payload["parameters"]["errors.disc_runout"]["ci95"] == [None, None]
     assert any("fails on both sides" in n and "overlaps" in n for n in payload["notes"])
+
+
+def test_compare_without_a_torque_says_the_model_ran_at_zero(tmp_path, capsys):
+    path = tmp_path / "free.csv"
+    _frame().to_csv(path, index=False)
+    assert main(["testrig", str(path), "--compare", "--points", "256"]) == 0
+    assert "the model ran at 0 N*m" in capsys.readouterr().out
+    assert main(["testrig", str(path), "--compare", "--points", "256", "--json"]) == 0
+    assert "0 N*m" in json.loads(capsys.readouterr().out)["simulated"]["note"]

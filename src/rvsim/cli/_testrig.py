@@ -103,6 +103,9 @@ def _print_point(s: dict) -> None:
         keys = [k for k in diff if k != "te_curve_rms_arcsec"]
         print("  model: " + ", ".join(f"{k} {_fmt(sim.get(k), '.4g')} (difference "
                                          f"{diff[k]:+.4g})" for k in keys))
+        if "torque_nm" not in s["point"] and s.get("ate_pp_arcmin") is not None:
+            print("  note: no torque in the recording, its name or the manifest: the model ran "
+                  "at 0 N*m")
 
 
 def _calibrate(args: argparse.Namespace) -> int:

@@ -166,6 +166,9 @@ def compare_point(point: PointResult, reducer, *, points: int = A.DEFAULT_POINTS
     sim["status"] = "ok"
     sim["note"] = ("quasi-static model: speed and oil temperature do not enter; efficiency is "
                    "not modelled (no friction in this engine)")
+    if "torque_nm" not in point.point and any(f.directions for f in point.files):
+        sim["note"] += ("; the recording gives no torque (no torque column, none in the file "
+                        "name or manifest): the model's TE is at 0 N*m")
     summary["simulated"] = sim
     summary["difference"] = {k: summary[k] - sim[k] for k in COMPARED_KEYS
                              if summary.get(k) is not None and sim.get(k) is not None}
