@@ -137,6 +137,10 @@ def residuals(targets, reducer, positions: int) -> np.ndarray:
 
 
 def _scale(spec, start: float) -> float:
+    if spec.name.endswith("_phase"):
+        # a direction: one radian whatever its start (|start| would make the step depend on
+        # where the zero of the angle happens to be)
+        return 1.0 / TO_SI[spec.unit]
     return abs(start) if start != 0 else _TYPICAL.get(spec.unit, 1.0)
 
 
