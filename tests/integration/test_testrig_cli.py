@@ -122,3 +122,19 @@ def test_compare_without_a_torque_says_the_model_ran_at_zero(tmp_path, capsys):
     assert "the model ran at 0 N*m" in capsys.readouterr().out
     assert main(["testrig", str(path), "--compare", "--points", "256", "--json"]) == 0
     assert "0 N*m" in json.loads(capsys.readouterr().out)["simulated"]["note"]
+
+
+def test_compare_gives_the_model_efficiency_when_the_set_has_friction(tmp_path, capsys):
+    path = tmp_path / "run_15rpm_300Nm.csv"
+    _frame().assign(input_torque_nm=300 / 121 / 0.85, output_torque_nm=300.0).to_csv(
+        path, index=False)
+    assert main(["testrig", str(path), "--compare", "--points", "256", "--json",
+                 "--params", "RV-40E-bearings"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["efficiency"] == pytest.approx(0.85, rel=1e-9)
+    # the efficiency engine at 15 rpm, 300 N*m (0.903 measured when written)
+    assert 0.8 < s["simulated"]["efficiency"] < 0.99
+    assert s["difference"]["efficiency"] == pytest.approx(0.85 - s["simulated"]["efficiency"])
+    assert main(["testrig", str(path), "--compare", "--points", "256", "--json"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert "efficiency" not in s["simulated"] and "no friction" in s["simulated"]["note"]
