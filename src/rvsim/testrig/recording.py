@@ -6,6 +6,9 @@ and direction.  Columns are found by their default names (:data:`DEFAULT_COLUMNS
 :class:`ColumnMap` (command line ``--column`` or a small TOML, docs/user_guide.md,
 "Test-bench data"); values are turned into SI here and nowhere else.
 
+Angles that an absolute encoder reports within one revolution (0-360 deg, or 0 to the counts per
+revolution) are made continuous (:func:`unwrapped`).
+
 Every problem with a file is an :class:`~rvsim.errors.InputFileError` whose message starts with
 the file name: missing or misnamed columns, non-numeric values, NaN gaps, time that does not
 increase.
@@ -24,7 +27,8 @@ from .._files import read_toml
 from ..errors import InputFileError
 
 __all__ = ["Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map",
-           "parse_column_option", "point_from_name", "DEFAULT_COLUMNS", "QUANTITIES", "UNITS"]
+           "parse_column_option", "point_from_name", "unwrapped", "DEFAULT_COLUMNS",
+           "QUANTITIES", "UNITS"]
 
 #: canonical quantity -> (default column name, its unit)
 DEFAULT_COLUMNS: dict[str, tuple[str, str]] = {
@@ -346,8 +350,23 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None) -> Rec
             raise InputFileError(f"{path}: time does not increase at data row {row} "
                                  f"({values['time'][row - 2]:g} s then "
                                  f"{values['time'][row - 1]:g} s)")
+        for q in ("input_angle", "output_angle"):
+            if values[q] is not None:
+                values[q] = unwrapped(values[q])
     return Recording(path=path, kind=kind, ratio=column_map.ratio,
                      **{q: values[q] for q in QUANTITIES})
+
+
+def unwrapped(angle: np.ndarray) -> np.ndarray:
+    """An angle [rad] made continuous if it is an absolute encoder's reading within one
+    revolution (all values within one turn, and steps of more than half a turn between
+    samples, which no sampled rotation makes): the turns are counted (numpy.unwrap).  Any
+    other angle is returned unchanged."""
+    if angle.size < 2 or np.ptp(angle) > _TURN * (1.0 + 1e-9):
+        return angle
+    if not np.any(np.abs(np.diff(angle)) > 0.5 * _TURN):
+        return angle
+    return np.unwrap(angle, period=_TURN)
 
 
 _POINT_PATTERN = re.compile(r"(?<![A-Za-z])([-+]?\d+(?:[.p]\d+)?)\s*(rpm|nm|degc|c)(?![A-Za-z])",
