@@ -372,17 +372,41 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
     f_new = np.empty(N_DOF)
     Q0 = np.empty(N_DOF)
     hold = np.zeros((2, 2))
+    q_entry = q.copy()
     total = 0
     torque_in = 0.0
-    for update in range(FRICTION_ITERATIONS):
+    restarted = False
+    first = 0
+    status = STATUS_OK
+    for update in range(2 * FRICTION_ITERATIONS):
+        if update - first >= FRICTION_ITERATIONS:
+            status = STATUS_NOT_CONVERGED
+            break
         status, iterations, torque_in = _solve_point(
             P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
             mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
             mesh_state, f_ext, fe)
         total += iterations
+        if status == STATUS_NOT_CONVERGED and not restarted:
+            # the held friction is a constant force.  Where the contacts unload (0 N*m with
+            # clearances) it can push the bodies across their play, in many small steps
+            # along curved contacts, which friction cannot do (Coulomb's is bounded by the
+            # normal forces, the bearings' viscous drag needs a motion that nothing drives).
+            # The point starts again from where it began with no friction held: an unloaded
+            # body stays where it was and the friction grows from that of that pose
+            restarted = True
+            first = update
+            for i in range(N_DOF):
+                q[i] = q_entry[i]
+                f_ext[i] = 0.0
+            status, iterations, torque_in = _solve_point(
+                P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
+                crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q,
+                K, channel, mesh_state, f_ext, fe)
+            total += iterations
         if status != STATUS_OK:
-            return status, total, torque_in
-        if update == 0:
+            break
+        if update == first:
             # the direction of travel of this point, held while the friction settles (a
             # direction taken afresh at each update can turn a tiny relative motion over
             # and back, and the Coulomb forces with it: no fixed point)
@@ -406,7 +430,21 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
             for i in range(N_DOF):
                 Q[i] = Q0[i] + f_ext[i]
             return STATUS_OK, total, torque_in
-    return STATUS_NOT_CONVERGED, total, torque_in
+    if status == STATUS_NOT_CONVERGED and abs(torque) <= tol * scale[CARRIER]:
+        # no output torque (the torque-reversal test's zero crossings) and no friction fixed
+        # point: the reducer sticks.  The frictionless equilibrium from where the point began
+        # is a static one (zero friction force is within every friction law's bound), and
+        # with no load nothing drives the motion that kinetic friction needs
+        for i in range(N_DOF):
+            q[i] = q_entry[i]
+            f_ext[i] = 0.0
+        status, iterations, torque_in = _solve_point(
+            P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
+            mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
+            mesh_state, f_ext, fe)
+        total += iterations
+        return status, total, torque_in
+    return status if status != STATUS_OK else STATUS_NOT_CONVERGED, total, torque_in
 
 
 @numba.njit(cache=True)
