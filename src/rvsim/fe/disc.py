@@ -27,7 +27,7 @@ from . import cache
 from .elasticity import PlaneStressBody, edge_load
 from .mesh import Circle, disc_outline, mesh_plane_region
 
-__all__ = ["DiscTable", "disc_geometry", "disc_table", "disc_tables", "FE_VERSION"]
+__all__ = ["DiscTable", "disc_body", "disc_geometry", "disc_table", "disc_tables", "FE_VERSION"]
 
 #: bump when the discretisation changes (part of every cache key)
 FE_VERSION = 1
@@ -74,8 +74,10 @@ def disc_geometry(reducer: Reducer, disc: int = 0) -> dict:
             "segments": c.disc_teeth * f.fe_segments_per_tooth, "version": FE_VERSION}
 
 
-def _compute(g: dict) -> tuple[np.ndarray, int, int]:
-    """Mesh, assemble and condense: (table, dofs, triangles)."""
+def disc_body(g: dict) -> tuple[PlaneStressBody, np.ndarray, sp.csc_matrix]:
+    """Mesh and assemble the disc of geometry ``g`` (:func:`disc_geometry`): the body, its
+    supported dofs (the crank-hole edges) and the unit loads of its contact segments
+    (n_dofs x segments)."""
     segments = g["segments"]
     dense = disc_outline(g["rg"], g["a"], g["zp"], g["offset"], 16 * segments)
     length = float(np.sum(np.linalg.norm(np.roll(dense, -1, axis=0) - dense, axis=1)))
@@ -99,8 +101,14 @@ def _compute(g: dict) -> tuple[np.ndarray, int, int]:
         edge_load(body, [(int(nodes[e]), int(nodes[(e + 1) % n_edges]))
                          for e in range(s * per_segment, (s + 1) * per_segment)])
         for s in range(segments)]).tocsc()
+    return body, supported, loads
+
+
+def _compute(g: dict) -> tuple[np.ndarray, int, int]:
+    """Mesh, assemble and condense: (table, dofs, triangles)."""
+    body, supported, loads = disc_body(g)
     table = body.compliance(loads, supported)
-    return table, int(body.n_dofs), int(mesh.triangles.shape[1])
+    return table, int(body.n_dofs), int(body.mesh.t.shape[1])
 
 
 def disc_table(reducer: Reducer, disc: int = 0) -> DiscTable:
