@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["Factor", "PlaneStressBody", "edge_load"]
+__all__ = ["Factor", "PlaneStressBody", "edge_force", "edge_load"]
 
 
 class PlaneStressBody:
@@ -143,3 +143,20 @@ def edge_load(body: PlaneStressBody, edges: list[tuple[int, int]], direction: st
             values += [weight * share * nx, weight * share * ny]
     return sp.csc_matrix((values, (rows, np.zeros(len(rows), dtype=np.int64))),
                          shape=(body.n_dofs, 1))
+
+
+def edge_force(body: PlaneStressBody, edges: list[tuple[int, int]], direction: np.ndarray
+               ) -> np.ndarray:
+    """Load vector (dense, n_dofs) of a unit force along ``direction`` (a unit vector) spread
+    uniformly over boundary ``edges`` (vertex pairs): a bearing load on a hole's edge, whose
+    functional is the mean displacement of the edge along ``direction``.  Consistent P2 load
+    as in :func:`edge_load`."""
+    pts = body.mesh.p
+    lengths = [float(np.linalg.norm(pts[:, b] - pts[:, a])) for a, b in edges]
+    total = sum(lengths)
+    load = np.zeros(body.n_dofs)
+    for (a, b), length in zip(edges, lengths):
+        da, db, dm = body.edge_dofs(a, b)
+        for dofs, weight in ((da, 1.0 / 6.0), (db, 1.0 / 6.0), (dm, 2.0 / 3.0)):
+            load[dofs] += weight * length / total * np.asarray(direction)
+    return load
