@@ -335,41 +335,41 @@ def test_disc_frequencies_converge_with_the_element_size():
 
 
 def test_craig_bampton_keeps_the_statics_and_converges_to_the_full_frequencies():
-    """Coarse disc (h = 4 mm, 78 segments, 12 232 dofs).  The reduced static compliance is the
-    condensed one to round-off (measured 8e-16) whatever the modes; the lowest six reduced
-    frequencies lie above the full model's by at most 13.6 % (Guyan, no modes), 1.4 % (10
-    modes), 0.15 % (40 modes)."""
+    """Coarse disc (h = 6 mm, 78 segments, 4 892 dofs).  The reduced static compliance is the
+    condensed one to round-off (measured 4e-14) whatever the modes; the lowest six reduced
+    frequencies lie above the full model's by at most 13.0 % (Guyan, no modes), 1.43 % (10
+    modes), 0.33 % (30 modes)."""
     from rvsim.fe.disc import disc_body, disc_geometry
     from rvsim.fe.modes import craig_bampton, supported_modes
 
-    r = _coarse(**{"flexibility.fe_element_size": 4.0})
+    r = _coarse(**{"flexibility.fe_element_size": 6.0})
     body, supported, loads = disc_body(disc_geometry(r))
     rho = r.materials.cycloid_disc.density
     full = supported_modes(body, rho, supported, 6)[0]
     condensed = body.compliance(loads, supported)
     errors = []
-    for modes in (0, 10, 40):
+    for modes in (0, 10, 30):
         model = craig_bampton(body, rho, loads, supported, modes)
         static = model.static_compliance()
         assert np.max(np.abs(static - condensed)) <= 1e-9 * np.max(np.abs(condensed))
         reduced = model.frequencies()[:6]
         assert np.all(reduced >= full * (1 - 1e-9))
         errors.append(np.max(reduced / full - 1))
-    assert errors[0] == pytest.approx(0.136, abs=0.005)
+    assert errors[0] == pytest.approx(0.130, abs=0.005)
     assert errors[0] > errors[1] > errors[2]
-    assert errors[2] < 0.002
+    assert errors[2] < 0.005
 
 
 def test_disc_craig_bampton_is_cached():
     from rvsim.fe.modes import disc_craig_bampton
 
-    r = _coarse(**{"flexibility.fe_element_size": 4.0})
+    r = _coarse(**{"flexibility.fe_element_size": 6.0})
     first, _, cached_first = disc_craig_bampton(r, 5)
     again, seconds, cached_again = disc_craig_bampton(r, 5)
     assert not cached_first and cached_again and seconds == 0.0
     assert np.array_equal(first.mass, again.mass)
     assert first.stiffness.shape == (78 + 5, 78 + 5)
-    assert first.fixed_interface_hz[0] == pytest.approx(29995, rel=0.002)
+    assert first.fixed_interface_hz[0] == pytest.approx(30118, rel=0.002)
 
 
 # --- the crankshaft (3-D P2 tetrahedra) ------------------------------------------------------
