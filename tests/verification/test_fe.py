@@ -418,6 +418,18 @@ def test_shaft_matches_the_timoshenko_beam():
     assert 3.0 < math.log(errors[0] / errors[1]) / math.log(5 / 3.3) < 4.5
 
 
+def _cached_spd_table(build, size):
+    """Build a table twice: computed, then from the cache, equal, symmetric, positive
+    definite, ``size`` square; returns its compliance."""
+    first, again = build(), build()
+    assert not first.cached and again.cached
+    c = first.compliance
+    assert np.array_equal(c, again.compliance)
+    assert c.shape == (size, size) and np.array_equal(c, c.T)
+    assert np.linalg.eigvalsh(c).min() > 0.0
+    return c
+
+
 def test_crank_table_of_the_rv40e():
     """RV-40E crank (journal r = 10 mm, eccentrics r = 12.5 mm offset 1.5 mm, supports at 0
     and 42 mm, discs at 13 and 29 mm), h = 5 mm: 6.26e-10 m/N under a force along the
@@ -426,13 +438,7 @@ def test_crank_table_of_the_rv40e():
     step: slow).  Cached."""
     from rvsim.fe.crank import crank_table
 
-    r = RV40E
-    first = crank_table(r, 5e-3)
-    again = crank_table(r, 5e-3)
-    assert not first.cached and again.cached
-    c = first.compliance
-    assert c.shape == (8, 8) and np.array_equal(c, c.T)
-    assert np.linalg.eigvalsh(c).min() > 0.0
+    c = _cached_spd_table(lambda: crank_table(RV40E, 5e-3), 8)
     assert c[0, 0] == pytest.approx(6.26e-10, rel=0.01)
     assert c[1, 1] == pytest.approx(6.53e-10, rel=0.01)
     assert c[0, 4] == pytest.approx(4.66e-10, rel=0.01)
@@ -448,11 +454,7 @@ def test_carrier_bore_table():
     from rvsim.fe.carrier import carrier_table
 
     r = _coarse(**{"flexibility.fe_element_size": 6.0})
-    first, again = carrier_table(r), carrier_table(r)
-    assert not first.cached and again.cached
-    c = first.compliance
-    assert c.shape == (4, 4) and np.array_equal(c, c.T)
-    assert np.linalg.eigvalsh(c).min() > 0.0
+    c = _cached_spd_table(lambda: carrier_table(r), 4)
     assert c[0, 0] == pytest.approx(1.4865e-10, rel=0.002)
     assert c[1, 1] == pytest.approx(1.2836e-10, rel=0.01)
     assert c[2, 2] == pytest.approx(c[0, 0], rel=1e-3)       # the bores mirror each other

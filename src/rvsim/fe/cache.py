@@ -10,11 +10,13 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import time
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
-__all__ = ["cache_dir", "geometry_key", "load", "store"]
+__all__ = ["cache_dir", "cached", "geometry_key", "load", "store"]
 
 
 def cache_dir() -> Path:
@@ -63,3 +65,17 @@ def store(key: str, arrays: dict) -> Path | None:
         return path
     except OSError:
         return None
+
+
+def cached(kind: str, values: dict, compute: Callable[[], dict]) -> tuple[dict, float, bool]:
+    """The arrays of ``kind`` for geometry ``values``: from the cache, or ``compute()``d and
+    stored.  Returns (arrays, seconds spent computing (0 from the cache), from the cache)."""
+    key = geometry_key(kind, values)
+    stored = load(key)
+    if stored is not None:
+        return stored, 0.0, True
+    start = time.perf_counter()
+    arrays = compute()
+    seconds = time.perf_counter() - start
+    store(key, arrays)
+    return arrays, seconds, False

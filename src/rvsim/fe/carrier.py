@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 
 import numpy as np
 
@@ -90,14 +89,11 @@ def carrier_table(reducer: Reducer, thickness: float | None = None) -> CarrierTa
     """The carrier's bore compliance table (from the cache when there); ``thickness`` [m] of
     the plate, default half the carrier + flange thickness."""
     g = carrier_geometry(reducer, thickness)
-    key = cache.geometry_key("carrier", g)
-    stored = cache.load(key)
-    if stored is not None:
-        return CarrierTable(stored["compliance"], int(stored["n_dofs"]),
-                            int(stored["n_triangles"]), 0.0, True)
-    start = time.perf_counter()
-    c, n_dofs, n_tri = plate_compliance(g)
-    seconds = time.perf_counter() - start
-    cache.store(key, {"compliance": c, "n_dofs": np.array(n_dofs),
-                      "n_triangles": np.array(n_tri)})
-    return CarrierTable(c, n_dofs, n_tri, seconds, False)
+
+    def compute():
+        c, n_dofs, n_tri = plate_compliance(g)
+        return {"compliance": c, "n_dofs": np.array(n_dofs), "n_triangles": np.array(n_tri)}
+
+    arrays, seconds, from_cache = cache.cached("carrier", g, compute)
+    return CarrierTable(arrays["compliance"], int(arrays["n_dofs"]),
+                        int(arrays["n_triangles"]), seconds, from_cache)

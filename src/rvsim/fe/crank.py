@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 
 import numpy as np
 import scipy.sparse as sp
@@ -39,6 +38,7 @@ from ..errors import RvsimError
 from ..parameters import Reducer
 from . import cache
 from .elasticity import Factor
+from .mesh import drop_unused_nodes, gmsh_elements, gmsh_model
 
 __all__ = ["CRANK_ELEMENT_SIZE", "CrankTable", "crank_geometry", "crank_table", "shaft_compliance"]
 
@@ -77,15 +77,7 @@ def crank_geometry(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE) -> dict:
 
 def _mesh_shaft(g: dict, size: float):
     """Tetrahedra of the journal and the eccentric cylinders: (points (3, n), tets (4, m))."""
-    import gmsh
-
-    own = not gmsh.isInitialized()
-    if own:
-        gmsh.initialize(readConfigFiles=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.option.setNumber("General.NumThreads", 1)
-        gmsh.model.add("rvsim-crank")
+    with gmsh_model("rvsim-crank") as gmsh:
         occ = gmsh.model.occ
         low, high = min(g["supports"]), max(g["supports"])
         half = 0.5 * g["support_width"]
@@ -108,20 +100,9 @@ def _mesh_shaft(g: dict, size: float):
         gmsh.option.setNumber("Mesh.MeshSizeMax", size)
         gmsh.option.setNumber("Mesh.MeshSizeMin", 0.5 * size)
         gmsh.model.mesh.generate(3)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
-        index[tags.astype(np.int64)] = np.arange(len(tags))
-        points = coords.reshape(-1, 3).T.copy()
-        _, nodes = gmsh.model.mesh.getElementsByType(4)
-        tets = index[nodes.astype(np.int64)].reshape(-1, 4).T.copy()
-        gmsh.model.remove()
-    finally:
-        if own:
-            gmsh.finalize()
-    used = np.unique(tets)
-    renumber = np.full(points.shape[1], -1, dtype=np.int64)
-    renumber[used] = np.arange(len(used))
-    return points[:, used].copy(), renumber[tets]
+        points, tets, _ = gmsh_elements(gmsh, 4, 4)
+    points, tets, _ = drop_unused_nodes(points, tets)
+    return points, tets
 
 
 def _band(mesh, centre: tuple[float, float], radius: float, z0: float, z1: float):
@@ -251,14 +232,11 @@ def crank_table(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE) -> CrankTabl
     """The crank's compliance table with elements of ``size`` [m] (from the cache when
     there)."""
     g = crank_geometry(reducer, size)
-    key = cache.geometry_key("crankshaft", g)
-    stored = cache.load(key)
-    if stored is not None:
-        return CrankTable(stored["compliance"], int(stored["n_dofs"]),
-                          int(stored["n_tetrahedra"]), 0.0, True)
-    start = time.perf_counter()
-    c, n_dofs, n_tets = shaft_compliance(g)
-    seconds = time.perf_counter() - start
-    cache.store(key, {"compliance": c, "n_dofs": np.array(n_dofs),
-                      "n_tetrahedra": np.array(n_tets)})
-    return CrankTable(c, n_dofs, n_tets, seconds, False)
+
+    def compute():
+        c, n_dofs, n_tets = shaft_compliance(g)
+        return {"compliance": c, "n_dofs": np.array(n_dofs), "n_tetrahedra": np.array(n_tets)}
+
+    arrays, seconds, from_cache = cache.cached("crankshaft", g, compute)
+    return CrankTable(arrays["compliance"], int(arrays["n_dofs"]),
+                      int(arrays["n_tetrahedra"]), seconds, from_cache)

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 
 import numpy as np
 import scipy.sparse as sp
@@ -114,17 +113,15 @@ def _compute(g: dict) -> tuple[np.ndarray, int, int]:
 def disc_table(reducer: Reducer, disc: int = 0) -> DiscTable:
     """The condensed compliance table of disc ``disc`` (from the cache when there)."""
     g = disc_geometry(reducer, disc)
-    key = cache.geometry_key("cycloid-disc", g)
-    stored = cache.load(key)
-    if stored is not None:
-        return DiscTable(stored["compliance"], g["segments"], int(stored["n_dofs"]),
-                         int(stored["n_triangles"]), 0.0, True)
-    start = time.perf_counter()
-    table, n_dofs, n_tri = _compute(g)
-    seconds = time.perf_counter() - start
-    cache.store(key, {"compliance": table, "n_dofs": np.array(n_dofs),
-                      "n_triangles": np.array(n_tri)})
-    return DiscTable(table, g["segments"], n_dofs, n_tri, seconds, False)
+
+    def compute():
+        table, n_dofs, n_tri = _compute(g)
+        return {"compliance": table, "n_dofs": np.array(n_dofs),
+                "n_triangles": np.array(n_tri)}
+
+    arrays, seconds, from_cache = cache.cached("cycloid-disc", g, compute)
+    return DiscTable(arrays["compliance"], g["segments"], int(arrays["n_dofs"]),
+                     int(arrays["n_triangles"]), seconds, from_cache)
 
 
 def disc_tables(reducer: Reducer) -> np.ndarray:

@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 
 import numpy as np
 import scipy.linalg
@@ -145,18 +144,15 @@ def disc_craig_bampton(reducer: Reducer, modes: int) -> tuple[CraigBampton, floa
 
     g = disc_geometry(reducer, 0)
     density = reducer.materials.cycloid_disc.density
-    key = cache.geometry_key("cycloid-disc-craig-bampton",
-                             {**g, "density": density, "modes": modes})
-    stored = cache.load(key)
-    if stored is not None:
-        return CraigBampton(stored["stiffness"], stored["mass"], int(stored["interfaces"]),
-                            modes, stored["fixed_interface_hz"], stored["compliance"]), 0.0, True
-    start = time.perf_counter()
-    _, body, supported, loads = _disc(reducer)
-    model = craig_bampton(body, density, loads, supported, modes)
-    seconds = time.perf_counter() - start
-    cache.store(key, {"stiffness": model.stiffness, "mass": model.mass,
-                      "interfaces": np.array(model.interfaces),
-                      "fixed_interface_hz": model.fixed_interface_hz,
-                      "compliance": model.compliance})
-    return model, seconds, False
+
+    def compute():
+        _, body, supported, loads = _disc(reducer)
+        model = craig_bampton(body, density, loads, supported, modes)
+        return {"stiffness": model.stiffness, "mass": model.mass,
+                "interfaces": np.array(model.interfaces),
+                "fixed_interface_hz": model.fixed_interface_hz, "compliance": model.compliance}
+
+    a, seconds, from_cache = cache.cached("cycloid-disc-craig-bampton",
+                                          {**g, "density": density, "modes": modes}, compute)
+    return (CraigBampton(a["stiffness"], a["mass"], int(a["interfaces"]), modes,
+                         a["fixed_interface_hz"], a["compliance"]), seconds, from_cache)
