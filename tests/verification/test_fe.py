@@ -3,7 +3,6 @@ compliance's properties, the disc table against the tooth model, the coupled con
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np

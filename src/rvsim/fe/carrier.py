@@ -17,7 +17,6 @@ their plane, are not in the model.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
@@ -28,21 +27,10 @@ from . import cache
 from .elasticity import PlaneStressBody, edge_force
 from .mesh import Circle, mesh_plane_region
 
-__all__ = ["CarrierTable", "carrier_geometry", "carrier_table", "plate_compliance"]
+__all__ = ["carrier_geometry", "carrier_table", "plate_compliance"]
 
 #: bump when the discretisation changes (part of every cache key)
 CARRIER_FE_VERSION = 1
-
-
-@dataclasses.dataclass(frozen=True)
-class CarrierTable:
-    """Compliance of the carrier's crank bores [m/N], (4, 4)."""
-
-    compliance: np.ndarray
-    n_dofs: int
-    n_triangles: int
-    seconds: float
-    cached: bool
 
 
 def carrier_geometry(reducer: Reducer, thickness: float | None = None) -> dict:
@@ -85,15 +73,9 @@ def plate_compliance(g: dict) -> tuple[np.ndarray, int, int]:
     return c, int(body.n_dofs), int(mesh.triangles.shape[1])
 
 
-def carrier_table(reducer: Reducer, thickness: float | None = None) -> CarrierTable:
+def carrier_table(reducer: Reducer, thickness: float | None = None
+                  ) -> cache.CondensedTable:
     """The carrier's bore compliance table (from the cache when there); ``thickness`` [m] of
     the plate, default half the carrier + flange thickness."""
     g = carrier_geometry(reducer, thickness)
-
-    def compute():
-        c, n_dofs, n_tri = plate_compliance(g)
-        return {"compliance": c, "n_dofs": np.array(n_dofs), "n_triangles": np.array(n_tri)}
-
-    arrays, seconds, from_cache = cache.cached("carrier", g, compute)
-    return CarrierTable(arrays["compliance"], int(arrays["n_dofs"]),
-                        int(arrays["n_triangles"]), seconds, from_cache)
+    return cache.condensed_table("carrier", g, lambda: plate_compliance(g))

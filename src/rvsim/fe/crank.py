@@ -28,7 +28,6 @@ eccentric 1, then of eccentric 2, in the crank frame with eccentric 1 towards +x
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
@@ -40,21 +39,10 @@ from . import cache
 from .elasticity import Factor
 from .mesh import drop_unused_nodes, gmsh_elements, gmsh_model
 
-__all__ = ["CRANK_ELEMENT_SIZE", "CrankTable", "crank_geometry", "crank_table", "shaft_compliance"]
+__all__ = ["CRANK_ELEMENT_SIZE", "crank_geometry", "crank_table", "shaft_compliance"]
 
 #: bump when the discretisation changes (part of every cache key)
 CRANK_FE_VERSION = 1
-
-
-@dataclasses.dataclass(frozen=True)
-class CrankTable:
-    """Compliance of the crank's eccentrics relative to its support line."""
-
-    compliance: np.ndarray      # (8, 8): [m/N, 1/N, 1/(N m)] by the rows' and columns' kinds
-    n_dofs: int
-    n_tetrahedra: int
-    seconds: float
-    cached: bool
 
 
 #: default element size of the crank [m]: 3-D P2 tetrahedra cost far more than the disc's
@@ -228,15 +216,9 @@ def shaft_compliance(g: dict) -> tuple[np.ndarray, int, int]:
     return 0.5 * (c + c.T), int(basis.N), int(tets.shape[1])
 
 
-def crank_table(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE) -> CrankTable:
+def crank_table(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE
+                ) -> cache.CondensedTable:
     """The crank's compliance table with elements of ``size`` [m] (from the cache when
     there)."""
     g = crank_geometry(reducer, size)
-
-    def compute():
-        c, n_dofs, n_tets = shaft_compliance(g)
-        return {"compliance": c, "n_dofs": np.array(n_dofs), "n_tetrahedra": np.array(n_tets)}
-
-    arrays, seconds, from_cache = cache.cached("crankshaft", g, compute)
-    return CrankTable(arrays["compliance"], int(arrays["n_dofs"]),
-                      int(arrays["n_tetrahedra"]), seconds, from_cache)
+    return cache.condensed_table("crankshaft", g, lambda: shaft_compliance(g))

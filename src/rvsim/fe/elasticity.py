@@ -123,10 +123,10 @@ def _dense(matrix) -> np.ndarray:
 
 def edge_load(body: PlaneStressBody, edges: list[tuple[int, int]], direction: str = "inward"
               ) -> np.ndarray:
-    """Load vector (sparse column, n_dofs x 1) of a unit resultant spread uniformly over straight boundary ``edges`` (vertex
-    pairs, counter-clockwise along the outer boundary), normal to each edge: ``inward`` pushes
-    into the body.  Consistent P2 load: 1/6 of an edge's share at each vertex, 2/3 at the
-    midside node."""
+    """Load vector (sparse column, n_dofs x 1) of a unit resultant spread uniformly over
+    straight boundary ``edges`` (vertex pairs, counter-clockwise along the outer boundary),
+    normal to each edge: ``inward`` pushes into the body.  Consistent P2 load: 1/6 of an
+    edge's share at each vertex, 2/3 at the midside node."""
     rows, values = [], []
     pts = body.mesh.p
     lengths = [float(np.linalg.norm(pts[:, b] - pts[:, a])) for a, b in edges]
