@@ -460,3 +460,31 @@ def test_carrier_bore_table():
     assert abs(c[0, 2]) < 0.05 * c[0, 0]
     # plane stress: the compliance is inversely proportional to the thickness
     assert carrier_table(r, 0.03).compliance[0, 0] == pytest.approx(c[0, 0] / 2, rel=1e-9)
+
+
+def test_free_interface_modes_with_residual_flexibility():
+    """The kernel-ready reduction (modes of the disc held at its crank holes + the residual
+    massless compliance), coarse disc h = 6 mm: its statics is the condensed table to
+    round-off (measured 2e-16); with 1e9 N/m springs on the 39 segments of one half (the
+    loaded pins at their tangent stiffness) its lowest six frequencies approach the full
+    model's (10 657 .. 26 149 Hz) within 3.7 %, 0.57 %, 0.18 % with 10, 20, 40 modes."""
+    from rvsim.fe.disc import disc_body, disc_geometry
+    from rvsim.fe.modes import free_interface, spring_frequencies
+
+    r = _coarse(**{"flexibility.fe_element_size": 6.0})
+    body, supported, loads = disc_body(disc_geometry(r))
+    rho = r.materials.cycloid_disc.density
+    condensed = body.compliance(loads, supported)
+    springs = np.zeros(loads.shape[1])
+    springs[: loads.shape[1] // 2] = 1e9
+    full = spring_frequencies(body, rho, loads, supported, springs, 6)
+    assert full[0] == pytest.approx(10657, rel=1e-3)
+    errors = []
+    for modes in (10, 20, 40):
+        model = free_interface(body, rho, loads, supported, modes)
+        omega2 = (2 * math.pi * model.frequencies_hz) ** 2
+        static = model.residual + (model.participation / omega2) @ model.participation.T
+        assert np.max(np.abs(static - condensed)) <= 1e-9 * np.max(np.abs(condensed))
+        errors.append(np.max(np.abs(model.with_springs(springs)[:6] / full - 1)))
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[1] < 0.01 and errors[2] < 0.003

@@ -37,8 +37,8 @@ from ..parameters import Reducer
 from . import cache
 from .elasticity import PlaneStressBody, _dense
 
-__all__ = ["CraigBampton", "craig_bampton", "disc_craig_bampton", "disc_frequencies",
-           "supported_modes"]
+__all__ = ["CraigBampton", "FreeInterface", "craig_bampton", "disc_craig_bampton",
+           "disc_frequencies", "free_interface", "spring_frequencies", "supported_modes"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -119,6 +119,68 @@ def craig_bampton(body: PlaneStressBody, density: float, loads, supported: np.nd
     stiffness = basis.T @ (body.stiffness[free][:, free] @ basis)
     return CraigBampton(0.5 * (stiffness + stiffness.T), 0.5 * (mass + mass.T), n_i, modes,
                         np.sqrt(w2) / (2.0 * math.pi), c)
+
+
+@dataclasses.dataclass(frozen=True)
+class FreeInterface:
+    """Free-interface modes with residual flexibility (MacNeal 1971, Craig & Chang 1977): the
+    form an explicit integrator can take.  With modal coordinates eta (mass-normalised modes
+    of the supported body, interface loads free) and interface forces f on the segments:
+
+        eta'' + Omega^2 eta = P^T f,    q = P eta + R f,
+
+    P = B^T Phi (n_i x modes) the modes' mean displacements over the segments, R = C - P
+    Omega^-2 P^T the residual (massless) compliance of the modes left out.  Static: q = C f
+    exactly, whatever the number of modes."""
+
+    frequencies_hz: np.ndarray      # (modes,)
+    participation: np.ndarray       # P (n_i, modes) [m per modal unit]
+    residual: np.ndarray            # R (n_i, n_i) [m/N]
+    compliance: np.ndarray          # C (n_i, n_i) [m/N]
+
+    def with_springs(self, stiffness: np.ndarray) -> np.ndarray:
+        """Natural frequencies [Hz] of the reduced body with a spring of ``stiffness`` [N/m]
+        (n_i,) from each segment to the ground (contacts held at their tangent stiffness):
+        the modal equations with f = -k q eliminated."""
+        k = np.diag(stiffness)
+        n_i = len(stiffness)
+        back = np.linalg.solve(np.eye(n_i) + k @ self.residual, k @ self.participation)
+        omega2 = np.diag((2.0 * math.pi * self.frequencies_hz) ** 2)
+        w2 = scipy.linalg.eigvalsh(omega2 + self.participation.T @ back)
+        return np.sqrt(np.maximum(w2, 0.0)) / (2.0 * math.pi)
+
+
+def free_interface(body: PlaneStressBody, density: float, loads, supported: np.ndarray,
+                   modes: int) -> FreeInterface:
+    """Free-interface reduction of ``body`` on the interface loads ``loads`` with the lowest
+    ``modes`` modes of the supported body."""
+    factor = body.factor(supported)
+    free = factor.free
+    b = _dense(loads[free])
+    c = b.T @ factor.solve(b)
+    c = 0.5 * (c + c.T)
+    if modes > 0:
+        k = body.stiffness[free][:, free]
+        m = body.mass(density)[free][:, free]
+        w2, phi = _shift_invert(k, m, factor.solve, modes)
+    else:
+        w2, phi = np.zeros(0), np.zeros((len(free), 0))
+    p = b.T @ phi
+    residual = c - (p / w2) @ p.T if modes > 0 else c.copy()
+    return FreeInterface(np.sqrt(w2) / (2.0 * math.pi), p, 0.5 * (residual + residual.T), c)
+
+
+def spring_frequencies(body: PlaneStressBody, density: float, loads, supported: np.ndarray,
+                       stiffness: np.ndarray, count: int) -> np.ndarray:
+    """The lowest ``count`` natural frequencies [Hz] of the full body with a spring of
+    ``stiffness`` [N/m] on each interface functional (K + B k B^T): the reference of
+    :meth:`FreeInterface.with_springs`."""
+    free = np.setdiff1d(np.arange(body.n_dofs), supported)
+    b = sp.csc_matrix(loads)[free]
+    k = (body.stiffness[free][:, free] + b @ sp.diags(stiffness) @ b.T).tocsc()
+    m = body.mass(density)[free][:, free]
+    w2 = eigsh(k, k=count, M=m, sigma=0.0, which="LM", return_eigenvectors=False)
+    return np.sqrt(np.sort(w2)) / (2.0 * math.pi)
 
 
 def _disc(reducer: Reducer):
