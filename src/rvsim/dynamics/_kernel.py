@@ -89,20 +89,8 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
     Q[b + 3] += wu * fy
 
 
-@numba.njit(cache=True, inline="always")
-def _small_angle(y, x):
-    """atan2(y, x); for |y| < 1e-3 x (a planet's centre off its line of centres by microns)
-    the series z - z^3/3 + z^5/5 of atan z, z = y / x, exact to rounding (z^7/7 < 1e-21 z)."""
-    if x > 0.0 and abs(y) < 1e-3 * x:
-        z = y / x
-        z2 = z * z
-        return z * (1.0 - z2 * (1.0 / 3.0 - 0.2 * z2))
-    return math.atan2(y, x)
-
-
 @numba.njit(cache=True)
-def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank, cos_l,
-              sin_l):
+def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank):
     """Sun-planet mesh j: returns (normal force, input torque, energy, dissipated power,
     stiffness, deflection, number of tooth pairs at the roll position, loaded flank).
 
@@ -128,8 +116,9 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
     r2 = px * px + py * py
     r = math.sqrt(r2)
     # angle of the line of centres, kept continuous: carrier angle + assembly angle + deviation
-    line = q[CARRIER] + crank_angle         # its cosine and sine: cos_l, sin_l
-    beta = line + _small_angle(-sin_l * px + cos_l * py, cos_l * px + sin_l * py)
+    line = q[CARRIER] + crank_angle
+    cos_l, sin_l = math.cos(line), math.sin(line)
+    beta = line + math.atan2(-sin_l * px + cos_l * py, cos_l * px + sin_l * py)
     dbeta_x, dbeta_y = -py / r2, px / r2
     dr_x, dr_y = px / r, py / r
     rb1, rb2 = P[RB1], P[RB2]
@@ -206,32 +195,6 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     are then solved together (:func:`rvsim.dynamics._fe_contacts.apply_coupled`).  (2, 0, 0):
     independent contacts.
     """
-    n = pins.shape[0]
-    if fe.shape[1] == 0:
-        # independent contacts need no work arrays: zero-length views (no allocation)
-        energy, power, worst, _ = _pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u,
-                                            next_eval, step, forces, elastic,
-                                            next_eval[disc, :0], forces[:0])
-        return energy, power, worst
-    slots = np.empty(n, dtype=np.int64)
-    work = np.empty((n, 6))
-    energy, power, worst, count = _pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
-                                            step, forces, elastic, slots, work)
-    if count > 0:
-        e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[PIN_CB], P[ZETA],
-                                 P[M_DISC], forces[disc], elastic[disc], Q, K,
-                                 DISC0 + DISC_STRIDE * disc)
-        energy += e
-        power += pw
-    return energy, power, worst
-
-
-@numba.njit(cache=True)
-def _pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic, slots,
-              work):
-    """The pin contacts of :func:`pin_contacts`: independent ones applied to ``Q``, or, with
-    ``slots`` of one row per pin, the touching ones' geometry stored in ``slots`` / ``work``
-    for the coupled solve.  Returns (energy, power, max penetration, touching pins stored)."""
     d = DISC0 + DISC_STRIDE * disc
     ox, oy, th = q[d], q[d + 1], q[d + 2]
     vx, vy, w = v[d], v[d + 1], v[d + 2]
@@ -251,7 +214,9 @@ def _pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, 
     worst = 0.0
     want = K.shape[0] > 0
     n = pins.shape[0]
-    coupled = slots.shape[0] > 0
+    coupled = fe.shape[1] > 0
+    slots = np.empty(n if coupled else 0, dtype=np.int64)
+    work = np.empty((n if coupled else 0, 6))
     count = 0
     for i in range(n):
         if step < next_eval[disc, i]:
@@ -314,7 +279,12 @@ def _pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, 
         Q[d] += fx
         Q[d + 1] += fy
         Q[d + 2] += torque
-    return energy, power, worst, count
+    if count > 0:
+        e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[PIN_CB], P[ZETA],
+                                 P[M_DISC], forces[disc], elastic[disc], Q, K, d)
+        energy += e
+        power += pw
+    return energy, power, worst
 
 
 @numba.njit(cache=True)
@@ -382,26 +352,25 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess):
 
 
 @numba.njit(cache=True)
-def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic, cos_p, sin_p,
-                cos_t, sin_t):
+def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
     contact, :func:`~rvsim.dynamics._bearings.conforming_force`) or a needle roller bearing
     (:func:`~rvsim.dynamics._bearings.roller_set`; P[ARM_KIND]).
 
     ``elastic[crank, disc]`` carries the bushing's elastic force from step to step (Newton
     start).  ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic
-    force (:func:`arm_stiffness`).  (cos_p, sin_p): cosine and sine of the eccentric's angle
-    phi below, (cos_t, sin_t) of the disc's rotation.  Returns (resultant force, energy,
-    dissipated power)."""
+    force (:func:`arm_stiffness`).  Returns (resultant force, energy, dissipated power)."""
     ax, ay, avx, avy = crank_point(q, v, crank, wl, wu)
     b = CRANK0 + CRANK_STRIDE * crank
     phi = q[b + 4] + disc * math.pi + P[ECC_PHASE0 + 2 * crank + disc]
     ecc = P[ECC] + P[ECC_ERR0 + 2 * crank + disc]
+    cos_p, sin_p = math.cos(phi), math.sin(phi)
     ex = ax + ecc * cos_p
     ey = ay + ecc * sin_p
     evx = avx - ecc * sin_p * v[b + 4]
     evy = avy + ecc * cos_p * v[b + 4]
     d = DISC0 + DISC_STRIDE * disc
+    cos_t, sin_t = math.cos(q[d + 2]), math.sin(q[d + 2])
     hx = q[d] + cos_t * hole_x - sin_t * hole_y
     hy = q[d + 1] + sin_t * hole_x + cos_t * hole_y
     hvx = v[d] - v[d + 2] * (hy - q[d + 1])
@@ -440,20 +409,20 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic, cos
 
 
 @numba.njit(cache=True)
-def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic, cos_c, sin_c):
+def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
     """Crank ``crank``'s lower or upper support node in its carrier / flange bore: the paper's
     bushing (conforming contact) or a tapered roller bearing (P[SUP_KIND]).
 
     ``elastic[crank, SUP_SLOT0 + upper]`` carries the bushing's elastic force from step to step
-    (Newton start, as in :func:`arm_bushing`); (cos_c, sin_c): cosine and sine of the carrier
-    angle plus ``crank_angle``.
+    (Newton start, as in :func:`arm_bushing`).
     ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic force (as in
     :func:`arm_bushing`).  Returns (resultant force, energy, dissipated power)."""
     b = CRANK0 + CRANK_STRIDE * crank + (2 if upper else 0)
     phi = CRANK0 + CRANK_STRIDE * crank + 4
+    carrier_angle = q[CARRIER] + crank_angle
     radius = P[CENTRE_DIST] + P[BORE_DR0 + crank]
-    bx = radius * cos_c - P[BORE_DT0 + crank] * sin_c
-    by = radius * sin_c + P[BORE_DT0 + crank] * cos_c
+    bx = radius * math.cos(carrier_angle) - P[BORE_DT0 + crank] * math.sin(carrier_angle)
+    by = radius * math.sin(carrier_angle) + P[BORE_DT0 + crank] * math.cos(carrier_angle)
     rx, ry = q[b] - bx, q[b + 1] - by
     wc = v[CARRIER]
     vx, vy = v[b] + wc * by, v[b + 1] - wc * bx
@@ -529,24 +498,13 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     power = 0.0
     torque_in = 0.0
     single = P[STAGES] == 1.0
-    # one cosine and sine per angle a step: the line of centres of crank j (= the angle of
-    # its carrier bores), the disc rotations and the cranks' rotations
-    line0, line1 = q[CARRIER] + crank_angles[0], q[CARRIER] + crank_angles[-1]
-    cos_line = (math.cos(line0), math.cos(line1))
-    sin_line = (math.sin(line0), math.sin(line1))
-    disc0, disc1 = q[DISC0 + 2], q[DISC0 + DISC_STRIDE + 2]
-    cos_disc = (math.cos(disc0), math.cos(disc1))
-    sin_disc = (math.sin(disc0), math.sin(disc1))
-    crank0, crank1 = q[CRANK0 + 4], q[CRANK0 + CRANK_STRIDE + 4]
-    cos_crank = (math.cos(crank0), math.cos(crank1))
-    sin_crank = (math.sin(crank0), math.sin(crank1))
     if single:
         torque_in, energy, power = input_shaft(P, q, v, Q, K, theta_in, omega_in)
     else:
         for j in range(2):
             force, torque, e, pw, stiffness, deflection, natural, rule = gear_mesh(
                 P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
-                mesh_hold[j, 0], mesh_hold[j, 1], cos_line[j], sin_line[j])
+                mesh_hold[j, 0], mesh_hold[j, 1])
             channel[CH_MESH_F0 + j] = force
             mesh_state[j, 0] = stiffness
             mesh_state[j, 1] = deflection
@@ -586,17 +544,8 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             if holes.shape[1] > 2:          # per-disc hole offsets (per-part errors)
                 hole_x += holes[j, 2 + 2 * disc]
                 hole_y += holes[j, 3 + 2 * disc]
-            # eccentric of disc 1 opposite that of disc 0, each turned by its phase error
-            phase = P[ECC_PHASE0 + 2 * j + disc]
-            if phase == 0.0:
-                sign = 1.0 if disc == 0 else -1.0
-                cos_p, sin_p = sign * cos_crank[j], sign * sin_crank[j]
-            else:
-                phi = q[CRANK0 + CRANK_STRIDE * j + 4] + disc * math.pi + phase
-                cos_p, sin_p = math.cos(phi), math.sin(phi)
             force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
-                                       arm_elastic, cos_p, sin_p, cos_disc[disc],
-                                       sin_disc[disc])
+                                       arm_elastic)
             channel[CH_ARM_F00 + 2 * j + disc] = force
             energy += e
             power += pw
@@ -604,7 +553,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
                 power += arm_bearing_friction(P, v, Q, j, disc, force)
         for upper in range(2):
             force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j],
-                                           arm_elastic, cos_line[j], sin_line[j])
+                                           arm_elastic)
             channel[CH_SUP_FL0 + 2 * j + upper] = force
             energy += e
             power += pw
