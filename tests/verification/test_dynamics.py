@@ -150,9 +150,9 @@ def test_unstable_step_reports_status():
 # 0.6780180152296236, 1642.1394312128896).  The pins hold one machine's arithmetic bit for bit:
 # the old kernel with the step changed by 1e-12 relative moves run 1's peak-to-peak TE and
 # largest pin force by up to 1.4 % and its mean TE by 1.7e-6 (docs/benchmarks.md, issue 14)
-PINNED = {1: (3.3745830497745346, 0.1726719747364931, 757.8778678468598),
-          2: (8.100121856780738, 0.41565928484293124, 1207.4367409408237),
-          3: (12.961119997725376, 0.6755408930533768, 1642.1394310317348)}
+PINNED = {1: (3.374585558284625, 0.17428258572410593, 763.7551172649006),
+          2: (8.100119452864666, 0.41565931094815944, 1207.3041158690949),
+          3: (12.96111977432062, 0.6755408931098632, 1642.1394311592592)}
 
 
 @pytest.mark.parametrize("run", [1, 3])
