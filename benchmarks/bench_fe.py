@@ -1,5 +1,8 @@
 """Benchmark the finite-element disc (issue 13, item 4).
 
+Also times (CPU and wall) the bodies the engines do not use yet: the disc's Craig-Bampton model
+with 20 modes, the 3-D crank at 3 mm, the carrier plate.
+
 Targets: meshing and condensing the RV-40E disc <= 10 s once per geometry (then loaded from the
 cache); a 360-position quasi-static TE curve with the FE disc <= 3 x the rigid-body one; a 4 s
 dynamic run with the FE disc <= 2 x the rigid-disc run.  Prints medians (wall and CPU time),
@@ -21,24 +24,15 @@ os.environ["RVSIM_CACHE_DIR"] = tempfile.mkdtemp(prefix="rvsim-bench-fe-")
 import argparse  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
-import statistics  # noqa: E402
 import time  # noqa: E402
+
+from _timing import timed  # noqa: E402
 
 
 #: a short schedule for the warm-up run
 SHORT = {"operating.duration": 0.3, "operating.speed_ramp_time": 0.1,
          "operating.load_start": 0.1, "operating.load_ramp_end": 0.2,
          "operating.steady_start": 0.2}
-
-
-def _timed(function, repeat):
-    walls, cpus = [], []
-    for _ in range(repeat):
-        wall, cpu = time.perf_counter(), time.process_time()
-        function()
-        walls.append(time.perf_counter() - wall)
-        cpus.append(time.process_time() - cpu)
-    return statistics.median(walls), statistics.median(cpus)
 
 
 def main() -> None:
@@ -48,35 +42,48 @@ def main() -> None:
     args = parser.parse_args()
 
     from rvsim.dynamics import simulate
+    from rvsim.fe.carrier import carrier_table
+    from rvsim.fe.crank import crank_table
     from rvsim.fe.disc import disc_table
+    from rvsim.fe.modes import disc_craig_bampton
     from rvsim.parameters import RV40E, with_values
     from rvsim.quasistatic import ltca
 
     rigid = RV40E
     tooth = with_values(RV40E, {"A": 1})
     fe = with_values(RV40E, {"A": 1, "flexibility.model": "fe"})
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     table = disc_table(fe)
     first_build = time.perf_counter() - start
+    first_build_cpu = time.process_time() - cpu
     start = time.perf_counter()
     disc_table(fe)
     from_cache = time.perf_counter() - start
+    out_bodies = {}
+    for name, build in (("disc_craig_bampton_20_modes", lambda: disc_craig_bampton(fe, 20)),
+                        ("crank_3mm", lambda: crank_table(fe)),
+                        ("carrier", lambda: carrier_table(fe))):
+        wall, cpu = time.perf_counter(), time.process_time()
+        build()
+        out_bodies[f"{name}_wall_s"] = time.perf_counter() - wall
+        out_bodies[f"{name}_cpu_s"] = time.process_time() - cpu
     torque = RV40E.rating.rated_torque
     for r in (rigid, tooth, fe):            # compile and warm
         ltca(r, torque=torque, positions=8)
     out = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
            "machine": f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
                       f"load average {os.getloadavg()[0]:.1f}",
-           "disc_mesh_and_condense_s": first_build, "disc_from_cache_s": from_cache,
+           "disc_mesh_and_condense_s": first_build,
+           "disc_mesh_and_condense_cpu_s": first_build_cpu, "disc_from_cache_s": from_cache,
            "disc_dofs": table.n_dofs, "disc_triangles": table.n_triangles,
-           "segments": table.segments}
+           "segments": table.segments, **out_bodies}
     for name, r in (("rigid", rigid), ("tooth", tooth), ("fe", fe)):
-        out[f"ltca360_{name}_wall_s"], out[f"ltca360_{name}_cpu_s"] = _timed(
+        out[f"ltca360_{name}_wall_s"], out[f"ltca360_{name}_cpu_s"] = timed(
             lambda: ltca(r, torque=torque), args.repeat)
     out["ltca_fe_over_rigid"] = out["ltca360_fe_wall_s"] / out["ltca360_rigid_wall_s"]
     for name, r in (("rigid", rigid), ("tooth", tooth), ("fe", fe)):
         simulate(with_values(r, SHORT))         # load the compiled kernel
-        out[f"simulate4s_{name}_wall_s"], out[f"simulate4s_{name}_cpu_s"] = _timed(
+        out[f"simulate4s_{name}_wall_s"], out[f"simulate4s_{name}_cpu_s"] = timed(
             lambda: simulate(r), args.dynamic_repeat)
     out["simulate_fe_over_rigid"] = out["simulate4s_fe_wall_s"] / out["simulate4s_rigid_wall_s"]
     print(json.dumps(out, indent=2))

@@ -18,18 +18,9 @@ for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUM
 import argparse  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
-import statistics  # noqa: E402
 import time  # noqa: E402
 
-
-def _timed(function, repeat):
-    walls, cpus = [], []
-    for _ in range(repeat):
-        wall, cpu = time.perf_counter(), time.process_time()
-        function()
-        walls.append(time.perf_counter() - wall)
-        cpus.append(time.process_time() - cpu)
-    return statistics.median(walls), statistics.median(cpus)
+from _timing import timed  # noqa: E402
 
 
 def main() -> None:
@@ -51,11 +42,11 @@ def main() -> None:
     }
     for name, r in (("frictionless", RV40E), ("typical_friction", reducer)):
         hysteresis(r)
-        wall, cpu = _timed(lambda: hysteresis(r), args.repeat)
+        wall, cpu = timed(lambda: hysteresis(r), args.repeat)
         report[f"hysteresis_{name}_ms"] = {"wall": round(1e3 * wall, 1),
                                            "cpu": round(1e3 * cpu, 1)}
     efficiency(reducer)
-    wall, cpu = _timed(lambda: efficiency(reducer), max(3, args.repeat // 3))
+    wall, cpu = timed(lambda: efficiency(reducer), max(3, args.repeat // 3))
     report["efficiency_map_5x5_s"] = {"wall": round(wall, 3), "cpu": round(cpu, 3)}
     report["load_average_1min_after"] = round(os.getloadavg()[0], 2)
     print(json.dumps(report, indent=2))

@@ -19,10 +19,11 @@ for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUM
 import argparse  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
-import statistics  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
+
+from _timing import timed  # noqa: E402
 
 FIRST_CALL = """
 import time
@@ -32,16 +33,6 @@ from rvsim.quasistatic import ltca
 ltca(RV40E, torque=RV40E.rating.rated_torque)
 print(time.perf_counter() - start)
 """
-
-
-def _timed(function, repeat):
-    walls, cpus = [], []
-    for _ in range(repeat):
-        wall, cpu = time.perf_counter(), time.process_time()
-        function()
-        walls.append(time.perf_counter() - wall)
-        cpus.append(time.process_time() - cpu)
-    return statistics.median(walls), statistics.median(cpus)
 
 
 def main() -> None:
@@ -72,13 +63,13 @@ def main() -> None:
     for name, reducer in cases.items():
         ltca(reducer, torque=rated)
         hysteresis(reducer)
-        wall, cpu = _timed(lambda: ltca(reducer, torque=rated), args.repeat)
+        wall, cpu = timed(lambda: ltca(reducer, torque=rated), args.repeat)
         result = ltca(reducer, torque=rated)
         report[f"{name}_ltca_360_rated_ms"] = {"wall": round(1e3 * wall, 2),
                                                "cpu": round(1e3 * cpu, 2),
                                                "newton_iterations_per_position": round(
                                                    float(result.iterations.mean()), 2)}
-        wall, cpu = _timed(lambda: hysteresis(reducer), args.repeat)
+        wall, cpu = timed(lambda: hysteresis(reducer), args.repeat)
         report[f"{name}_hysteresis_ms"] = {"wall": round(1e3 * wall, 2),
                                            "cpu": round(1e3 * cpu, 2),
                                            "points": len(hysteresis(reducer).torque)}

@@ -2,7 +2,8 @@
 
 Runs ``rvsim.doe.run(paper_l36(), folder)`` into a fresh temporary folder with the default
 local workers (one per core), after a warm-up simulation so the JIT cache is loaded, and
-reports the median wall time of ``--repeat`` studies.
+reports the median wall time of ``--repeat`` studies, the CPU time of the parent and its
+worker processes (those it has ended) and the load average.
 
 ``--short`` runs the same 36 rows with a 0.05 s schedule (about 20 ms of simulation each):
 what remains is the runner's own cost per run (processes, dispatch, store), which a loaded
@@ -42,12 +43,16 @@ def main() -> None:
     study = paper_l36()
     if args.short:
         study = dataclasses.replace(study, fixed=study.fixed + SHORT_SCHEDULE)
-    walls = []
+    walls, cpus = [], []
     for _ in range(args.repeat):
         with tempfile.TemporaryDirectory() as folder:
             start = time.perf_counter()
+            before = os.times()
             results = run(study, folder, workers=args.workers, progress=False)
             walls.append(time.perf_counter() - start)
+            after = os.times()
+            # CPU of this process and of the worker processes it has reaped
+            cpus.append(sum(after[:4]) - sum(before[:4]))
             # the short runs are too short to settle (their status may say so): only the
             # runner's cost is measured then
             assert args.short or (results["status"] == "ok").all()
@@ -60,6 +65,8 @@ def main() -> None:
         "workers": args.workers or os.cpu_count(),
         "median_study_wall_s": round(statistics.median(walls), 2),
         "studies": [round(w, 2) for w in walls],
+        "cpu_s_all_processes": [round(c, 1) for c in cpus],
+        "load_average_1min": round(os.getloadavg()[0], 2),
     }, indent=2))
 
 

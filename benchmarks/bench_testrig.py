@@ -2,7 +2,8 @@
 
 Target: analysing a recording of 10^6 samples <= 2 s.  A synthetic TE recording (the RV-40E's
 quasi-static TE, forward and backward, encoder quantisation and noise) of ``--samples`` rows
-is written as CSV and as Parquet; the figure is the median of ``--repeat`` runs of
+is written as CSV and as Parquet; the figures are the median, min and max (wall-clock and
+CPU time of this process, which a shared machine inflates less) of ``--repeat`` runs of
 :func:`rvsim.testrig.analyse_path` (read + analyse, the numbers ``rvsim testrig`` prints),
 and separately of the analysis alone on the loaded recording.  BLAS threads limited to one.
 
@@ -26,12 +27,15 @@ from pathlib import Path  # noqa: E402
 
 
 def _median(function, repeat):
-    times = []
+    """Wall-clock and CPU time (this process) of ``repeat`` calls: median, min, max of each."""
+    wall, cpu = [], []
     for _ in range(repeat):
-        start = time.perf_counter()
+        start, start_cpu = time.perf_counter(), time.process_time()
         function()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times), min(times), max(times)
+        wall.append(time.perf_counter() - start)
+        cpu.append(time.process_time() - start_cpu)
+    return {"wall_s": [statistics.median(wall), min(wall), max(wall)],
+            "cpu_s": [statistics.median(cpu), min(cpu), max(cpu)]}
 
 
 def main() -> None:
@@ -42,7 +46,7 @@ def main() -> None:
 
     from rvsim.parameters import RV40E
     from rvsim.testrig import analyse_path, synthetic
-    from rvsim.testrig.bench import analyse_recording
+    from rvsim.testrig.bench import PointResult, analyse_recording
     from rvsim.testrig.model import point_summary
     from rvsim.testrig.recording import read_recording
 
@@ -61,14 +65,13 @@ def main() -> None:
                     point_summary(point, RV40E)
 
             whole()                                   # warm-up (imports)
-            figures[f"read_and_analyse_{suffix}_s"] = _median(whole, args.repeat)
+            figures[f"read_and_analyse_{suffix}"] = _median(whole, args.repeat)
         recording = read_recording(path)
 
         def analysis_only():
-            point_summary(type("P", (), {"point": {}, "files": [
-                analyse_recording(recording, {}, RV40E)]})(), RV40E)
+            point_summary(PointResult({}, [analyse_recording(recording, {}, RV40E)]), RV40E)
 
-        figures["analysis_only_s"] = _median(analysis_only, args.repeat)
+        figures["analysis_only"] = _median(analysis_only, args.repeat)
     figures.update(machine=f"{platform.machine()} {platform.processor() or ''}".strip(),
                    cpus=os.cpu_count(), python=platform.python_version(),
                    date=time.strftime("%Y-%m-%d %H:%M"),

@@ -1,9 +1,11 @@
+import os
 import sys
 
 try:
-    from .cli import main
+    from .cli import run
 except KeyboardInterrupt:  # Ctrl-C while the command line is still being imported
     print("rvsim: interrupted", file=sys.stderr)
-    sys.exit(130)
+    sys.stderr.flush()
+    os._exit(130)       # not sys.exit: see rvsim.cli.run
 
-sys.exit(main())
+run()

@@ -64,6 +64,14 @@ JOINT_MODEL_SCHEMA = {
         "lost_motion_rad": _NUMBER,
         "lost_motion_fraction_of_rated": _NUMBER,
         "hysteresis_loss_rad": _NUMBER,
+        "main_bearings": {
+            "type": "object",
+            "required": ["radial_stiffness_n_per_m", "axial_stiffness_n_per_m",
+                         "tilting_stiffness_nm_per_rad"],
+            "properties": {"radial_stiffness_n_per_m": _NUMBER,
+                           "axial_stiffness_n_per_m": _NUMBER,
+                           "tilting_stiffness_nm_per_rad": _NUMBER,
+                           "source": {"type": "string"}}},
         "transmission_error": {
             "type": "object",
             "required": ["torque_nm", "mean_rad", "peak_to_peak_rad", "harmonics"],
@@ -136,7 +144,7 @@ def joint_model(hysteresis, ltca, reducer, *, harmonics: int = 24) -> dict:
     chosen = np.argsort(amplitude[1:])[::-1][:harmonics] + 1
     floor = 1e-9 * float(amplitude[1:].max(initial=0.0))      # round-off lines left out
     chosen = np.sort(chosen[amplitude[chosen] > floor])
-    return {
+    model = {
         "schema": SCHEMA_NAME,
         "schema_version": SCHEMA_VERSION,
         "generator": f"rvsim {__version__}",
@@ -163,6 +171,20 @@ def joint_model(hysteresis, ltca, reducer, *, harmonics: int = 24) -> dict:
             "harmonics": [{"order": float(orders[i]), "amplitude_rad": float(amplitude[i]),
                            "phase_rad": float(phase[i])} for i in chosen]},
     }
+    if not reducer.layout.single_stage:
+        # the carrier's main bearings carry the arm's moment: a robot model needs their
+        # tilting stiffness beside the torsional curve (not in the planar engines)
+        from .bearings import main_bearing_stiffness
+
+        main = main_bearing_stiffness(reducer)
+        model["main_bearings"] = {
+            "radial_stiffness_n_per_m": float(main.radial),
+            "axial_stiffness_n_per_m": float(main.axial),
+            "tilting_stiffness_nm_per_rad": float(main.tilting),
+            "source": "rvsim.bearings.main_bearing_stiffness: Hertz point contact of the "
+                      "preloaded angular-contact ball pair (bearings.main_*), estimated sizes "
+                      "(docs/parameters.md)"}
+    return model
 
 
 def write_joint_model(path: str | Path, model: dict) -> Path:

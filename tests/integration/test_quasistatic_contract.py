@@ -73,3 +73,16 @@ def test_commands_on_the_engine(cli, tmp_path):
     res = cli("ltca", "--positions", "72", "--json", "--report", str(tmp_path / "l.html"))
     assert res.code == 0, res.err
     assert LTCA_KEYS <= set(json.loads(res.out))
+
+
+def test_summary_of_a_stopped_torque_reversal_names_its_status():
+    # a test that stops early (no raise) cannot give the catalogue quantities: NaN beside the
+    # status, not an exception from summary()
+    from rvsim.parameters import RV40E
+    from rvsim.quasistatic import hysteresis
+
+    loop = hysteresis(RV40E, rated_torque=1e9, points_per_branch=2, raise_on_failure=False)
+    assert loop.status == "not_converged" and not loop.converged.all()
+    summary = loop.summary()
+    assert summary["status"] == "not_converged"
+    assert np.isnan(summary["torsional_rigidity_nm_per_arcmin"])

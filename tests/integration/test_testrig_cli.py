@@ -85,7 +85,9 @@ def test_calibrate_writes_params_the_other_commands_accept(tmp_path, capsys):
     estimate = payload["parameters"]["contact.bushing_stiffness_factor"]["estimate"]
     assert 0.7 < estimate < 0.9
     assert main(["params", "--params", str(out / "fitted.toml"), "--json"]) == 0
-    rows = json.loads(capsys.readouterr().out)["parameters"]
+    shown = json.loads(capsys.readouterr().out)
+    assert shown["name"] == "bench start, calibrated to testrig"
+    rows = shown["parameters"]
     value = next(r["value"] for r in rows if r["name"] == "contact.bushing_stiffness_factor")
     assert value == pytest.approx(estimate, rel=1e-9)
 
@@ -99,3 +101,40 @@ def test_compare_refuses_a_file_ratio_that_is_not_the_models(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.startswith(f"rvsim: error: {path}: its ratio 81 differs from the parameter "
                           "set's 121")
+
+
+def test_calibrate_says_when_the_model_fails_next_to_the_start(tmp_path, capsys):
+    # the RV-40E's teeth do not assemble with any disc runout: starting at zero, the fit must
+    # say so (scipy's relative step, 1e-3 of |x|, stayed at 1e-15 m and claimed an interval)
+    out = tmp_path / "fit"
+    assert main(["calibrate", EXAMPLE, "--fit", "errors.disc_runout", "--positions", "64",
+                 "--out", str(out), "--json"]) == 1
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["status"] == "model_fails"
+    assert payload["parameters"]["errors.disc_runout"]["ci95"] == [None, None]
+    assert any("fails on both sides" in n and "overlaps" in n for n in payload["notes"])
+
+
+def test_compare_without_a_torque_says_the_model_ran_at_zero(tmp_path, capsys):
+    path = tmp_path / "free.csv"
+    _frame().to_csv(path, index=False)
+    assert main(["testrig", str(path), "--compare", "--points", "256"]) == 0
+    assert "the model ran at 0 N*m" in capsys.readouterr().out
+    assert main(["testrig", str(path), "--compare", "--points", "256", "--json"]) == 0
+    assert "0 N*m" in json.loads(capsys.readouterr().out)["simulated"]["note"]
+
+
+def test_compare_gives_the_model_efficiency_when_the_set_has_friction(tmp_path, capsys):
+    path = tmp_path / "run_15rpm_300Nm.csv"
+    _frame().assign(input_torque_nm=300 / 121 / 0.85, output_torque_nm=300.0).to_csv(
+        path, index=False)
+    assert main(["testrig", str(path), "--compare", "--points", "256", "--json",
+                 "--params", "RV-40E-bearings"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["efficiency"] == pytest.approx(0.85, rel=1e-9)
+    # the efficiency engine at 15 rpm, 300 N*m (0.903 measured when written)
+    assert 0.8 < s["simulated"]["efficiency"] < 0.99
+    assert s["difference"]["efficiency"] == pytest.approx(0.85 - s["simulated"]["efficiency"])
+    assert main(["testrig", str(path), "--compare", "--points", "256", "--json"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert "efficiency" not in s["simulated"] and "no friction" in s["simulated"]["note"]

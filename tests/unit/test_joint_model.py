@@ -82,3 +82,14 @@ def test_the_documented_snippet_runs(model, tmp_path, monkeypatch):
     assert scope["deflection"](150.0) == pytest.approx(150.0 / standin.STIFFNESS + free / 2,
                                                        rel=1e-9)
     assert abs(scope["theta_out"] - 0.7) < 1e-2
+
+
+def test_main_bearing_stiffness_travels_with_the_joint(model):
+    # the robot model needs the carrier's tilting stiffness beside the torsional curve
+    from rvsim.bearings import main_bearing_stiffness
+
+    data, _, _ = model
+    main = main_bearing_stiffness(with_values(RV40E, {"I": 0.01}))
+    assert data["main_bearings"]["tilting_stiffness_nm_per_rad"] == main.tilting
+    assert data["main_bearings"]["radial_stiffness_n_per_m"] == main.radial
+    assert data["main_bearings"]["axial_stiffness_n_per_m"] == main.axial

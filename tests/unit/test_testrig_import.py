@@ -1,6 +1,7 @@
 """Reading bench files: formats, mapping, units, points, manifests; the sampled-sweep helpers."""
 
 import math
+import re
 import sys
 
 import numpy as np
@@ -96,3 +97,61 @@ def test_binned_sweep_of_a_noiseless_loop_gives_the_catalogue_values():
     assert catalogue.backlash(t, a, b) == pytest.approx(2e-4, rel=1e-9)
     # the last bin's mean is below the extreme (99.5 N*m): read to 99 N*m
     assert catalogue.torsional_rigidity(t, a, 99.0, branch=b) == pytest.approx(1e5, rel=1e-6)
+
+
+def _there_and_back(n=3000, revolutions=1.1, ratio=121.0, offset=2e-5):
+    """A TE run forward then backward: TE 1e-5 sin(40 phi), +-offset/2 by direction [rad]."""
+    phi = np.r_[np.linspace(0.0, revolutions * 2 * np.pi, n),
+                np.linspace(revolutions * 2 * np.pi, 0.0, n)[1:]]
+    sense = np.r_[np.ones(n), -np.ones(n - 1)]
+    te = 1e-5 * np.sin(40 * phi) + 0.5 * offset * sense
+    return pd.DataFrame({"time_s": np.arange(phi.size) * 0.01,
+                         "input_angle_deg": np.degrees(ratio * phi),
+                         "output_angle_deg": np.degrees(phi - te)}), n
+
+
+def test_forward_and_backward_in_separate_files_give_the_offset_with_a_note(tmp_path):
+    frame, n = _there_and_back()
+    frame.to_csv(tmp_path / "both_300Nm.csv", index=False)
+    (one,) = analyse_path(tmp_path / "both_300Nm.csv", RV40E)
+    single = point_summary(one, RV40E)
+    folder = tmp_path / "split"
+    folder.mkdir()
+    # alphabetical order puts the backward file first; the orders are still the forward ones
+    frame.iloc[:n].to_csv(folder / "b_fwd_300Nm.csv", index=False)
+    frame.iloc[n - 1:].to_csv(folder / "a_bwd_300Nm.csv", index=False)
+    (two,) = analyse_path(folder, RV40E)
+    split = point_summary(two, RV40E)
+    arcmin = math.pi / 10800
+    assert single["forward_backward_offset_arcmin"] == pytest.approx(2e-5 / arcmin, rel=1e-3)
+    assert split["forward_backward_offset_arcmin"] == pytest.approx(
+        single["forward_backward_offset_arcmin"], rel=1e-9)
+    assert "forward_backward_offset_note" not in single
+    assert "b_fwd_300Nm.csv" in split["forward_backward_offset_note"]
+    assert split["orders"] == single["orders"]
+    assert split["orders"][0]["order"] == 40.0
+
+
+def test_angles_within_one_revolution_are_unwrapped(tmp_path):
+    # absolute encoders reporting 0-360 deg: the same numbers as the continuous angles
+    frame, _ = _there_and_back()
+    frame.to_csv(tmp_path / "continuous.csv", index=False)
+    wrapped = frame.assign(input_angle_deg=np.mod(frame.input_angle_deg, 360.0),
+                           output_angle_deg=np.mod(frame.output_angle_deg + 300.0, 360.0))
+    wrapped.to_csv(tmp_path / "wrapped.csv", index=False)
+    a, b = (point_summary(analyse_path(tmp_path / name, RV40E)[0], RV40E)
+            for name in ("continuous.csv", "wrapped.csv"))
+    assert b["ratio_measured"] == pytest.approx(a["ratio_measured"], rel=1e-9)
+    for key in ("ate_pp_arcmin", "te_rms_arcsec", "forward_backward_offset_arcmin"):
+        assert b[key] == pytest.approx(a[key], rel=1e-6), key
+
+
+def test_a_loop_without_both_branches_is_an_error_naming_the_file(tmp_path):
+    torque = np.linspace(100.0, -100.0, 2000)        # one way only: no increasing branch
+    path = tmp_path / "oneway.csv"
+    pd.DataFrame({"time_s": np.arange(torque.size) * 0.01, "input_angle_deg": 0.0,
+                  "output_angle_deg": 1e-4 * torque, "output_torque_nm": torque}).to_csv(
+        path, index=False)
+    with pytest.raises(InputFileError,
+                       match=re.escape(f"{path}: read as a torque reversal recording: ")):
+        analyse_path(path, RV40E)

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from rvsim.geometry import geometric_backlash, pin_gaps, profile_of
+from rvsim.geometry.cycloid import profile_offset
 from rvsim.parameters import RV40E, with_values
 
 CRANK_ANGLES = np.linspace(0.0, 2.0 * np.pi, 181)
@@ -86,3 +87,15 @@ def test_runout_moves_the_profile_by_half_of_it():
     # shifting the profile centre by 0.01 mm changes gaps by at most 0.01 mm, both signs
     assert np.abs(gaps).max() == pytest.approx(1e-5, rel=0.05)
     assert gaps.min() < 0 < gaps.max()
+
+
+def test_runout_phase_turns_the_profile_offset():
+    base = with_values(RV40E, {"errors.equidistant_modification": 0.01,
+                               "errors.disc_runout": 0.006})
+    turned = with_values(base, {"errors.disc_runout_phase": 90.0})
+    for disc in (0, 1):
+        x0, y0 = profile_offset(base, disc)
+        x1, y1 = profile_offset(turned, disc)
+        assert math.hypot(x1, y1) == pytest.approx(3e-6, rel=1e-12)
+        # turned a quarter turn counter-clockwise in the profile's axes
+        assert (x1, y1) == pytest.approx((-y0, x0), abs=1e-18)

@@ -72,3 +72,21 @@ def test_calibration_recovers_known_parameters_within_their_intervals(reducer, t
     pair = calibrate(points, start, ["clearances.crank_arm_bushing",
                                      "clearances.disc_arm_bushing"], positions=128)
     assert any("cannot tell" in note for note in pair.notes), pair.notes
+
+
+def test_calibration_recovers_the_direction_of_the_runout(tmp_path):
+    # an error phase: the runout turned 40 deg; the output encoder zeroed at the reducer's
+    # reference (zero_out = 0), as a phase fit needs (docs/user_guide.md)
+    true = with_values(RV40E, {**TRUE, "errors.disc_runout_phase": 40.0})
+    te, _ = synthetic.te_recording(true, torque=300.0, revolutions=1.05,
+                                   samples_per_revolution=30_000, zero_out=0.0,
+                                   model_points=256, seed=3)
+    te.to_csv(tmp_path / "te_300Nm.csv", index=False)
+    start = with_values(RV40E, {**TRUE, "errors.disc_runout": 0.003})    # phase 0
+    names = ["errors.disc_runout", "errors.disc_runout_phase"]
+    fit = calibrate(analyse_path(tmp_path, start), start, names, positions=256)
+    assert fit.status == "ok"
+    # measured: 40.024 deg (95 % CI 39.980 .. 40.068), runout 0.0059999 mm
+    assert fit.ci_low[1] <= 40.0 <= fit.ci_high[1]
+    assert fit.ci_high[1] - fit.ci_low[1] < 0.5
+    assert fit.ci_low[0] <= 0.006 <= fit.ci_high[0]

@@ -6,6 +6,7 @@ User errors print one line ``rvsim: error: ...`` on stderr and exit with code 2.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from .. import __version__
@@ -13,7 +14,7 @@ from ..errors import RvsimError
 from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig, _tolerance
 from ._common import EXAMPLES, Parser
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "run", "build_parser"]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -36,22 +37,58 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run one command; returns the exit code (0 ok, 1 failed run, 2 user error, 130 Ctrl-C)."""
+    return _main(argv)[0]
+
+
+def _main(argv: list[str] | None) -> tuple[int, str | None]:
     parser = build_parser()
+    command = None
     try:
         args = parser.parse_args(argv)
+        command = getattr(args, "command", None)
         if not getattr(args, "func", None):
             parser.print_help()
-            return 2
-        return int(args.func(args) or 0)
+            return 2, command
+        return int(args.func(args) or 0), command
     except RvsimError as exc:
         print(f"rvsim: error: {exc}", file=sys.stderr)
-        return 2
+        return 2, command
     except KeyboardInterrupt:
         print("rvsim: interrupted", file=sys.stderr)
-        return 130
+        return 130, command
     except BrokenPipeError:
-        return 0
+        return 0, command
+
+
+# Commands that start no processes of their own.  Once they have returned, every file they
+# write is closed (written atomically), so their process can end without the interpreter's
+# teardown of numba, LLVM and the BLAS threads (see docs/benchmarks.md, start-up).
+_NO_TEARDOWN = frozenset({"simulate", "ltca", "hysteresis", "efficiency", "sensitivity",
+                          "profile", "params"})
+
+
+def run() -> None:
+    """The ``rvsim`` executable: :func:`main` on ``sys.argv``, then end the process.
+
+    After Ctrl-C the process always ends with code 130: CPython ends a process with SIGINT
+    instead when a KeyboardInterrupt once passed through an ``exec`` of a string (dataclasses
+    and numba create functions that way), even though rvsim caught it.
+    """
+    code, command = _main(sys.argv[1:])
+    if code == 130 or command in _NO_TEARDOWN:
+        _flush_and_exit(code)
+    sys.exit(code)
+
+
+def _flush_and_exit(code: int) -> None:
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (BrokenPipeError, ValueError, OSError):
+            pass
+    os._exit(code)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    run()

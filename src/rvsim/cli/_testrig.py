@@ -8,6 +8,7 @@ that fails prints its status and exits 1.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from pathlib import Path
@@ -88,6 +89,8 @@ def _print_point(s: dict) -> None:
               f"{s['te_rms_arcsec']:.3f} arcsec; leading orders: {lines}")
     if "forward_backward_offset_arcmin" in s:
         print(f"  forward/backward offset {s['forward_backward_offset_arcmin']:.4f} arcmin")
+        if "forward_backward_offset_note" in s:
+            print(f"    ({s['forward_backward_offset_note']})")
     if "lost_motion_arcmin" in s:
         print(f"  lost motion {s['lost_motion_arcmin']:.4f} arcmin, backlash "
               f"{s['backlash_arcmin']:.4f} arcmin, hysteresis loss "
@@ -100,6 +103,9 @@ def _print_point(s: dict) -> None:
         keys = [k for k in diff if k != "te_curve_rms_arcsec"]
         print("  model: " + ", ".join(f"{k} {_fmt(sim.get(k), '.4g')} (difference "
                                          f"{diff[k]:+.4g})" for k in keys))
+        if "torque_nm" not in s["point"] and s.get("ate_pp_arcmin") is not None:
+            print("  note: no torque in the recording, its name or the manifest: the model ran "
+                  "at 0 N*m")
 
 
 def _calibrate(args: argparse.Namespace) -> int:
@@ -123,7 +129,10 @@ def _calibrate(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     payload = result.to_dict()
     fitted = out / "fitted.toml"
-    atomic_write_text(fitted, toml_text(result.reducer))
+    # the fitted set says what it is (its name shows in every report made with it)
+    calibrated = dataclasses.replace(result.reducer, name=f"{reducer.name}, calibrated to "
+                                     f"{Path(args.path).name}")
+    atomic_write_text(fitted, toml_text(calibrated))
     payload["fitted_params"] = str(fitted)
     atomic_write_text(out / "calibration.json",
                       json.dumps(to_json_safe(payload), indent=2, allow_nan=False) + "\n")

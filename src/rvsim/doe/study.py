@@ -28,12 +28,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import tomllib
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+from .._files import read_toml
 from ..errors import InputFileError, ParameterError
 from ..parameters import (BUILT_IN_SETS, RV40E, TABLE2_FACTORS, Reducer, load_toml, resolve_name,
                           with_values)
@@ -238,18 +238,7 @@ def load_study(path: str | Path) -> Study:
 
 
 def _read_toml(path: Path) -> dict:
-    try:
-        return tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputFileError(f"{path}: file not found") from None
-    except IsADirectoryError:
-        raise InputFileError(f"{path}: is a folder, not a study file") from None
-    except UnicodeDecodeError:
-        raise InputFileError(f"{path}: not a text file (expected a TOML study file)") from None
-    except OSError as exc:
-        raise InputFileError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputFileError(f"{path}: not valid TOML ({exc})") from None
+    return read_toml(path, "TOML study file")
 
 
 def _is_int(value) -> bool:

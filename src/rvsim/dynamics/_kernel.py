@@ -41,7 +41,8 @@ from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLE
                       PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RING_OUTPUT, RUNOUT_X0, RUNOUT_X1,
                       RUNOUT_Y0, RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
                       STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CLEAR_L, SUP_CLEAR_U,
-                      V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA, ZP)
+                      SUP_SLOT0, V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA,
+                      ZP)
 
 MAX_SKIP = 64          # longest skip of an open pin contact [steps]
 
@@ -408,10 +409,12 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
 
 
 @numba.njit(cache=True)
-def support_bushing(P, q, v, Q, K, crank, upper, crank_angle):
+def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
     """Crank ``crank``'s lower or upper support node in its carrier / flange bore: the paper's
     bushing (conforming contact) or a tapered roller bearing (P[SUP_KIND]).
 
+    ``elastic[crank, SUP_SLOT0 + upper]`` carries the bushing's elastic force from step to step
+    (Newton start, as in :func:`arm_bushing`).
     ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic force (as in
     :func:`arm_bushing`).  Returns (resultant force, energy, dissipated power)."""
     b = CRANK0 + CRANK_STRIDE * crank + (2 if upper else 0)
@@ -437,9 +440,11 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle):
             return 0.0, 0.0, 0.0
     else:
         a2 = P[SUP_A2_U] if upper else P[SUP_A2_L]
+        slot = SUP_SLOT0 + (1 if upper else 0)
         sx, sy, energy, power, fn, f_el, kxx, kxy, kyy = _bushing(
             rx, ry, vx, vy, clearance, P[SUP_J1], P[SUP_A1], P[SUP_J2], a2, 0.0, P[ZETA],
-            P[M_NODE], 0.0)
+            P[M_NODE], elastic[crank, slot])
+        elastic[crank, slot] = f_el
         if fn == 0.0 and f_el == 0.0:
             return 0.0, 0.0, 0.0
         dist = math.sqrt(rx * rx + ry * ry)
@@ -547,7 +552,8 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             if P[FRICTION_ON] == 1.0:
                 power += arm_bearing_friction(P, v, Q, j, disc, force)
         for upper in range(2):
-            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j])
+            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j],
+                                           arm_elastic)
             channel[CH_SUP_FL0 + 2 * j + upper] = force
             energy += e
             power += pw
@@ -585,7 +591,8 @@ COUNT_ROW, COUNT_IN_WINDOW = 0, 1
 def new_state(n_pins, n_channels, n_output_pins=0):
     """Work arrays that :func:`integrate` carries from one call to the next (all zero at t = 0):
     (pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic, mesh_state, channel,
-    counters).  ``arm_elastic`` has a column per output pin after the two crank columns."""
+    counters).  ``arm_elastic`` has a column per output pin after the two arm and the two
+    support columns (_layout.OUT_SLOT0)."""
     pin_angle = 2.0 * np.pi * np.arange(n_pins) / n_pins
     return (pin_angle, np.zeros((2, n_pins)), np.zeros((2, n_pins), dtype=np.int64),
             np.zeros((2, n_pins)), np.zeros((2, n_pins)),
@@ -614,6 +621,10 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     previous_stiffness = np.zeros(2)
     row = counters[COUNT_ROW]
     in_window = counters[COUNT_IN_WINDOW] == 1
+    # inverse inertias, and the step's impulse per unit force on each coordinate
+    h_carrier, h_crank = dt / P[J_CARRIER], dt / P[J_CRANK]
+    h_mass, h_disc = dt / P[M_DISC], dt / P[J_DISC]
+    h_ll, h_lu, h_uu = dt * P[MINV_LL], dt * P[MINV_LU], dt * P[MINV_UU]
     status = STATUS_OK
     step = first_step
     while step < stop_step:
@@ -661,19 +672,19 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             energy[E_OUTPUT] += t_load * v[CARRIER] * dt
             energy[E_DISSIPATED] += diss * dt
         # semi-implicit Euler: velocities first, then positions with the new velocities
-        v[CARRIER] += dt * Q[CARRIER] / P[J_CARRIER]
+        v[CARRIER] += h_carrier * Q[CARRIER]
         for j in range(2):
             b = CRANK0 + CRANK_STRIDE * j
             for axis in range(2):
                 f_low, f_up = Q[b + axis], Q[b + 2 + axis]
-                v[b + axis] += dt * (P[MINV_LL] * f_low + P[MINV_LU] * f_up)
-                v[b + 2 + axis] += dt * (P[MINV_LU] * f_low + P[MINV_UU] * f_up)
-            v[b + 4] += dt * Q[b + 4] / P[J_CRANK]
+                v[b + axis] += h_ll * f_low + h_lu * f_up
+                v[b + 2 + axis] += h_lu * f_low + h_uu * f_up
+            v[b + 4] += h_crank * Q[b + 4]
         for disc in range(2):
             d = DISC0 + DISC_STRIDE * disc
-            v[d] += dt * Q[d] / P[M_DISC]
-            v[d + 1] += dt * Q[d + 1] / P[M_DISC]
-            v[d + 2] += dt * Q[d + 2] / P[J_DISC]
+            v[d] += h_mass * Q[d]
+            v[d + 1] += h_mass * Q[d + 1]
+            v[d + 2] += h_disc * Q[d + 2]
         for i in range(N_DOF):
             q[i] += dt * v[i]
         step += 1

@@ -13,9 +13,11 @@ CRANK_STRIDE = 5
 DISC0 = 11                  # disc k: DISC0 + 3 k + (x, y, theta)
 DISC_STRIDE = 3
 N_DOF = 17
-#: first column of the kernel's ``arm_elastic`` array holding output pins: arm_elastic[disc,
-#: OUT_SLOT0 + m] is output pin m's elastic force in disc ``disc`` (single-stage drive)
-OUT_SLOT0 = 2
+#: columns of the kernel's ``arm_elastic`` array: arm_elastic[crank, disc] the arm bushing's
+#: elastic force, arm_elastic[crank, SUP_SLOT0 + upper] the support bushing's (Newton starts),
+#: arm_elastic[disc, OUT_SLOT0 + m] output pin m's in disc ``disc`` (single-stage drive)
+SUP_SLOT0 = 2
+OUT_SLOT0 = 4
 N_CRANKS = 2
 N_DISCS = 2
 

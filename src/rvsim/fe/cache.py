@@ -7,14 +7,18 @@ the folder only costs the recomputation.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import os
+import time
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
-__all__ = ["cache_dir", "geometry_key", "load", "store"]
+__all__ = ["CondensedTable", "cache_dir", "cached", "condensed_table", "geometry_key", "load",
+           "store"]
 
 
 def cache_dir() -> Path:
@@ -63,3 +67,41 @@ def store(key: str, arrays: dict) -> Path | None:
         return path
     except OSError:
         return None
+
+
+def cached(kind: str, values: dict, compute: Callable[[], dict]) -> tuple[dict, float, bool]:
+    """The arrays of ``kind`` for geometry ``values``: from the cache, or ``compute()``d and
+    stored.  Returns (arrays, seconds spent computing (0 from the cache), from the cache)."""
+    key = geometry_key(kind, values)
+    stored = load(key)
+    if stored is not None:
+        return stored, 0.0, True
+    start = time.perf_counter()
+    arrays = compute()
+    seconds = time.perf_counter() - start
+    store(key, arrays)
+    return arrays, seconds, False
+
+
+@dataclasses.dataclass(frozen=True)
+class CondensedTable:
+    """A body's condensed compliance with the size of its mesh."""
+
+    compliance: np.ndarray
+    n_dofs: int
+    n_elements: int
+    seconds: float              # meshing + condensation time (0 when loaded from the cache)
+    cached: bool
+
+
+def condensed_table(kind: str, values: dict,
+                    compute: Callable[[], tuple[np.ndarray, int, int]]) -> CondensedTable:
+    """:func:`cached` for a ``compute()`` returning (compliance, dofs, elements)."""
+    def arrays():
+        c, n_dofs, n_elements = compute()
+        return {"compliance": c, "n_dofs": np.array(n_dofs),
+                "n_elements": np.array(n_elements)}
+
+    a, seconds, from_cache = cached(kind, values, arrays)
+    return CondensedTable(a["compliance"], int(a["n_dofs"]), int(a["n_elements"]), seconds,
+                          from_cache)

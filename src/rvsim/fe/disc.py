@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 
 import numpy as np
 import scipy.sparse as sp
@@ -27,7 +26,7 @@ from . import cache
 from .elasticity import PlaneStressBody, edge_load
 from .mesh import Circle, disc_outline, mesh_plane_region
 
-__all__ = ["DiscTable", "disc_geometry", "disc_table", "disc_tables", "FE_VERSION"]
+__all__ = ["DiscTable", "disc_body", "disc_geometry", "disc_table", "disc_tables", "FE_VERSION"]
 
 #: bump when the discretisation changes (part of every cache key)
 FE_VERSION = 1
@@ -74,8 +73,10 @@ def disc_geometry(reducer: Reducer, disc: int = 0) -> dict:
             "segments": c.disc_teeth * f.fe_segments_per_tooth, "version": FE_VERSION}
 
 
-def _compute(g: dict) -> tuple[np.ndarray, int, int]:
-    """Mesh, assemble and condense: (table, dofs, triangles)."""
+def disc_body(g: dict) -> tuple[PlaneStressBody, np.ndarray, sp.csc_matrix]:
+    """Mesh and assemble the disc of geometry ``g`` (:func:`disc_geometry`): the body, its
+    supported dofs (the crank-hole edges) and the unit loads of its contact segments
+    (n_dofs x segments)."""
     segments = g["segments"]
     dense = disc_outline(g["rg"], g["a"], g["zp"], g["offset"], 16 * segments)
     length = float(np.sum(np.linalg.norm(np.roll(dense, -1, axis=0) - dense, axis=1)))
@@ -99,24 +100,28 @@ def _compute(g: dict) -> tuple[np.ndarray, int, int]:
         edge_load(body, [(int(nodes[e]), int(nodes[(e + 1) % n_edges]))
                          for e in range(s * per_segment, (s + 1) * per_segment)])
         for s in range(segments)]).tocsc()
+    return body, supported, loads
+
+
+def _compute(g: dict) -> tuple[np.ndarray, int, int]:
+    """Mesh, assemble and condense: (table, dofs, triangles)."""
+    body, supported, loads = disc_body(g)
     table = body.compliance(loads, supported)
-    return table, int(body.n_dofs), int(mesh.triangles.shape[1])
+    return table, int(body.n_dofs), int(body.mesh.t.shape[1])
 
 
 def disc_table(reducer: Reducer, disc: int = 0) -> DiscTable:
     """The condensed compliance table of disc ``disc`` (from the cache when there)."""
     g = disc_geometry(reducer, disc)
-    key = cache.geometry_key("cycloid-disc", g)
-    stored = cache.load(key)
-    if stored is not None:
-        return DiscTable(stored["compliance"], g["segments"], int(stored["n_dofs"]),
-                         int(stored["n_triangles"]), 0.0, True)
-    start = time.perf_counter()
-    table, n_dofs, n_tri = _compute(g)
-    seconds = time.perf_counter() - start
-    cache.store(key, {"compliance": table, "n_dofs": np.array(n_dofs),
-                      "n_triangles": np.array(n_tri)})
-    return DiscTable(table, g["segments"], n_dofs, n_tri, seconds, False)
+
+    def compute():
+        table, n_dofs, n_tri = _compute(g)
+        return {"compliance": table, "n_dofs": np.array(n_dofs),
+                "n_triangles": np.array(n_tri)}
+
+    arrays, seconds, from_cache = cache.cached("cycloid-disc", g, compute)
+    return DiscTable(arrays["compliance"], g["segments"], int(arrays["n_dofs"]),
+                     int(arrays["n_triangles"]), seconds, from_cache)
 
 
 def disc_tables(reducer: Reducer) -> np.ndarray:

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["PlaneStressBody", "edge_load"]
+__all__ = ["Factor", "PlaneStressBody", "edge_force", "edge_load"]
 
 
 class PlaneStressBody:
@@ -31,6 +31,7 @@ class PlaneStressBody:
         self.basis = Basis(self.mesh, ElementVector(ElementTriP2()))
         lam, mu = lame_parameters(elastic_modulus, poisson_ratio)
         lam_plane_stress = 2.0 * lam * mu / (lam + 2.0 * mu)
+        self.thickness = thickness
         self.stiffness = (thickness * asm(linear_elasticity(lam_plane_stress, mu),
                                           self.basis)).tocsc()
         # facet index of each mesh edge (sorted node pair)
@@ -63,21 +64,28 @@ class PlaneStressBody:
                 dofs.append(self.basis.facet_dofs[:, f])
         return np.unique(np.concatenate(dofs))
 
+    def mass(self, density: float) -> sp.csc_matrix:
+        """Consistent mass matrix of the plate, density [kg/m^3] x thickness x the integral of
+        u . v over the mesh (same P2 basis as the stiffness)."""
+        from skfem import BilinearForm
+        from skfem.helpers import dot
+
+        @BilinearForm
+        def vector_mass(u, v, _):
+            return dot(u, v)
+
+        return (density * self.thickness * vector_mass.assemble(self.basis)).tocsc()
+
+    def factor(self, supported: np.ndarray) -> "Factor":
+        """Sparse Cholesky factor of the stiffness with ``supported`` dofs held at zero."""
+        return Factor(self.stiffness, supported)
+
     def displacements(self, loads: np.ndarray, supported: np.ndarray) -> np.ndarray:
         """K^-1 B for the columns of ``loads`` (n_dofs, k), ``supported`` dofs held at zero
         (sparse Cholesky, cholespy; the stiffness is scaled to unit mean diagonal first)."""
-        from cholespy import CholeskySolverD, MatrixType
-
-        free = np.setdiff1d(np.arange(self.n_dofs), supported)
-        a = self.stiffness[free][:, free].tocoo()
-        scale = 1.0 / float(np.mean(a.diagonal()))
-        solver = CholeskySolverD(a.shape[0], a.row.astype(np.int32), a.col.astype(np.int32),
-                                 a.data * scale, MatrixType.COO)
-        rhs = np.ascontiguousarray(_dense(loads[free]))
-        x = np.zeros_like(rhs)
-        solver.solve(rhs, x)
+        factor = self.factor(supported)
         u = np.zeros((self.n_dofs, loads.shape[1]))
-        u[free] = x * scale
+        u[factor.free] = factor.solve(_dense(loads[factor.free]))
         return u
 
     def compliance(self, loads: np.ndarray, supported: np.ndarray) -> np.ndarray:
@@ -87,16 +95,38 @@ class PlaneStressBody:
         return 0.5 * (c + c.T)
 
 
+class Factor:
+    """Sparse Cholesky factorisation (cholespy) of a stiffness ``stiffness`` restricted to the
+    dofs not in ``supported`` (``free``, sorted); scaled to unit mean diagonal first."""
+
+    def __init__(self, stiffness: sp.spmatrix, supported: np.ndarray):
+        from cholespy import CholeskySolverD, MatrixType
+
+        self.free = np.setdiff1d(np.arange(stiffness.shape[0]), supported)
+        a = stiffness.tocsc()[self.free][:, self.free].tocoo()
+        self._scale = 1.0 / float(np.mean(a.diagonal()))
+        self._solver = CholeskySolverD(a.shape[0], a.row.astype(np.int32),
+                                       a.col.astype(np.int32), a.data * self._scale,
+                                       MatrixType.COO)
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """K_ff^-1 rhs for a vector or the columns of a matrix over the free dofs."""
+        b = np.ascontiguousarray(rhs, dtype=float)
+        x = np.zeros_like(b)
+        self._solver.solve(b, x)
+        return x * self._scale
+
+
 def _dense(matrix) -> np.ndarray:
     return matrix.toarray() if sp.issparse(matrix) else np.asarray(matrix)
 
 
 def edge_load(body: PlaneStressBody, edges: list[tuple[int, int]], direction: str = "inward"
               ) -> np.ndarray:
-    """Load vector (sparse column, n_dofs x 1) of a unit resultant spread uniformly over straight boundary ``edges`` (vertex
-    pairs, counter-clockwise along the outer boundary), normal to each edge: ``inward`` pushes
-    into the body.  Consistent P2 load: 1/6 of an edge's share at each vertex, 2/3 at the
-    midside node."""
+    """Load vector (sparse column, n_dofs x 1) of a unit resultant spread uniformly over
+    straight boundary ``edges`` (vertex pairs, counter-clockwise along the outer boundary),
+    normal to each edge: ``inward`` pushes into the body.  Consistent P2 load: 1/6 of an
+    edge's share at each vertex, 2/3 at the midside node."""
     rows, values = [], []
     pts = body.mesh.p
     lengths = [float(np.linalg.norm(pts[:, b] - pts[:, a])) for a, b in edges]
@@ -113,3 +143,20 @@ def edge_load(body: PlaneStressBody, edges: list[tuple[int, int]], direction: st
             values += [weight * share * nx, weight * share * ny]
     return sp.csc_matrix((values, (rows, np.zeros(len(rows), dtype=np.int64))),
                          shape=(body.n_dofs, 1))
+
+
+def edge_force(body: PlaneStressBody, edges: list[tuple[int, int]], direction: np.ndarray
+               ) -> np.ndarray:
+    """Load vector (dense, n_dofs) of a unit force along ``direction`` (a unit vector) spread
+    uniformly over boundary ``edges`` (vertex pairs): a bearing load on a hole's edge, whose
+    functional is the mean displacement of the edge along ``direction``.  Consistent P2 load
+    as in :func:`edge_load`."""
+    pts = body.mesh.p
+    lengths = [float(np.linalg.norm(pts[:, b] - pts[:, a])) for a, b in edges]
+    total = sum(lengths)
+    load = np.zeros(body.n_dofs)
+    for (a, b), length in zip(edges, lengths):
+        da, db, dm = body.edge_dofs(a, b)
+        for dofs, weight in ((da, 1.0 / 6.0), (db, 1.0 / 6.0), (dm, 2.0 / 3.0)):
+            load[dofs] += weight * length / total * np.asarray(direction)
+    return load

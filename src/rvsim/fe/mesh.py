@@ -13,6 +13,7 @@ from the boundary sizes.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import math
 
@@ -20,7 +21,8 @@ import numpy as np
 
 from ..geometry._curve import profile_points
 
-__all__ = ["Circle", "PlaneMesh", "mesh_plane_region", "disc_outline"]
+__all__ = ["Circle", "PlaneMesh", "mesh_plane_region", "disc_outline", "gmsh_model",
+           "gmsh_elements", "drop_unused_nodes"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -50,9 +52,10 @@ def disc_outline(rg: float, a: float, zp: int, offset: float, n: int) -> np.ndar
     return profile_points(u, rg, a, float(zp), offset)
 
 
-def mesh_plane_region(outline: np.ndarray, holes: list[Circle], size: float) -> PlaneMesh:
-    """Mesh the region inside the closed polygon ``outline`` (n, 2), counter-clockwise, one
-    edge per polygon side, minus the circular ``holes``; target element size ``size`` [m]."""
+@contextlib.contextmanager
+def gmsh_model(name: str):
+    """A gmsh model ``name`` (gmsh initialised for it unless it already was; one thread, no
+    terminal output); yields the gmsh module, removes the model afterwards."""
     import gmsh
 
     own = not gmsh.isInitialized()
@@ -61,7 +64,43 @@ def mesh_plane_region(outline: np.ndarray, holes: list[Circle], size: float) -> 
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.NumThreads", 1)
-        gmsh.model.add("rvsim")
+        gmsh.model.add(name)
+        try:
+            yield gmsh
+        finally:
+            gmsh.model.remove()
+    finally:
+        if own:
+            gmsh.finalize()
+
+
+def gmsh_elements(gmsh, element_type: int, nodes_per_element: int
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The current gmsh mesh as (points (3, n), elements (nodes_per_element, m) of
+    ``element_type`` as node indices, index: gmsh node tag -> node index)."""
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
+    index[tags.astype(np.int64)] = np.arange(len(tags))
+    points = coords.reshape(-1, 3).T.copy()
+    _, nodes = gmsh.model.mesh.getElementsByType(element_type)
+    elements = index[nodes.astype(np.int64)].reshape(-1, nodes_per_element).T.copy()
+    return points, elements, index
+
+
+def drop_unused_nodes(points: np.ndarray, elements: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Keep the nodes the elements use (gmsh meshes the circles' centre points as lone
+    nodes): (points, elements, renumber: old index -> new index, -1 for a dropped node)."""
+    used = np.unique(elements)
+    renumber = np.full(points.shape[1], -1, dtype=np.int64)
+    renumber[used] = np.arange(len(used))
+    return points[:, used].copy(), renumber[elements], renumber
+
+
+def mesh_plane_region(outline: np.ndarray, holes: list[Circle], size: float) -> PlaneMesh:
+    """Mesh the region inside the closed polygon ``outline`` (n, 2), counter-clockwise, one
+    edge per polygon side, minus the circular ``holes``; target element size ``size`` [m]."""
+    with gmsh_model("rvsim") as gmsh:
         geo = gmsh.model.geo
         n = len(outline)
         # a side longer than the point size would be split: give each point the longest side
@@ -85,12 +124,7 @@ def mesh_plane_region(outline: np.ndarray, holes: list[Circle], size: float) -> 
         gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 1)
         gmsh.option.setNumber("Mesh.MeshSizeMax", 4.0 * size)
         gmsh.model.mesh.generate(2)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        index = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
-        index[tags.astype(np.int64)] = np.arange(len(tags))
-        points = coords.reshape(-1, 3)[:, :2].T.copy()
-        _, nodes = gmsh.model.mesh.getElementsByType(2)
-        triangles = index[nodes.astype(np.int64)].reshape(-1, 3).T.copy()
+        points, triangles, index = gmsh_elements(gmsh, 2, 3)
         outline_nodes = np.array([index[int(gmsh.model.mesh.getNodes(0, tag)[0][0])]
                                   for tag in point_tags], dtype=np.int64)
         hole_nodes = []
@@ -98,13 +132,6 @@ def mesh_plane_region(outline: np.ndarray, holes: list[Circle], size: float) -> 
             found = [index[gmsh.model.mesh.getNodes(1, arc, includeBoundary=True)[0]
                            .astype(np.int64)] for arc in arcs]
             hole_nodes.append(np.unique(np.concatenate(found)))
-        gmsh.model.remove()
-    finally:
-        if own:
-            gmsh.finalize()
-    # the circles' centre points are meshed as lone nodes: keep the triangles' nodes only
-    used = np.unique(triangles)
-    renumber = np.full(points.shape[1], -1, dtype=np.int64)
-    renumber[used] = np.arange(len(used))
-    return PlaneMesh(points[:, used].copy(), renumber[triangles], renumber[outline_nodes],
+    points, triangles, renumber = drop_unused_nodes(points[:2], triangles)
+    return PlaneMesh(points, triangles, renumber[outline_nodes],
                      tuple(renumber[h] for h in hole_nodes))

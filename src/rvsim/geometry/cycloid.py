@@ -94,7 +94,8 @@ def profile_offset(reducer: Reducer, disc: int) -> tuple[float, float]:
     """Centre of disc ``disc``'s profile relative to its crank-hole pattern, in profile axes.
 
     Radial runout Delta F_t1 puts the profile centre Delta F_t1 / 2 off the hole pattern, along
-    the part's x axis; disc 2 is the same part turned half a turn.  [m]
+    the part's x axis turned by ``errors.disc_runout_phase``; disc 2 is the same part turned
+    half a turn.  [m]
     """
     half = 0.5 * reducer.errors.disc_runout
     if half == 0.0:
@@ -102,7 +103,7 @@ def profile_offset(reducer: Reducer, disc: int) -> tuple[float, float]:
     # body axes -> profile axes: the profile frame is the body frame turned by the tooth
     # phase -disc*pi/zc and the rotation modification
     angle = disc * math.pi + disc * math.pi / reducer.cycloid.disc_teeth \
-        - reducer.errors.rotation_modification
+        - reducer.errors.rotation_modification + reducer.errors.disc_runout_phase
     return half * math.cos(angle), half * math.sin(angle)
 
 

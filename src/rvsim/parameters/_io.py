@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import tomllib
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputFileError, ParameterError
+from .._files import read_toml
+from ..errors import ParameterError
 from ..units import TO_SI
 from ._schema import FieldSpec, field_specs
 from ._types import Reducer
@@ -149,14 +149,7 @@ def _flatten(table: dict, prefix: str = "") -> dict[str, Any]:
 def load_toml(path: str | Path, base: Reducer | None = None) -> Reducer:
     """Read a reducer from a TOML file in user units (see module docstring)."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputFileError(f"{path}: file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputFileError(f"{path}: cannot read ({exc})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputFileError(f"{path}: not valid TOML ({exc})") from None
+    data = read_toml(path, "reducer TOML file")
     base_name = data.pop("base", None)
     for key, value in (("base", base_name), ("name", data.get("name"))):
         if value is not None and not (isinstance(value, str) and value.strip()):

@@ -163,6 +163,9 @@ class Errors:
     disc_runout: float = quantity(0.0, "mm", "radial runout of the disc profile relative to "
                                   "its crank holes (Table 1 Delta F_t1; profile centre offset "
                                   "by half of it)")
+    disc_runout_phase: float = quantity(0.0, "deg", "direction of the disc runout: the profile "
+                                        "centre's offset turned by this from the disc's x "
+                                        "axis (disc 2 half a turn on)", minimum=None)
     pin_position_tolerance: float = quantity(0.0, "mm", "each pin centre displaced radially "
                                              "and along the circle by uniform random amounts "
                                              "within +-this (Table 1 delta t_Sigma)")

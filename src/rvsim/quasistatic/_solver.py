@@ -372,17 +372,53 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
     f_new = np.empty(N_DOF)
     Q0 = np.empty(N_DOF)
     hold = np.zeros((2, 2))
+    q_entry = q.copy()
     total = 0
     torque_in = 0.0
-    for update in range(FRICTION_ITERATIONS):
+    if omega == 0.0 and abs(torque) <= tol * scale[CARRIER]:
+        # input held and no output torque (the torque-reversal test's zero crossings): the
+        # reducer sticks; with the input turning (no-load running torque) the input drives.
+        # Unloaded contacts carry no friction (Coulomb's is bounded by their normal forces),
+        # and the bearings' viscous drag needs a motion that nothing drives; held as a
+        # constant force it would push the bodies across their play.  The frictionless
+        # equilibrium from where the point begins is a static one (zero friction is within
+        # every friction law's bound): an unloaded body stays where it was
+        for i in range(N_DOF):
+            f_ext[i] = 0.0
+        return _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle,
+                            holes, crank_angles, mesh_phase, u, next_eval, pin_force,
+                            pin_elastic, arm_elastic, Q, K, channel, mesh_state, f_ext, fe)
+    restarted = False
+    first = 0
+    status = STATUS_OK
+    for update in range(2 * FRICTION_ITERATIONS):
+        if update - first >= FRICTION_ITERATIONS:
+            status = STATUS_NOT_CONVERGED
+            break
         status, iterations, torque_in = _solve_point(
             P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes, crank_angles,
             mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
             mesh_state, f_ext, fe)
         total += iterations
+        if status == STATUS_NOT_CONVERGED and not restarted:
+            # the held friction is a constant force: where contacts unload it can push the
+            # bodies across their play, in many small steps along curved contacts, which
+            # friction cannot do.  The point starts again from where it began with no
+            # friction held (an unloaded body stays where it was) and the friction grows
+            # from that of that pose
+            restarted = True
+            first = update
+            for i in range(N_DOF):
+                q[i] = q_entry[i]
+                f_ext[i] = 0.0
+            status, iterations, torque_in = _solve_point(
+                P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
+                crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q,
+                K, channel, mesh_state, f_ext, fe)
+            total += iterations
         if status != STATUS_OK:
-            return status, total, torque_in
-        if update == 0:
+            break
+        if update == first:
             # the direction of travel of this point, held while the friction settles (a
             # direction taken afresh at each update can turn a tiny relative motion over
             # and back, and the Coulomb forces with it: no fixed point)
@@ -406,7 +442,7 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
             for i in range(N_DOF):
                 Q[i] = Q0[i] + f_ext[i]
             return STATUS_OK, total, torque_in
-    return STATUS_NOT_CONVERGED, total, torque_in
+    return status if status != STATUS_OK else STATUS_NOT_CONVERGED, total, torque_in
 
 
 @numba.njit(cache=True)

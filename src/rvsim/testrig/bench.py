@@ -53,6 +53,12 @@ class PointResult:
     point: dict
     files: list
 
+    def leading_direction(self):
+        """The TE direction whose spectrum stands for the point: the first forward one of any
+        file, else the first direction (None without TE)."""
+        found = [d for f in self.files for d in f.directions or []]
+        return next((d for d in found if d.direction > 0), found[0] if found else None)
+
 
 def list_files(path: str | Path) -> list[tuple[Path, dict]]:
     """(file, declared point and options) of a file or folder (see the module docstring)."""
@@ -158,6 +164,9 @@ def analyse_recording(rec: Recording, declared: dict, reducer, *, points: int = 
             angle = rec.output_angle - (0.0 if rec.input_angle is None
                                         else rec.input_angle / expected)
             result.loop = A.reversal_curve(rec.output_torque, angle)
+            # read the catalogue quantities here, so that a loop that cannot give them is an
+            # error naming this file
+            A.reversal_summary(*result.loop, reducer.rating.rated_torque)
             measured["torque_nm"] = float(np.max(np.abs(rec.output_torque)))
             return result
         if test == "te_curve":
@@ -192,7 +201,8 @@ def analyse_recording(rec: Recording, declared: dict, reducer, *, points: int = 
             raise InputFileError(f"{rec.path}: shorter than one output revolution (the longest "
                                  f"run in one direction covers {travel:.3g} of a revolution)")
     except CurveError as exc:
-        raise InputFileError(f"{rec.path}: {exc}") from None
+        raise InputFileError(f"{rec.path}: read as a {test.replace('_', ' ')} recording: "
+                             f"{exc}") from None
     return result
 
 

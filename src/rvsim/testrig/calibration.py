@@ -40,6 +40,8 @@ SAME_LIMIT = 0.999
 #: singular values of the scaled Jacobian below this fraction of the largest: not identifiable
 RANK_TOLERANCE = 1e-6
 _LEVELS = np.linspace(0.02, 0.98, 24)
+#: step of the finite-difference Jacobian in scaled units (1e-3 of a parameter's scale)
+JACOBIAN_STEP = 1e-3
 #: scale of a parameter that starts at zero, by unit
 _TYPICAL = {"mm": 0.01, "um": 10.0, "arcmin": 1.0, "deg": 0.1}
 
@@ -135,6 +137,10 @@ def residuals(targets, reducer, positions: int) -> np.ndarray:
 
 
 def _scale(spec, start: float) -> float:
+    if spec.name.endswith("_phase"):
+        # a direction: one radian whatever its start (|start| would make the step depend on
+        # where the zero of the angle happens to be)
+        return 1.0 / TO_SI[spec.unit]
     return abs(start) if start != 0 else _TYPICAL.get(spec.unit, 1.0)
 
 
@@ -166,13 +172,49 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     def model_at(x):
         return with_values(reducer, dict(zip(names, x * scale)))
 
-    def fun(x):
+    def evaluate(x):
+        """(residuals, None) or (None, why the model failed)."""
         evaluations[0] += 1
         try:
-            return residuals(targets, model_at(x), positions)
+            return residuals(targets, model_at(x), positions), None
         except (SimulationError, ParameterError) as exc:
             failed[0] = str(exc)
-            return np.full(size, penalty)
+            return None, str(exc)
+
+    last: dict = {}
+
+    def fun(x):
+        r, _ = evaluate(x)
+        r = np.full(size, penalty) if r is None else r
+        last.update(x=x.copy(), r=r)
+        return r
+
+    blocked: dict = {}
+
+    def jacobian(x):
+        """Forward differences with a fixed step of JACOBIAN_STEP in scaled units (backward at
+        an upper bound or where the model fails forward).  scipy's own 2-point step is
+        relative to |x|, which vanishes for a parameter starting at zero."""
+        r0 = last["r"] if "x" in last and np.array_equal(last["x"], x) else fun(x)
+        J = np.zeros((size, x.size))
+        blocked.clear()
+        for j in range(x.size):
+            steps = (JACOBIAN_STEP, -JACOBIAN_STEP)
+            if x[j] + JACOBIAN_STEP > upper[j]:
+                steps = steps[::-1]
+            why = "no room between the bounds"
+            for h in steps:
+                if not lower[j] <= x[j] + h <= upper[j]:
+                    continue
+                trial = x.copy()
+                trial[j] += h
+                r, why = evaluate(trial)
+                if r is not None:
+                    J[:, j] = (r - r0) / h
+                    break
+            else:
+                blocked[j] = why
+        return J
 
     try:
         r0 = residuals(targets, reducer, positions)
@@ -181,22 +223,28 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     size = r0.size
     penalty = 10.0 * max(float(np.sqrt(np.mean(r0 ** 2))), 1.0)
     x0 = np.clip(start / scale, lower, upper)
-    result = optimize.least_squares(fun, x0, jac="2-point", diff_step=1e-3,
-                                    bounds=(lower, upper), x_scale=1.0,
-                                    max_nfev=max_evaluations)
+    result = optimize.least_squares(fun, x0, jac=jacobian, bounds=(lower, upper),
+                                    x_scale=1.0, max_nfev=max_evaluations)
     m, p = result.fun.size, len(names)
     if m <= p:
         raise CalibrationError(f"{m} residuals cannot fit {p} parameters")
     s2 = 2.0 * result.cost / (m - p)
-    J = result.jac
+    J = jacobian(result.x)                 # at the estimate, with the columns it cannot get
     _, sv, vt = np.linalg.svd(J, full_matrices=False)
     keep = sv > RANK_TOLERANCE * sv[0] if sv.size and sv[0] > 0 else np.zeros(p, bool)
     inv = (vt[keep].T / sv[keep] ** 2) @ vt[keep]
     cov = s2 * inv * np.outer(scale, scale)
     std = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     notes = []
+    for j, why in blocked.items():
+        std[j] = np.inf
+        notes.append(f"the model fails on both sides of the estimate of {names[j]} ({why}): "
+                     "no interval")
     for row in vt[~keep]:                    # directions the data do not see at all
-        involved = [names[i] for i in np.flatnonzero(np.abs(row) > 0.1)]
+        involved = [names[i] for i in np.flatnonzero(np.abs(row) > 0.1)
+                    if i not in blocked]
+        if not involved:
+            continue
         std[[names.index(n) for n in involved]] = np.inf
         if len(involved) > 1:
             notes.append(f"the data cannot tell {' and '.join(involved)} apart (they change "
@@ -217,12 +265,12 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
             elif abs(corr[i, j]) > CORRELATION_LIMIT:
                 notes.append(f"{names[i]} and {names[j]} are correlated {corr[i, j]:+.3f}: the "
                              "data hardly tell them apart (wide, linked intervals)")
-    if failed[0]:
+    if failed[0] and failed[0] not in blocked.values():
         notes.append(f"the model failed at some trial values (penalised): {failed[0]}")
     estimate = result.x * scale
     half = stats.t.ppf(0.975, m - p) * std
     fitted = model_at(result.x)
-    status = "ok" if result.success else "not_converged"
+    status = ("model_fails" if blocked else "ok" if result.success else "not_converged")
     return Calibration(names, [s.unit for s in specs], start, estimate, std, estimate - half,
                        estimate + half, corr, notes,
                        float(np.sqrt(np.mean(r0 ** 2))),

@@ -5,7 +5,9 @@ at the point's output torque, resisting the motion (forward: +T along increasing
 backward: -T, the path read in reverse so that the input turns back); torque-reversal tests:
 :func:`rvsim.quasistatic.hysteresis` to the rated torque.  The model runs come back as
 :class:`~rvsim.testrig.bench.FileResult` and go through :func:`point_summary` like the
-measurements.  Speed and oil temperature do not enter the quasi-static model (reported).
+measurements.  Efficiency: :func:`rvsim.quasistatic.efficiency` at the point's input speed and
+torque when the parameter set has friction.  Speed and oil temperature do not enter the TE and
+the loop (reported).
 """
 
 from __future__ import annotations
@@ -19,8 +21,8 @@ from ..analysis import catalogue
 from . import analysis as A
 from .bench import FileResult, PointResult, check_model_ratio
 
-__all__ = ["simulate_point", "model_te", "model_loop", "point_summary", "compare_point",
-           "COMPARED_KEYS"]
+__all__ = ["simulate_point", "model_te", "model_loop", "model_efficiency", "point_summary",
+           "compare_point", "COMPARED_KEYS"]
 
 COMPARED_KEYS = ("ate_pp_arcmin", "te_rms_arcsec", "forward_backward_offset_arcmin",
                  "lost_motion_arcmin", "backlash_arcmin", "hysteresis_loss_arcmin",
@@ -49,20 +51,37 @@ def model_loop(reducer, rated: float):
     return t, a, b
 
 
+def model_efficiency(reducer, speed_rpm: float, torque: float) -> float | None:
+    """Efficiency of the quasi-static efficiency engine (:func:`rvsim.quasistatic.efficiency`,
+    the parameter set's friction) at input ``speed_rpm`` and output ``torque``; None for a
+    parameter set without friction (its efficiency would be 1 by construction)."""
+    from ..friction import has_friction
+    from ..quasistatic import efficiency
+
+    if not has_friction(reducer):
+        return None
+    result = efficiency(reducer, speeds_rpm=[speed_rpm], torques=[abs(torque)])
+    return float(result.efficiency[0, 0])
+
+
 def simulate_point(point: PointResult, reducer, *, points: int = A.DEFAULT_POINTS
                    ) -> PointResult:
     """The model's runs for every test of a measured point (raises SimulationError; an
     InputFileError when a file's ratio is not the model's)."""
     check_model_ratio(point, reducer)
     torque = float(point.point.get("torque_nm", 0.0))
+    speed = point.point.get("speed_rpm")
     files = []
     for measured in point.files:
         if measured.directions:
             directions = []
             for d in measured.directions:
                 directions += model_te(reducer, torque, d.direction, points)
+            eff = (model_efficiency(reducer, speed, torque)
+                   if measured.efficiency is not None and speed and torque else None)
             files.append(FileResult(Path(f"model: ltca at {torque:g} N*m"), measured.test,
-                                    {"torque_nm": torque}, directions=directions))
+                                    {"torque_nm": torque}, directions=directions,
+                                    efficiency=eff))
         if measured.loop is not None:
             rated = reducer.rating.rated_torque
             files.append(FileResult(Path(f"model: hysteresis to {rated:g} N*m"),
@@ -83,7 +102,8 @@ def point_summary(point: PointResult, reducer) -> dict:
     if te:
         out["ate_pp_arcmin"] = max(s["ate_pp_arcmin"] for s in te)
         out["te_rms_arcsec"] = float(np.sqrt(np.mean([s["te_rms_arcsec"] ** 2 for s in te])))
-        out["orders"] = te[0]["orders"]
+        lead = point.leading_direction()
+        out["orders"] = A.leading_orders(*lead.spectrum(), marks)
         directions: dict = {}
         for f, s in zip([f for f in point.files if f.directions], te):
             for name, values in s["directions"].items():
@@ -94,6 +114,8 @@ def point_summary(point: PointResult, reducer) -> dict:
                    if "forward_backward_offset_arcmin" in s]
         if offsets:
             out["forward_backward_offset_arcmin"] = offsets[0]
+        else:
+            out.update(_offset_across_files(point))
     else:
         out.update(ate_pp_arcmin=None, te_rms_arcsec=None, orders=[])
     loops = [f.loop for f in point.files if f.loop is not None]
@@ -109,6 +131,26 @@ def point_summary(point: PointResult, reducer) -> dict:
     if samples:
         out["samples"] = samples
     return out
+
+
+def _offset_across_files(point: PointResult) -> dict:
+    """Forward/backward offset of a point whose forward and backward runs are in different
+    files: mean TE of the forward files minus that of the backward ones, with a note (it holds
+    only if the encoder zeros did not change between the recordings); {} without both."""
+    means: dict = {1: [], -1: []}
+    names: dict = {1: [], -1: []}
+    for f in point.files:
+        for d in f.directions or []:
+            means[d.direction].append(d.mean)
+            names[d.direction].append(f.path.name)
+    if not (means[1] and means[-1]):
+        return {}
+    return {"forward_backward_offset_arcmin": (np.mean(means[1]) - np.mean(means[-1]))
+            / A.ARCMIN,
+            "forward_backward_offset_note": (
+                f"forward ({', '.join(names[1])}) and backward ({', '.join(names[-1])}) are "
+                "different files: the offset holds only if the encoder zeros did not change "
+                "between the recordings")}
 
 
 def _curve_difference(measured: PointResult, simulated: PointResult) -> dict:
@@ -139,9 +181,22 @@ def compare_point(point: PointResult, reducer, *, points: int = A.DEFAULT_POINTS
         summary["simulated"] = {"status": exc.status, "error": str(exc)}
         return summary, None
     sim = point_summary(simulated, reducer)
+    sim.pop("forward_backward_offset_note", None)       # the model has one nominal zero
     sim["status"] = "ok"
-    sim["note"] = ("quasi-static model: speed and oil temperature do not enter; efficiency is "
-                   "not modelled (no friction in this engine)")
+    sim["note"] = ("quasi-static model: speed and oil temperature do not enter the TE and the "
+                   "loop")
+    if summary.get("efficiency") is not None:
+        from ..friction import has_friction
+
+        sim["note"] += ("; efficiency from the quasi-static efficiency engine at the point's "
+                        "input speed and torque, with the parameter set's friction and oil "
+                        "viscosity (the measured oil temperature does not enter)"
+                        if has_friction(reducer) else
+                        "; the parameter set has no friction: no model efficiency (give "
+                        "friction values, e.g. --params RV-40E-bearings)")
+    if "torque_nm" not in point.point and any(f.directions for f in point.files):
+        sim["note"] += ("; the recording gives no torque (no torque column, none in the file "
+                        "name or manifest): the model's TE is at 0 N*m")
     summary["simulated"] = sim
     summary["difference"] = {k: summary[k] - sim[k] for k in COMPARED_KEYS
                              if summary.get(k) is not None and sim.get(k) is not None}

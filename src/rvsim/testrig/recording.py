@@ -6,6 +6,9 @@ and direction.  Columns are found by their default names (:data:`DEFAULT_COLUMNS
 :class:`ColumnMap` (command line ``--column`` or a small TOML, docs/user_guide.md,
 "Test-bench data"); values are turned into SI here and nowhere else.
 
+Angles that an absolute encoder reports within one revolution (0-360 deg, or 0 to the counts per
+revolution) are made continuous (:func:`unwrapped`).
+
 Every problem with a file is an :class:`~rvsim.errors.InputFileError` whose message starts with
 the file name: missing or misnamed columns, non-numeric values, NaN gaps, time that does not
 increase.
@@ -16,15 +19,16 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
-import tomllib
 from pathlib import Path
 
 import numpy as np
 
+from .._files import read_toml
 from ..errors import InputFileError
 
 __all__ = ["Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map",
-           "parse_column_option", "point_from_name", "DEFAULT_COLUMNS", "QUANTITIES", "UNITS"]
+           "parse_column_option", "point_from_name", "unwrapped", "DEFAULT_COLUMNS",
+           "QUANTITIES", "UNITS"]
 
 #: canonical quantity -> (default column name, its unit)
 DEFAULT_COLUMNS: dict[str, tuple[str, str]] = {
@@ -152,14 +156,7 @@ def read_column_map(path: str | Path) -> ColumnMap:
     ``[input_angle]`` with ``column = "enc1"``, ``unit = "counts"``,
     ``counts_per_revolution = 4096``."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputFileError(f"{path}: file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputFileError(f"{path}: cannot read ({exc})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputFileError(f"{path}: not valid TOML ({exc})") from None
+    data = read_toml(path, "column map TOML file")
     ratio = _ratio(data.pop("ratio"), str(path)) if "ratio" in data else None
     columns = {}
     for quantity, table in data.items():
@@ -353,8 +350,23 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None) -> Rec
             raise InputFileError(f"{path}: time does not increase at data row {row} "
                                  f"({values['time'][row - 2]:g} s then "
                                  f"{values['time'][row - 1]:g} s)")
+        for q in ("input_angle", "output_angle"):
+            if values[q] is not None:
+                values[q] = unwrapped(values[q])
     return Recording(path=path, kind=kind, ratio=column_map.ratio,
                      **{q: values[q] for q in QUANTITIES})
+
+
+def unwrapped(angle: np.ndarray) -> np.ndarray:
+    """An angle [rad] made continuous if it is an absolute encoder's reading within one
+    revolution (all values within one turn, and steps of more than half a turn between
+    samples, which no sampled rotation makes): the turns are counted (numpy.unwrap).  Any
+    other angle is returned unchanged."""
+    if angle.size < 2 or np.ptp(angle) > _TURN * (1.0 + 1e-9):
+        return angle
+    if not np.any(np.abs(np.diff(angle)) > 0.5 * _TURN):
+        return angle
+    return np.unwrap(angle, period=_TURN)
 
 
 _POINT_PATTERN = re.compile(r"(?<![A-Za-z])([-+]?\d+(?:[.p]\d+)?)\s*(rpm|nm|degc|c)(?![A-Za-z])",

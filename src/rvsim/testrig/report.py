@@ -53,8 +53,7 @@ def _spectrum_figure(measured, simulated, marks):
     fig, ax = plt.subplots(figsize=(8, 3.4))
     lines = []
     for result in (measured, simulated):
-        d = None if result is None else next(
-            (d for f in result.files for d in f.directions or []), None)
+        d = None if result is None else result.leading_direction()
         lines.append(None if d is None else d.spectrum())
     # up to a little beyond the highest of the leading lines
     leading = [] if lines[0] is None else list(
@@ -150,7 +149,7 @@ def write_testrig_report(results, reducer, path: str | Path) -> Path:
         if summary.get("ate_pp_arcmin") is not None:
             body += ["<h3>Transmission error over one output revolution</h3>",
                      _png(_te_figure(measured, simulated)),
-                     "<h3>Order spectrum (first direction)</h3>",
+                     "<h3>Order spectrum (forward, if recorded)</h3>",
                      _png(_spectrum_figure(measured, simulated, marks))]
         if summary.get("lost_motion_arcmin") is not None:
             body += ["<h3>Torque-reversal loop</h3>", _png(_loop_figure(measured, simulated))]

@@ -1,0 +1,64 @@
+"""How much the answers of a dynamic run move: rounding spread and time step (issue 14).
+
+For each paper L36 run asked for, simulates at each ``--time-step`` and, with ``--perturb K``,
+K + 1 times with the step changed by k * 1e-12 relative (k = 0 .. K): physically the same run,
+other rounding.  Prints one JSON line per simulation (status, mean and peak-to-peak TE,
+largest pin force, energy residual, CPU time) and, per run and step, the range of each metric.
+The spread under ``--perturb`` is the floor below which a change of the kernel's arithmetic
+cannot be judged (docs/benchmarks.md, issue 14).
+
+Usage:  python benchmarks/bench_answers.py [--runs 1-3] [--time-step 5e-6 7.8125e-6]
+                                            [--perturb 4]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+
+
+def _runs(text: str) -> list[int]:
+    out: list[int] = []
+    for part in text.split(","):
+        first, _, last = part.partition("-")
+        out.extend(range(int(first), int(last or first) + 1))
+    return out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", default="1-3", help="paper L36 runs, e.g. 1-3 or 1,5,28")
+    parser.add_argument("--time-step", type=float, nargs="+", default=[5e-6])
+    parser.add_argument("--perturb", type=int, default=0,
+                        help="extra runs with the step changed by k * 1e-12 relative")
+    args = parser.parse_args()
+
+    from rvsim.dynamics import simulate
+    from rvsim.parameters import RV40E, paper_run_values, with_values
+
+    names = ("te_mean_arcmin", "te_pp_arcmin", "max_pin_force_n")
+    for run in _runs(args.runs):
+        reducer = with_values(RV40E, paper_run_values(run))
+        for step in args.time_step:
+            seen: dict[str, list[float]] = {name: [] for name in names}
+            for k in range(args.perturb + 1):
+                cpu = time.thread_time()
+                result = simulate(reducer, time_step=step * (1.0 + k * 1e-12),
+                                  raise_on_failure=False)
+                cpu = time.thread_time() - cpu
+                line = {"run": run, "time_step": step, "k": k, "status": result.status,
+                        "energy_relative_residual": result.energy["relative_residual"],
+                        "cpu_s": round(cpu, 3)}
+                for name in names:
+                    line[name] = result.metrics.get(name, float("nan"))
+                    seen[name].append(line[name])
+                print(json.dumps(line), flush=True)
+            if args.perturb:
+                spread = {name: [min(v), max(v), (max(v) - min(v)) / abs(min(v))]
+                          for name, v in seen.items()}
+                print(json.dumps({"run": run, "time_step": step, "range": spread}), flush=True)
+
+
+if __name__ == "__main__":
+    main()
