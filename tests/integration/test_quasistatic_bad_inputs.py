@@ -41,8 +41,8 @@ BAD = [
     (("hysteresis", "--export", "{tmp}/j.html"), ".json"),
     (("hysteresis", "--export", "{tmp}/joint.json"), "is a folder"),  # joint.json is a folder
     (("ltca", "--params", "{tmp}/missing.toml"), "not found"),
-    (("ltca", "--params", "{tmp}/binary.toml"), "cannot read"),
-    (("ltca", "--params", "{tmp}/page.html"), "cannot read"),
+    (("ltca", "--params", "{tmp}/binary.toml"), "not a text file"),
+    (("ltca", "--params", "{tmp}/page.html"), "is a folder"),
     (("hysteresis", "--params", "{tmp}/broken.toml"), "not valid TOML"),
     # errors of either sign: the assembly check decides what is valid
     (("ltca", "--set", "I=-0.02"), "assembly"),
