@@ -86,6 +86,8 @@ def write_tolerance_report(folder: Path, summary: dict, values: dict, status) ->
         body.append(f"<h2>Sobol indices</h2><p>{summary['sobol_samples']} reducers of the "
                     "Saltelli-Sobol design (SALib), 95 % bootstrap intervals; "
                     f"{summary['sobol_imputed']} without a value given the mean.</p>")
+        for note in summary.get("sobol_notes", []):
+            body.append(f"<p class='note'>{html.escape(note)}</p>")
         for metric, indices in summary["sobol"].items():
             body.append(_png(sobol_figure(metric, indices)))
             top = summary["sobol_second_order"][metric][:5]

@@ -58,10 +58,21 @@ def sobol_units(study: ToleranceStudy, base: int) -> np.ndarray:
 def indices_from_samples(prob: dict, y: np.ndarray, seed: int = 0, resamples: int = 200):
     """SALib's Sobol analysis of outputs ``y`` of a Saltelli-Sobol design: (first/total
     indices by group, second-order pairs sorted by S2, descending)."""
+    return _analyze(prob, y, seed, resamples)[:2]
+
+
+def _analyze(prob: dict, y: np.ndarray, seed: int = 0, resamples: int = 200):
+    """:func:`indices_from_samples` and whether some bootstrap resamples were constant (SALib's
+    warning, caught here: the confidence intervals are then unreliable)."""
+    import warnings
+
     from SALib.analyze import sobol as sobol_analyze
 
-    result = sobol_analyze.analyze(prob, np.asarray(y, dtype=float), calc_second_order=True,
-                                   num_resamples=resamples, conf_level=0.95, seed=seed)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = sobol_analyze.analyze(prob, np.asarray(y, dtype=float), calc_second_order=True,
+                                       num_resamples=resamples, conf_level=0.95, seed=seed)
+    constant = any("onstant values" in str(w.message) for w in caught)
     names = list(dict.fromkeys(prob.get("groups") or prob["names"]))
     first = {n: {"S1": float(result["S1"][i]), "ST": float(result["ST"][i]),
                  "S1_conf": float(result["S1_conf"][i]), "ST_conf": float(result["ST_conf"][i])}
@@ -72,7 +83,7 @@ def indices_from_samples(prob: dict, y: np.ndarray, seed: int = 0, resamples: in
             pairs.append({"pair": [names[i], names[j]], "S2": float(result["S2"][i, j]),
                           "S2_conf": float(result["S2_conf"][i, j])})
     pairs.sort(key=lambda p: -p["S2"] if math.isfinite(p["S2"]) else math.inf)
-    return first, pairs
+    return first, pairs, constant
 
 
 def sobol_indices(study: ToleranceStudy, values: dict, status: np.ndarray) -> dict:
@@ -81,6 +92,7 @@ def sobol_indices(study: ToleranceStudy, values: dict, status: np.ndarray) -> di
     prob = problem(study)
     first_all, second_all = {}, {}
     imputed = 0
+    notes: list[str] = []
     for metric, y in values.items():
         y = np.array(y, dtype=float)
         bad = ~np.isfinite(y)
@@ -90,11 +102,22 @@ def sobol_indices(study: ToleranceStudy, values: dict, status: np.ndarray) -> di
         y[bad] = np.mean(y[~bad])
         if np.ptp(y) == 0.0:
             continue                   # a constant metric has no variance to share
-        first, second = indices_from_samples(prob, y, study.seed)
+        first, second = _indices(prob, y, study.seed, metric, notes)
         first_all[metric], second_all[metric] = first, second
     binds = (status == "binds").astype(float)
     if 0 < binds.sum() < len(binds):
-        first, second = indices_from_samples(prob, binds, study.seed)
+        first, second = _indices(prob, binds, study.seed, "binds", notes)
         first_all["binds"], second_all["binds"] = first, second
-    return {"sobol": first_all, "sobol_second_order": second_all, "sobol_imputed": imputed,
-            "sobol_samples": int(len(status))}
+    out = {"sobol": first_all, "sobol_second_order": second_all, "sobol_imputed": imputed,
+           "sobol_samples": int(len(status))}
+    if notes:
+        out["sobol_notes"] = notes
+    return out
+
+
+def _indices(prob: dict, y: np.ndarray, seed: int, metric: str, notes: list) -> tuple:
+    first, second, constant = _analyze(prob, y, seed)
+    if constant:
+        notes.append(f"{metric}: some bootstrap resamples had one value only (too few distinct "
+                     "outcomes for this Sobol base); its confidence intervals are unreliable")
+    return first, second
