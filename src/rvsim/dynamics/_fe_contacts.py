@@ -123,6 +123,28 @@ def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance):
 
 
 @numba.njit(cache=True)
+def _contact_forces(cm, delta, force, n, c, cb, f, k, e, g):
+    """Each contact's law at its own approach less the deflection the forces ``force`` cause
+    there (compliance ``cm``): force f, stiffness k, energy e and residual g = force - f;
+    returns (largest f, largest |g|)."""
+    largest = 0.0
+    worst = 0.0
+    for i in range(n):
+        w = 0.0
+        for j in range(n):
+            w += cm[i, j] * force[j]
+        own = delta[i] - w
+        if own > 0.0:
+            f[i], k[i], e[i] = spring_force(own, c, cb, force[i])
+        else:
+            f[i], k[i], e[i] = 0.0, 0.0, 0.0
+        g[i] = force[i] - f[i]
+        largest = max(largest, f[i])
+        worst = max(worst, abs(g[i]))
+    return largest, worst
+
+
+@numba.njit(cache=True)
 def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
     """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot``,
     Newton from ``guess``.  Fills ``force`` (n) and, if ``stiffness`` is n x n, the tangent
@@ -154,20 +176,7 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
     converged = False
     iterations = 0
     for iterations in range(1, MAX_NEWTON + 1):
-        largest = 0.0
-        worst = 0.0
-        for i in range(n):
-            w = 0.0
-            for j in range(n):
-                w += cm[i, j] * force[j]
-            own = delta[i] - w
-            if own > 0.0:
-                f[i], k[i], e[i] = spring_force(own, c, cb, force[i])
-            else:
-                f[i], k[i], e[i] = 0.0, 0.0, 0.0
-            g[i] = force[i] - f[i]
-            largest = max(largest, f[i])
-            worst = max(worst, abs(g[i]))
+        largest, worst = _contact_forces(cm, delta, force, n, c, cb, f, k, e, g)
         if worst <= 1e-10 * largest + 1e-12:
             converged = True
             break
@@ -196,15 +205,7 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
                 converged = True
                 break
         iterations += sweep + 1
-        for i in range(n):
-            w = 0.0
-            for j in range(n):
-                w += cm[i, j] * force[j]
-            own = delta[i] - w
-            if own > 0.0:
-                f[i], k[i], e[i] = spring_force(own, c, cb, force[i])
-            else:
-                f[i], k[i], e[i] = 0.0, 0.0, 0.0
+        _contact_forces(cm, delta, force, n, c, cb, f, k, e, g)
     energy = 0.0
     for i in range(n):
         force[i] = f[i]
