@@ -374,27 +374,34 @@ def _fixed(raw, path) -> tuple:
     return tuple(fixed)
 
 
+# features toleranced alike in both built-in studies (values and sources: docs/tolerances.md)
+_PRECISION_FIXED = (("errors.equidistant_modification", 0.010),
+                    ("clearances.crank_arm_bushing", 0.005),
+                    ("errors.pin_hole_clearance", 0.004))
+_PRECISION_PINS_AND_DISC = (
+    Tolerance("pin_radius", 0.002, "normal"),
+    Tolerance("pin_radial", 0.003, "normal"),
+    Tolerance("pin_tangential", 0.003, "normal"),
+    Tolerance("disc_pitch", 0.005, "normal"),
+    Tolerance("profile_form", 0.002, "normal"),
+    Tolerance("eccentricity", 0.002, "normal"),
+)
+_PRECISION_CLEARANCES = (
+    Tolerance("errors.pin_hole_clearance", 0.002, "normal"),
+    Tolerance("clearances.crank_arm_bushing", 0.003, "normal"),
+)
+
+
 def rv40e_tolerances() -> ToleranceStudy:
     """The built-in tolerance study: the RV-40E with ten toleranced features typical of a
     precision reducer (values and sources: docs/tolerances.md)."""
     return ToleranceStudy(
         name="rv40e-tolerances", params="RV-40E", base=RV40E, samples=1000, seed=1,
-        fixed=(("operating.load_torque", 412.0),          # rated torque
-               ("errors.equidistant_modification", 0.010),
-               ("clearances.crank_arm_bushing", 0.005),
-               ("errors.pin_hole_clearance", 0.004)),
-        tolerances=(
-            Tolerance("pin_radius", 0.002, "normal"),
-            Tolerance("pin_radial", 0.003, "normal"),
-            Tolerance("pin_tangential", 0.003, "normal"),
-            Tolerance("disc_pitch", 0.005, "normal"),
-            Tolerance("profile_form", 0.002, "normal"),
-            Tolerance("eccentricity", 0.002, "normal"),
+        fixed=(("operating.load_torque", 412.0),) + _PRECISION_FIXED,    # rated torque
+        tolerances=_PRECISION_PINS_AND_DISC + (
             Tolerance("disc_holes", 0.003, "normal"),
             Tolerance("carrier_holes", 0.003, "normal"),
-            Tolerance("errors.pin_hole_clearance", 0.002, "normal"),
-            Tolerance("clearances.crank_arm_bushing", 0.003, "normal"),
-        ))
+        ) + _PRECISION_CLEARANCES)
 
 
 def cycloid_drive_tolerances() -> ToleranceStudy:
@@ -405,20 +412,9 @@ def cycloid_drive_tolerances() -> ToleranceStudy:
     return ToleranceStudy(
         name="cycloid-drive-tolerances", params="cycloid-drive", base=SETS["cycloid-drive"],
         samples=1000, seed=1,
-        fixed=(("operating.load_torque", 200.0),          # rated torque
-               ("errors.equidistant_modification", 0.010),
-               ("clearances.crank_arm_bushing", 0.005),
-               ("errors.pin_hole_clearance", 0.004),
-               ("layout.output_pin_clearance", 0.010)),
-        tolerances=(
-            Tolerance("pin_radius", 0.002, "normal"),
-            Tolerance("pin_radial", 0.003, "normal"),
-            Tolerance("pin_tangential", 0.003, "normal"),
-            Tolerance("disc_pitch", 0.005, "normal"),
-            Tolerance("profile_form", 0.002, "normal"),
-            Tolerance("eccentricity", 0.002, "normal"),
-            Tolerance("errors.pin_hole_clearance", 0.002, "normal"),
-            Tolerance("clearances.crank_arm_bushing", 0.003, "normal"),
+        fixed=(("operating.load_torque", 200.0),) + _PRECISION_FIXED       # rated torque
+        + (("layout.output_pin_clearance", 0.010),),
+        tolerances=_PRECISION_PINS_AND_DISC + _PRECISION_CLEARANCES + (
             Tolerance("layout.output_pin_clearance", 0.005, "normal"),
         ))
 
