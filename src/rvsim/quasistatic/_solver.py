@@ -110,6 +110,11 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             mesh_hold[j, 0] = mesh_state[j, 2]
     mu = MU_MIN
     trust = TRUST_START
+    # the state at q, put back when a trial step is rejected (cheaper than evaluating q again)
+    Q_keep, K_keep = np.empty(n), np.empty((n, n))
+    u_keep, force_keep, elastic_keep = np.empty_like(u), np.empty_like(u), np.empty_like(u)
+    arm_keep, channel_keep = np.empty_like(arm_elastic), np.empty_like(channel)
+    mesh_keep = np.empty_like(mesh_state)
     for iteration in range(max_iter + 1):
         norm = 0.0
         for i in range(n):
@@ -159,6 +164,15 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             for i in range(n):
                 q_trial[i] = q[i] + dx[i] / scale[i]
             norm_old = norm
+            Q_keep[:] = Q
+            K_keep[:, :] = K
+            u_keep[:, :] = u
+            force_keep[:, :] = pin_force
+            elastic_keep[:, :] = pin_elastic
+            arm_keep[:, :] = arm_elastic
+            channel_keep[:] = channel
+            mesh_keep[:, :] = mesh_state
+            size_keep, torque_keep, worst_keep = size, torque_in, worst
             pi_trial, size, torque_in, worst = _evaluate(
                 P, q_trial, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                 u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
@@ -186,11 +200,16 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             else:
                 trust = 0.25 * largest
                 mu *= 10.0
-                # back to the last accepted state
-                pi, size, torque_in, worst = _evaluate(
-                    P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
-                    u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-                    mesh_state, v, mesh_hold, f_ext, fe)
+                # back to the last accepted state (pi unchanged)
+                Q[:] = Q_keep
+                K[:, :] = K_keep
+                u[:, :] = u_keep
+                pin_force[:, :] = force_keep
+                pin_elastic[:, :] = elastic_keep
+                arm_elastic[:, :] = arm_keep
+                channel[:] = channel_keep
+                mesh_state[:, :] = mesh_keep
+                size, torque_in, worst = size_keep, torque_keep, worst_keep
                 if trust < 1e-16 or mu > 1e16:
                     # no step left above the round-off of the positions (1e-16 m): converged
                     # as far as double precision goes if the residual is near tol (very stiff
