@@ -85,6 +85,21 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
 
 
 @numba.njit(cache=True)
+def _copy_state(Q, K, u, pin_force, pin_elastic, arm_elastic, channel, mesh_state,
+                Q_to, K_to, u_to, force_to, elastic_to, arm_to, channel_to, mesh_to):
+    """Copy the state an evaluation leaves (forces, stiffness, contact arrays) into the
+    ``_to`` arrays."""
+    Q_to[:] = Q
+    K_to[:, :] = K
+    u_to[:, :] = u
+    force_to[:, :] = pin_force
+    elastic_to[:, :] = pin_elastic
+    arm_to[:, :] = arm_elastic
+    channel_to[:] = channel
+    mesh_to[:, :] = mesh_state
+
+
+@numba.njit(cache=True)
 def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
                 Q, K, channel, mesh_state, mesh_hold, f_ext, fe):
@@ -166,14 +181,9 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             for i in range(n):
                 q_trial[i] = q[i] + dx[i] / scale[i]
             norm_old = norm
-            Q_keep[:] = Q
-            K_keep[:, :] = K
-            u_keep[:, :] = u
-            force_keep[:, :] = pin_force
-            elastic_keep[:, :] = pin_elastic
-            arm_keep[:, :] = arm_elastic
-            channel_keep[:] = channel
-            mesh_keep[:, :] = mesh_state
+            _copy_state(Q, K, u, pin_force, pin_elastic, arm_elastic, channel, mesh_state,
+                        Q_keep, K_keep, u_keep, force_keep, elastic_keep, arm_keep,
+                        channel_keep, mesh_keep)
             size_keep, torque_keep, worst_keep = size, torque_in, worst
             pi_trial, size, torque_in, worst = _evaluate(
                 P, q_trial, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
@@ -203,14 +213,9 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 trust = 0.25 * largest
                 mu *= 10.0
                 # back to the last accepted state (pi unchanged)
-                Q[:] = Q_keep
-                K[:, :] = K_keep
-                u[:, :] = u_keep
-                pin_force[:, :] = force_keep
-                pin_elastic[:, :] = elastic_keep
-                arm_elastic[:, :] = arm_keep
-                channel[:] = channel_keep
-                mesh_state[:, :] = mesh_keep
+                _copy_state(Q_keep, K_keep, u_keep, force_keep, elastic_keep, arm_keep,
+                            channel_keep, mesh_keep, Q, K, u, pin_force, pin_elastic,
+                            arm_elastic, channel, mesh_state)
                 size, torque_in, worst = size_keep, torque_keep, worst_keep
                 if trust < 1e-16 or mu > 1e16:
                     # no step left above the round-off of the positions (1e-16 m): converged
