@@ -51,8 +51,10 @@ STATUS_TEXT = {STATUS_OK: "ok", STATUS_NOT_CONVERGED: "not_converged",
 
 #: smallest Levenberg-Marquardt term [N/m] (contact stiffnesses are 1e7 .. 1e10 N/m)
 MU_MIN = 1.0
-#: first trust radius [m of scaled coordinate]
-TRUST_START = 2e-5
+#: first trust radius [m of scaled coordinate] (also the largest tangent-predictor step): above
+#: the 2-3 um a continued position moves, below the 10-30 um Newton steps that overshoot where
+#: a contact barely touches (2e-5 took 8 % more CPU per tolerance-study reducer)
+TRUST_START = 5e-6
 #: largest trust radius [m]
 TRUST_MAX = 1e-3
 #: a point where no step above the positions' round-off lowers the energy counts as converged
@@ -83,6 +85,21 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
 
 
 @numba.njit(cache=True)
+def _copy_state(Q, K, u, pin_force, pin_elastic, arm_elastic, channel, mesh_state,
+                Q_to, K_to, u_to, force_to, elastic_to, arm_to, channel_to, mesh_to):
+    """Copy the state an evaluation leaves (forces, stiffness, contact arrays) into the
+    ``_to`` arrays."""
+    Q_to[:] = Q
+    K_to[:, :] = K
+    u_to[:, :] = u
+    force_to[:, :] = pin_force
+    elastic_to[:, :] = pin_elastic
+    arm_to[:, :] = arm_elastic
+    channel_to[:] = channel
+    mesh_to[:, :] = mesh_state
+
+
+@numba.njit(cache=True)
 def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
                 Q, K, channel, mesh_state, mesh_hold, f_ext, fe):
@@ -110,6 +127,11 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             mesh_hold[j, 0] = mesh_state[j, 2]
     mu = MU_MIN
     trust = TRUST_START
+    # the state at q, put back when a trial step is rejected (cheaper than evaluating q again)
+    Q_keep, K_keep = np.empty(n), np.empty((n, n))
+    u_keep, force_keep, elastic_keep = np.empty_like(u), np.empty_like(u), np.empty_like(u)
+    arm_keep, channel_keep = np.empty_like(arm_elastic), np.empty_like(channel)
+    mesh_keep = np.empty_like(mesh_state)
     for iteration in range(max_iter + 1):
         norm = 0.0
         for i in range(n):
@@ -159,6 +181,10 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             for i in range(n):
                 q_trial[i] = q[i] + dx[i] / scale[i]
             norm_old = norm
+            _copy_state(Q, K, u, pin_force, pin_elastic, arm_elastic, channel, mesh_state,
+                        Q_keep, K_keep, u_keep, force_keep, elastic_keep, arm_keep,
+                        channel_keep, mesh_keep)
+            size_keep, torque_keep, worst_keep = size, torque_in, worst
             pi_trial, size, torque_in, worst = _evaluate(
                 P, q_trial, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
                 u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
@@ -186,11 +212,11 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
             else:
                 trust = 0.25 * largest
                 mu *= 10.0
-                # back to the last accepted state
-                pi, size, torque_in, worst = _evaluate(
-                    P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
-                    u, next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-                    mesh_state, v, mesh_hold, f_ext, fe)
+                # back to the last accepted state (pi unchanged)
+                _copy_state(Q_keep, K_keep, u_keep, force_keep, elastic_keep, arm_keep,
+                            channel_keep, mesh_keep, Q, K, u, pin_force, pin_elastic,
+                            arm_elastic, channel, mesh_state)
+                size, torque_in, worst = size_keep, torque_keep, worst_keep
                 if trust < 1e-16 or mu > 1e16:
                     # no step left above the round-off of the positions (1e-16 m): converged
                     # as far as double precision goes if the residual is near tol (very stiff
@@ -267,6 +293,30 @@ def kinematic_pose(P, theta_in, holes, q):
 
 
 @numba.njit(cache=True)
+def _carry_feet(u, shift):
+    """Carry the pins' foot-point offsets (``u[disc, i]``, from the pin's nominal parameter,
+    :func:`rvsim.dynamics._kernel.pin_contacts`) to the next point of a path in input angle:
+    the offsets follow the load pattern, which turns with the eccentric (and the discs) by
+    ``shift`` [rad]; linear interpolation between the pins.  Only a start for the kernel's
+    foot-point tracking (one Newton step from it, a robust search where that step is too large):
+    the offsets left by the previous point are those of pins a whole load pattern away, which
+    sends most pins to the robust search (about a quarter of a position's time for the RV-40E)."""
+    zp = u.shape[1]
+    pitch = 2.0 * math.pi / zp
+    s = (shift / pitch) % zp             # in pins, within [0, zp)
+    whole = int(math.floor(s))
+    frac = s - whole
+    old = u.copy()
+    for disc in range(u.shape[0]):
+        for i in range(zp):
+            # the offset at pin i is that of the point shift behind it: between pins
+            # i - whole - 1 and i - whole
+            a = old[disc, (i - whole) % zp]
+            b = old[disc, (i - whole - 1) % zp]
+            u[disc, i] = (1.0 - frac) * a + frac * b
+
+
+@numba.njit(cache=True)
 def _predict(P, q, theta_old, theta_new, holes):
     """Carry the elastic and clearance deviation from the ideal pose from one input angle to
     the next, the discs' translations turned with the eccentric (the pin resultant turns with
@@ -284,6 +334,7 @@ def _predict(P, q, theta_old, theta_new, holes):
         dev[base], dev[base + 1] = c * x - s * y, s * x + c * y
     for i in range(N_DOF):
         q[i] = ideal_new[i] + dev[i]
+    return beta_new - beta_old + ideal_new[CARRIER] - ideal_old[CARRIER]
 
 
 @numba.njit(cache=True)
@@ -487,7 +538,9 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     for k in range(n_points):
         if k > 0:
             if theta_in[k] != theta_in[k - 1]:
-                _predict(P, q, theta_in[k - 1], theta_in[k], holes)
+                shift = _predict(P, q, theta_in[k - 1], theta_in[k], holes)
+                if P[STAGES] != 1.0:
+                    _carry_feet(u, shift)
             elif torque[k] != torque[k - 1]:
                 # tangent predictor: K dq = -dT e_c, limited to the first trust radius
                 for i in range(N_DOF):
