@@ -25,15 +25,12 @@ import tempfile  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
+from _timing import samples  # noqa: E402
+
 
 def _median(function, repeat):
     """Wall-clock and CPU time (this process) of ``repeat`` calls: median, min, max of each."""
-    wall, cpu = [], []
-    for _ in range(repeat):
-        start, start_cpu = time.perf_counter(), time.process_time()
-        function()
-        wall.append(time.perf_counter() - start)
-        cpu.append(time.process_time() - start_cpu)
+    wall, cpu = samples(function, repeat)
     return {"wall_s": [statistics.median(wall), min(wall), max(wall)],
             "cpu_s": [statistics.median(cpu), min(cpu), max(cpu)]}
 

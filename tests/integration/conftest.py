@@ -1,8 +1,16 @@
 """Small, fast studies for the integration tests (a short schedule: same physics)."""
 
+import os
+import signal
+import subprocess
+import sys
 import textwrap
+import time
+from pathlib import Path
 
 import pytest
+
+SRC = str(Path(__file__).resolve().parents[2] / "src")
 
 SHORT = """
 [set]
@@ -36,3 +44,20 @@ def write_study(folder, design="L4", factors=None, extra=""):
 @pytest.fixture
 def small_study(tmp_path):
     return write_study(tmp_path)
+
+
+def interrupted(args, delay, cwd):
+    """Start ``python -m rvsim ARGS`` in ``cwd``, send it a real SIGINT after ``delay`` s and
+    return (exit code, stdout, stderr)."""
+    proc = subprocess.Popen([sys.executable, "-m", "rvsim", *args], stdin=subprocess.DEVNULL,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=cwd,
+                            env={**os.environ, "PYTHONPATH": SRC})
+    try:
+        time.sleep(delay)
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    return proc.returncode, out, err

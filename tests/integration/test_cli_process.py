@@ -9,17 +9,15 @@ printed its line: a KeyboardInterrupt that once passed through an ``exec`` of a 
 
 import json
 import os
-import signal
 import subprocess
 import sys
-import time
-from pathlib import Path
 
 import pytest
 
+from .conftest import SRC, interrupted
+
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
-SRC = str(Path(__file__).resolve().parents[2] / "src")
 ENV = {**os.environ, "PYTHONPATH": SRC}
 
 
@@ -49,15 +47,5 @@ def test_sigint_at_any_moment_ends_with_130(tmp_path, delay):
     # numba's start, loading the cached engine, the engine: wherever the signal lands, one line
     # and code 130.  (During the first ~0.1 s, while Python imports the rvsim package itself,
     # Ctrl-C still gives Python's own traceback, as for any Python program.)
-    proc = subprocess.Popen([sys.executable, "-m", "rvsim", "ltca", "--positions", "100000",
-                             "--json"], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, cwd=tmp_path, env=ENV)
-    try:
-        time.sleep(delay)
-        proc.send_signal(signal.SIGINT)
-        out, err = proc.communicate(timeout=60)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
-    assert (proc.returncode, err, out) == (130, b"rvsim: interrupted\n", b"")
+    result = interrupted(["ltca", "--positions", "100000", "--json"], delay, tmp_path)
+    assert result == (130, b"", b"rvsim: interrupted\n")

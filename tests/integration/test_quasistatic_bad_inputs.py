@@ -7,13 +7,11 @@ a correct result: never a traceback, a silent absurd number or a partial file.
 
 import json
 import os
-import signal
-import subprocess
 import sys
-import time
-from pathlib import Path
 
 import pytest
+
+from .conftest import interrupted
 
 # --- bad input: one line `rvsim: error: ...`, exit 2, nothing computed or written ----------
 
@@ -153,20 +151,10 @@ def test_nearly_cancelling_modifications(cli):
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_sigint_stops_a_long_ltca(tmp_path):
     page = tmp_path / "ltca.html"
-    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2] / "src")}
-    proc = subprocess.Popen([sys.executable, "-m", "rvsim", "ltca", "--positions", "100000",
-                             "--report", str(page), "--json"], stdin=subprocess.DEVNULL,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path,
-                            env=env)
-    try:
-        time.sleep(3.0)      # past the imports, into the engine (100000 positions: ~6 s warm)
-        proc.send_signal(signal.SIGINT)
-        out, err = proc.communicate(timeout=120)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
-    assert proc.returncode == 130, err
+    # 3 s: past the imports, into the engine (100000 positions: ~6 s warm)
+    code, out, err = interrupted(["ltca", "--positions", "100000", "--report", str(page),
+                                  "--json"], 3.0, tmp_path)
+    assert code == 130, err
     assert err == b"rvsim: interrupted\n" and out == b""
     assert list(tmp_path.iterdir()) == []
 
