@@ -458,15 +458,11 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
             # friction held (an unloaded body stays where it was) and the friction grows
             # from that of that pose
             restarted = True
-            first = update
+            first = update + 1
             for i in range(N_DOF):
                 q[i] = q_entry[i]
                 f_ext[i] = 0.0
-            status, iterations, torque_in = _solve_point(
-                P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
-                crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q,
-                K, channel, mesh_state, f_ext, fe)
-            total += iterations
+            continue
         if status != STATUS_OK:
             break
         if update == first:
