@@ -71,9 +71,7 @@ def _conforming(f, j1, a1, j2, a2, cb, shift):
 def conforming_approach(f, j1, a1, j2, a2, cb):
     """Approach, compliance and energy of two conforming interfaces and a linear compliance
     ``cb`` in series, at the force ``f`` > 0."""
-    d1, c1, e1 = johnson_interface(f, j1, a1)
-    d2, c2, e2 = johnson_interface(f, j2, a2)
-    return d1 + d2 + cb * f, c1 + c2 + cb, e1 + e2 + 0.5 * cb * f * f
+    return _conforming(f, j1, a1, j2, a2, cb, 0.0 if a2 == a1 else math.log(a2 / a1))
 
 
 @numba.njit(cache=True)
