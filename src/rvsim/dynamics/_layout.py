@@ -146,11 +146,13 @@ RING_OUTPUT    = 120       # single-stage: 1.0 = the pin ring is the output (CAR
 
 # ---- finite-element bodies: 130-139 ------------------------------------------------------
 FE_DISC        = 130       # 1: the discs' pins are coupled through finite-element tables
+# (disc: 130-139; crankshaft: 140-149; carrier and flange: 150-159; disc modes: 160-169;
+# finite-element pins: 170-179)
 
 
 _P_INDEX = {name: value for name, value in dict(globals()).items()
             if name not in _BEFORE_P and name.isupper()}
-N_PARAMS = 140
+N_PARAMS = 180
 assert len(set(_P_INDEX.values())) == len(_P_INDEX), "two constants share one slot of P"
 assert all(0 <= value < N_PARAMS for value in _P_INDEX.values()), "raise N_PARAMS"
 _NAME_OF = {value: name for name, value in _P_INDEX.items()}
