@@ -11,6 +11,7 @@ import pytest
 
 from rvsim.fe.elasticity import Factor, PlaneStressBody, edge_force
 from rvsim.fe.mesh import mesh_plane_region
+from rvsim.parameters import RV40E, with_values
 
 E, NU, T, R = 2.0e11, 0.3, 0.015, 0.003
 
@@ -155,3 +156,58 @@ def test_pin_table_interpolation(coarse_pin):
     # even in psi, held beyond the table's end
     assert table_value(table, step, math.cos(-0.3)) == table_value(table, step, math.cos(0.3))
     assert table_value(table, step, -1.0) == table[-1]
+
+
+# --- both engines read the table at each contact's angle --------------------------------
+
+def _coarse(values):
+    return with_values(RV40E, {"flexibility.fe_element_size": 4.0,        # mm
+                               "flexibility.fe_segments_per_tooth": 2, **values})
+
+
+def test_a_constant_table_is_the_closed_form_pin(monkeypatch):
+    """A table holding Roark's constant gives the closed-form model's TE exactly: the table
+    replaces P[PIN_CB]'s pin term and nothing else."""
+    import rvsim.fe.pin as fe_pin
+    from rvsim.dynamics import _layout as L
+    from rvsim.dynamics.model import build_model
+    from rvsim.quasistatic import ltca
+
+    closed = _coarse({"B": 1})
+    roark = build_model(closed, 1e-5).P[L.PIN_CB]
+    assert roark == pytest.approx(2.1056e-9, rel=1e-4)
+    table = fe_pin.PinTable(np.radians(10.0) * np.arange(9), np.full(9, roark), 0, 0, 0.0, True)
+    monkeypatch.setattr(fe_pin, "pin_table", lambda reducer: table)
+    fe = _coarse({"B": 1, "flexibility.model": "fe"})
+    assert build_model(fe, 1e-5).P[L.PIN_CB] == 0.0
+    a = ltca(closed, torque=300.0, positions=12)
+    b = ltca(fe, torque=300.0, positions=12)
+    assert np.max(np.abs(a.te - b.te)) < 1e-12 * np.max(np.abs(a.te))
+
+
+@pytest.mark.parametrize("disc, tolerance", [(0, 1e-5), (1, 4e-5)])
+def test_quasi_static_te_equals_dynamic_mean_with_fe_pins(disc, tolerance):
+    """Low speed, constant load (as tests/verification/test_quasistatic.py), FE pins with the
+    rigid disc (independent contacts; measured 3.0e-6) and with the coarse FE disc (coupled
+    contacts, the dynamic engine's one-step lag; measured 1.8e-5)."""
+    from rvsim.dynamics import _layout as L
+    from rvsim.dynamics import simulate
+    from rvsim.quasistatic import solve_path
+
+    speed = 1750.0
+    steady = 0.8
+    reducer = _coarse({"B": 1, "A": disc, "flexibility.model": "fe"})
+    crank_period = 360.0 * reducer.ratio / (speed * reducer.cycloid.pin_count)
+    reducer = with_values(reducer, {
+        "operating.input_speed": math.radians(speed), "operating.speed_ramp_time": 0.2,
+        "operating.load_start": 0.2, "operating.load_ramp_end": 0.4,
+        "operating.steady_start": steady, "operating.duration": steady + 2.0 * crank_period,
+        "operating.load_inertia": 0.0})
+    dynamic = simulate(reducer)
+    assert dynamic.status == "ok"
+    window = dynamic.time >= steady - 1e-12
+    theta_in = dynamic.channel("theta_in")[window][::10]
+    path = solve_path(reducer, theta_in, np.full(len(theta_in), reducer.operating.load_torque))
+    assert path.status == "ok"
+    te = theta_in / reducer.ratio - path.q[:, L.CARRIER]
+    assert te.mean() == pytest.approx(dynamic.te[window].mean(), rel=tolerance)
