@@ -148,6 +148,19 @@ RING_OUTPUT    = 120       # single-stage: 1.0 = the pin ring is the output (CAR
 FE_DISC        = 130       # 1: the discs' pins are coupled through finite-element tables
 # (disc: 130-139; crankshaft: 140-149; carrier and flange: 150-159; disc modes: 160-169;
 # finite-element pins: 170-179)
+# carrier and flange (dynamics._fe_carrier): the plates' bore compliance table [m/N] in the
+# carrier frame (bore 1 = crank 0's on +x; x, y of bore 1, then of bore 2), one table for both
+# plates; all zero: rigid bores.  C_11 (xx, xy, yy), C_12 (xx, xy, yx, yy), C_22 (xx, xy, yy)
+PLATE_11XX     = 150
+PLATE_11XY     = 151
+PLATE_11YY     = 152
+PLATE_12XX     = 153
+PLATE_12XY     = 154
+PLATE_12YX     = 155
+PLATE_12YY     = 156
+PLATE_22XX     = 157
+PLATE_22XY     = 158
+PLATE_22YY     = 159
 
 
 _P_INDEX = {name: value for name, value in dict(globals()).items()
