@@ -34,10 +34,10 @@ def _plate(model, q, upper, want=True, elastic=None):
     Q = np.zeros(L.N_DOF)
     K = np.zeros((L.N_DOF, L.N_DOF) if want else (0, 0))
     elastic = np.zeros((2, L.OUT_SLOT0 + COLUMNS)) if elastic is None else elastic
-    forces = np.zeros(2)
+    channel = np.zeros(L.N_CHANNELS)
     energy, _ = plate_supports(model.P, q, np.zeros(L.N_DOF), Q, K, upper, model.crank_angles,
-                               elastic, forces)
-    return Q, K, energy, forces
+                               elastic, channel)
+    return Q, K, energy, channel[[L.CH_SUP_FL0 + upper, L.CH_SUP_FL0 + 2 + upper]]
 
 
 @pytest.fixture(scope="module")

@@ -40,8 +40,9 @@ invalidate_stale_cache(__file__)
 
 from ._bearings import conforming_force  # noqa: E402
 from ._contact_law import damped  # noqa: E402
-from ._layout import (BORE_DR0, BORE_DT0, CARRIER, CENTRE_DIST, CRANK0,  # noqa: E402
-                      CRANK_STRIDE, M_NODE, PLATE_11XX, PLATE_11XY, PLATE_11YY, PLATE_12XX,
+from ._fe_contacts import _eliminate  # noqa: E402
+from ._layout import (BORE_DR0, BORE_DT0, CARRIER, CENTRE_DIST, CH_SUP_FL0,  # noqa: E402
+                      CRANK0, CRANK_STRIDE, M_NODE, PLATE_11XX, PLATE_11XY, PLATE_11YY, PLATE_12XX,
                       PLATE_12XY, PLATE_12YX, PLATE_12YY, PLATE_22XX, PLATE_22XY, PLATE_22YY,
                       SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CLEAR_L, SUP_CLEAR_U, SUP_J1, SUP_J2,
                       SUP_SLOT0, ZETA)
@@ -180,9 +181,9 @@ def plate_forces(P, upper, clearance, r, cm, s, guess, own, stiffness):
             s[:] = phi
             continue
         _jacobian(dm, cm, jac)
-        step = np.linalg.solve(jac, g)
+        _eliminate(jac, g.reshape((4, 1)), 4)        # I + D C: diagonally dominant
         for i in range(4):
-            s[i] -= step[i]
+            s[i] -= g[i]
     s[:] = phi
     energy = energies[0] + energies[1]
     for i in range(4):
@@ -190,7 +191,8 @@ def plate_forces(P, upper, clearance, r, cm, s, guess, own, stiffness):
             energy += 0.5 * s[i] * cm[i, j] * s[j]
     if stiffness.shape[0] == 4:
         _jacobian(dm, cm, jac)
-        stiffness[:, :] = np.linalg.solve(jac, dm)
+        stiffness[:, :] = dm
+        _eliminate(jac, stiffness, 4)
         for i in range(4):
             for j in range(i + 1, 4):
                 mean = 0.5 * (stiffness[i, j] + stiffness[j, i])
@@ -237,7 +239,7 @@ def plate_sweep(P, upper, clearance, r, cm, s, guess, own):
 
 
 @numba.njit(cache=True)
-def _stiffness(K, node, cm, s, bore, sm):
+def _stiffness(K, shift, cm, s, bore, sm):
     """K += the plate's stiffness -dQ/dq in its nodes and the carrier angle: dS/dx = Sm,
     dS/dtheta = -Sm a with a = J (b + u) - C J S (the bores turn with the carrier, the table
     with them), and the moment's own terms a^T J S (J: a quarter turn)."""
@@ -258,43 +260,43 @@ def _stiffness(K, node, cm, s, bore, sm):
     theta = 0.0
     for i in range(4):
         theta += a[i] * (sa[i] + js[i])
-        K[node[i // 2] + i % 2, CARRIER] -= sa[i]
-        K[CARRIER, node[i // 2] + i % 2] -= sa[i]
+        row = CRANK0 + CRANK_STRIDE * (i // 2) + shift + i % 2
+        K[row, CARRIER] -= sa[i]
+        K[CARRIER, row] -= sa[i]
         for m in range(4):
-            K[node[i // 2] + i % 2, node[m // 2] + m % 2] += sm[i, m]
+            K[row, CRANK0 + CRANK_STRIDE * (m // 2) + shift + m % 2] += sm[i, m]
     K[CARRIER, CARRIER] += theta
 
 
 @numba.njit(cache=True)
-def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, forces):
+def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
     """Both cranks' support bushings on one plate (``upper``: the carrier; else the flange),
     with the plate's table: adds their forces to ``Q`` (and their stiffness to a 17 x 17
     ``K``: then solved together, :func:`plate_forces`; else one sweep, :func:`plate_sweep`),
-    the resultant force on crank j to ``forces[j]``.  Returns (energy, dissipated power)."""
+    the resultant force on crank j to its channel.  Returns (energy, dissipated power)."""
     clearance = P[SUP_CLEAR_U] if upper else P[SUP_CLEAR_L]
-    cm = np.empty((4, 4))
+    # one scratch array (this runs twice per time step): the housing-frame table, the
+    # approach vectors and rates, the bore centres, the forces, their magnitudes, the
+    # bushings' (stiffness, n^T C n) and the quasi-static tangent
+    work = np.empty(58)
+    cm = work[:16].reshape((4, 4))
+    r, rate, bore, s = work[16:20], work[20:24], work[24:28], work[28:32]
+    guess, own, sm = work[32:34], work[34:38].reshape((2, 2)), work[38:54].reshape((4, 4))
     _table(P, q[CARRIER] + crank_angles[0], cm)   # the table's x axis: through crank 0's bore
-    r = np.empty(4)
-    rate = np.empty(4)
-    bore = np.empty(4)
-    node = np.empty(2, dtype=np.int64)
     col = elastic.shape[1] - COLUMNS + (2 if upper else 0)
     slot = SUP_SLOT0 + (1 if upper else 0)
-    s = np.empty(4)
-    guess = np.empty(2)
+    shift = 2 if upper else 0
     wc = v[CARRIER]
     for j in range(2):
-        b = CRANK0 + CRANK_STRIDE * j + (2 if upper else 0)
-        node[j] = b
+        b = CRANK0 + CRANK_STRIDE * j + shift
         bx, by = bore_centre(P, q, j, crank_angles[j])
         bore[2 * j], bore[2 * j + 1] = bx, by
         r[2 * j], r[2 * j + 1] = q[b] - bx, q[b + 1] - by
         rate[2 * j], rate[2 * j + 1] = v[b] + wc * by, v[b + 1] - wc * bx
         s[2 * j], s[2 * j + 1] = elastic[j, col], elastic[j, col + 1]
         guess[j] = elastic[j, slot]
-    own = np.zeros((2, 2))
+        own[j, 0] = own[j, 1] = 0.0
     want = K.shape[0] > 0
-    sm = np.empty((4 if want else 0, 4 if want else 0))
     if want:
         # the stored directions may be those of another pose: start along the rigid approach
         for j in range(2):
@@ -310,12 +312,12 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, forces):
         energy = plate_sweep(P, upper, clearance, r, cm, s, guess, own)
     power = 0.0
     for j in range(2):
-        b = node[j]
+        b = CRANK0 + CRANK_STRIDE * j + shift
         sx, sy = s[2 * j], s[2 * j + 1]
         f = math.sqrt(sx * sx + sy * sy)
         elastic[j, col], elastic[j, col + 1] = sx, sy
         elastic[j, slot] = f
-        forces[j] = 0.0
+        channel[CH_SUP_FL0 + 2 * j + (1 if upper else 0)] = 0.0
         if f == 0.0:
             continue
         nx, ny = sx / f, sy / f
@@ -323,7 +325,7 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, forces):
         total, pw = damped(f, own[j, 0], nx * rate[2 * j] + ny * rate[2 * j + 1], P[ZETA],
                            P[M_NODE])
         power += pw
-        forces[j] = total
+        channel[CH_SUP_FL0 + 2 * j + (1 if upper else 0)] = total
         # the force acts on the displaced bore b + u, u = C S
         ux = uy = 0.0
         for m in range(4):
@@ -333,7 +335,7 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, forces):
         Q[b + 1] -= total * ny
         Q[CARRIER] += total * ((bore[2 * j] + ux) * ny - (bore[2 * j + 1] + uy) * nx)
     if want:
-        _stiffness(K, node, cm, s, bore, sm)
+        _stiffness(K, shift, cm, s, bore, sm)
     return energy, power
 
 

@@ -558,16 +558,15 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             if P[FRICTION_ON] == 1.0:
                 power += support_bearing_friction(P, v, Q, j, force)
     if P[PLATE_11XX] != 0.0:    # finite-element carrier and flange (dynamics._fe_carrier)
-        plate_force = np.empty(2)
         for upper in range(2):
             e, pw = plate_supports(P, q, v, Q, K, upper == 1, crank_angles, arm_elastic,
-                                   plate_force)
+                                   channel)
             energy += e
             power += pw
             for j in range(2):
-                channel[CH_SUP_FL0 + 2 * j + upper] = plate_force[j]
                 if P[FRICTION_ON] == 1.0:
-                    power += support_bearing_friction(P, v, Q, j, plate_force[j])
+                    power += support_bearing_friction(P, v, Q, j,
+                                                      channel[CH_SUP_FL0 + 2 * j + upper])
     if single:
         for disc in range(n_discs):
             for m in range(int(P[OUT_COUNT])):
