@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 from rvsim.dynamics import _layout as L
-from rvsim.dynamics import simulate
 from rvsim.dynamics._bearings import conforming_force
 from rvsim.dynamics._fe_carrier import COLUMNS, plate_forces, plate_supports
 from rvsim.dynamics.model import build_model
@@ -126,26 +125,11 @@ def test_very_stiff_plate_gives_the_rigid_result(monkeypatch):
 def test_quasi_static_te_equals_dynamic_mean_with_the_fe_carrier():
     """As tests/verification/test_quasistatic.py for paper run 1, here with the FE disc and
     the FE carrier (coarse meshes)."""
-    from rvsim.parameters import paper_run_values
+    from tests.verification.test_quasistatic import _low_speed, engines_mean_te
 
-    speed = 1750.0
-    crank_period = 360.0 * RV40E.ratio / (speed * RV40E.cycloid.pin_count)
-    steady = 0.8
-    reducer = with_values(RV40E, {
-        **paper_run_values(1), **COARSE, "A": True, "D": False,
-        "operating.input_speed": math.radians(speed), "operating.speed_ramp_time": 0.2,
-        "operating.load_start": 0.2, "operating.load_ramp_end": 0.4,
-        "operating.steady_start": steady, "operating.duration": steady + 2.0 * crank_period,
-        "operating.load_inertia": 0.0})
-    dynamic = simulate(reducer)
-    assert dynamic.summary()["status"] == "ok"
-    window = dynamic.time >= steady - 1e-12
-    theta_in = dynamic.channel("theta_in")[window][::10]
-    path = solve_path(reducer, theta_in, np.full(len(theta_in), reducer.operating.load_torque))
-    assert path.status == "ok"
-    te = theta_in / reducer.ratio - path.q[:, L.CARRIER]
+    static, dynamic = engines_mean_te(with_values(_low_speed(1), {**COARSE, "A": True}))
     # measured 7.3e-7 (2.4e-6 for the FE carrier alone, A off; default meshes -5.4e-7)
-    assert te.mean() == pytest.approx(dynamic.te[window].mean(), rel=1e-5)
+    assert static == pytest.approx(dynamic, rel=1e-5)
 
 
 def test_carrier_adds_its_table_to_the_torsional_compliance():

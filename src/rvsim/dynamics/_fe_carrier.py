@@ -161,11 +161,9 @@ def plate_forces(P, upper, clearance, r, cm, s, guess, own, stiffness):
     ``s`` (``guess``: the bushings' force magnitudes, Newton starts of their law).  Fills
     ``own[j]`` = (law stiffness along n, n^T C_jj n); with a 4 x 4 ``stiffness`` also the
     tangent dS/dr = (I + D C)^-1 D.  Returns (potential energy, iterations, converged)."""
-    phi = np.empty(4)
-    dm = np.zeros((4, 4))
-    energies = np.zeros(2)
-    jac = np.empty((4, 4))
-    g = np.empty(4)
+    work = np.zeros(42)                         # one scratch array
+    phi, g, energies = work[:4], work[4:8], work[8:10]
+    dm, jac = work[10:26].reshape((4, 4)), work[26:42].reshape((4, 4))
     converged = False
     iterations = 0
     for iterations in range(1, MAX_NEWTON + MAX_SWEEPS + 1):
@@ -243,8 +241,8 @@ def _stiffness(K, shift, cm, s, bore, sm):
     """K += the plate's stiffness -dQ/dq in its nodes and the carrier angle: dS/dx = Sm,
     dS/dtheta = -Sm a with a = J (b + u) - C J S (the bores turn with the carrier, the table
     with them), and the moment's own terms a^T J S (J: a quarter turn)."""
-    a = np.empty(4)
-    js = np.empty(4)
+    work = np.empty(12)
+    a, js, sa = work[:4], work[4:8], work[8:12]
     for j in range(2):
         js[2 * j], js[2 * j + 1] = -s[2 * j + 1], s[2 * j]
     for j in range(2):
@@ -256,7 +254,8 @@ def _stiffness(K, shift, cm, s, bore, sm):
             cjy += cm[2 * j + 1, m] * js[m]
         a[2 * j] = -(bore[2 * j + 1] + uy) - cjx
         a[2 * j + 1] = bore[2 * j] + ux - cjy
-    sa = sm @ a
+    for i in range(4):
+        sa[i] = sm[i, 0] * a[0] + sm[i, 1] * a[1] + sm[i, 2] * a[2] + sm[i, 3] * a[3]
     theta = 0.0
     for i in range(4):
         theta += a[i] * (sa[i] + js[i])
@@ -298,10 +297,13 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
         own[j, 0] = own[j, 1] = 0.0
     want = K.shape[0] > 0
     if want:
-        # the stored directions may be those of another pose: start along the rigid approach
+        # start from the stored forces where they point along the rigid approach (the same
+        # equilibrium search); else (another pose) along it with the stored magnitude
         for j in range(2):
             dist = math.sqrt(r[2 * j] ** 2 + r[2 * j + 1] ** 2)
             f = guess[j] if dist > clearance else 0.0
+            if f > 0.0 and s[2 * j] * r[2 * j] + s[2 * j + 1] * r[2 * j + 1] > 0.999 * f * dist:
+                continue
             s[2 * j] = f * r[2 * j] / dist if f > 0.0 else 0.0
             s[2 * j + 1] = f * r[2 * j + 1] / dist if f > 0.0 else 0.0
         energy, _, _ = plate_forces(P, upper, clearance, r, cm, s, guess, own, sm)
