@@ -24,7 +24,7 @@ displaced bore, which makes the rotating anisotropic table conservative).
   anisotropic compliance taken as they are.  Damping 2 zeta sqrt(k m) at the series stiffness.
 
 The force vectors are carried from step to step in the last :data:`COLUMNS` columns of the
-kernel's ``arm_elastic`` array (row = crank).
+kernel's ``arm_elastic`` array (row = crank); the table is in P (model.build_model fills it).
 """
 
 from __future__ import annotations
@@ -48,7 +48,7 @@ from ._layout import (BORE_DR0, BORE_DT0, CARRIER, CENTRE_DIST, CH_SUP_FL0,  # n
                       SUP_SLOT0, ZETA)
 
 __all__ = ["COLUMNS", "bore_centre", "plate_block", "plate_supports", "plate_forces",
-           "plate_sweep", "fill_constants"]
+           "plate_sweep"]
 
 #: columns of ``arm_elastic`` (at its end) holding the support forces (upper, x / y)
 COLUMNS = 4
@@ -339,25 +339,3 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
     if want:
         _stiffness(K, shift, cm, s, bore, sm)
     return energy, power
-
-
-def fill_constants(reducer, P: np.ndarray) -> None:
-    """The plates' table into P (``flexibility.model = fe`` with ``flexibility.fe_carrier``,
-    RV reducer): the carrier and the flange have the same geometry in the parameter set, so
-    one table serves both (docs/decisions.md)."""
-    from ..errors import ParameterError
-    from ..fe.carrier import carrier_table
-
-    f = reducer.flexibility
-    if f.model != "fe" or not f.fe_carrier or reducer.layout.single_stage:
-        return
-    if reducer.bearings.support_rollers:
-        raise ParameterError("flexibility.fe_carrier", "the finite-element carrier takes the "
-                             "support bushings only so far, not bearings.support_rollers "
-                             "(set flexibility.fe_carrier = false)")
-    c = carrier_table(reducer).compliance
-    c = 0.5 * (c + c.T)
-    P[PLATE_11XX], P[PLATE_11XY], P[PLATE_11YY] = c[0, 0], c[0, 1], c[1, 1]
-    P[PLATE_12XX], P[PLATE_12XY], P[PLATE_12YX], P[PLATE_12YY] = c[0, 2], c[0, 3], c[1, 2], \
-        c[1, 3]
-    P[PLATE_22XX], P[PLATE_22XY], P[PLATE_22YY] = c[2, 2], c[2, 3], c[3, 3]

@@ -239,9 +239,7 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.PIN_CB] = body
     _bearing_constants(r, P)
     P[L.FE_DISC] = 1.0 if fe_disc else 0.0
-    from ._fe_carrier import fill_constants as fill_plate_constants  # numba: loaded here
-
-    fill_plate_constants(r, P)     # finite-element carrier and flange (docs/model.md sec. 17)
+    _fe_plate_constants(r, P)      # finite-element carrier and flange (docs/model.md sec. 17)
     P[L.ZETA] = r.contact.damping_ratio
     P[L.V_FRIC] = r.contact.friction_velocity
     fill_friction_constants(r, P)       # P[MU] and the friction block (docs/model.md sec. 15)
@@ -308,6 +306,28 @@ def _fe_tables(r: Reducer) -> np.ndarray:
                              "friction yet (set contact.friction_coefficient = 0 or use "
                              "closed-form)")
     return disc_tables(r)
+
+
+def _fe_plate_constants(r: Reducer, P: np.ndarray) -> None:
+    """The carrier and flange plates' bore table into P (``flexibility.model = fe`` with
+    ``flexibility.fe_carrier``, RV reducer; dynamics._fe_carrier uses it): the parameter set
+    does not distinguish the two plates, so one table serves both (docs/decisions.md)."""
+    from ..errors import ParameterError
+    from ..fe.carrier import carrier_table
+
+    f = r.flexibility
+    if f.model != "fe" or not f.fe_carrier or r.layout.single_stage:
+        return
+    if r.bearings.support_rollers:
+        raise ParameterError("flexibility.fe_carrier", "the finite-element carrier takes the "
+                             "support bushings only so far, not bearings.support_rollers "
+                             "(set flexibility.fe_carrier = false)")
+    c = carrier_table(r).compliance
+    c = 0.5 * (c + c.T)
+    P[L.PLATE_11XX], P[L.PLATE_11XY], P[L.PLATE_11YY] = c[0, 0], c[0, 1], c[1, 1]
+    P[L.PLATE_12XX], P[L.PLATE_12XY], P[L.PLATE_12YX], P[L.PLATE_12YY] = (c[0, 2], c[0, 3],
+                                                                          c[1, 2], c[1, 3])
+    P[L.PLATE_22XX], P[L.PLATE_22XY], P[L.PLATE_22YY] = c[2, 2], c[2, 3], c[3, 3]
 
 
 def _bearing_constants(r: Reducer, P: np.ndarray) -> None:
