@@ -18,8 +18,8 @@ and hole *with* the deflection:
 r the rigid relative positions (eccentric centre - hole centre), F the conforming bushing law
 (:func:`rvsim.dynamics._bearings.conforming_force`).  Potential energy
 U = sum_k E_k(|r'_k| - clearance) + S^T A S / 2: dU/dr = S (the forces act on the rigid
-coordinates as the rigid crank's), and because A turns with phi, dU/dphi = -S^T (dA/dphi) S / 2
-= (J S)^T A S (J the quarter turn of each eccentric's force): a small torque on the crank
+coordinates as the rigid crank's), and because A turns with phi, -dU/dphi = S^T (dA/dphi) S / 2
+= -(J S)^T A S (J the quarter turn of each eccentric's force): a small torque on the crank
 where the table is anisotropic (the crank's torsion adds to the compliance across the
 eccentric), kept so that the energy closes.
 
@@ -94,7 +94,7 @@ def crank_compliance(P, phi, A):
 
 @numba.njit(cache=True)
 def compliance_torque(A, S):
-    """-dU/dphi at fixed relative positions: (J S)^T A S, S (2, 2) the elastic forces on the
+    """-dU/dphi at fixed relative positions: -(J S)^T A S, S (2, 2) the elastic forces on the
     holes, J S = (-S_y, S_x) per eccentric."""
     total = 0.0
     for i in range(4):
@@ -103,7 +103,7 @@ def compliance_torque(A, S):
         w = 0.0
         for j in range(4):
             w += A[i, j] * S[j // 2, j % 2]
-        total += js * w
+        total -= js * w
     return total
 
 
