@@ -68,22 +68,25 @@ def pack_table(force_block: np.ndarray) -> np.ndarray:
     return np.array([c[i, j] for i, j in TABLE_ORDER])
 
 
+@numba.njit(cache=True, inline="always")
+def _table(P, i, j):
+    """C[i, j] of the crank-frame table held in P (upper triangle, :data:`TABLE_ORDER`)."""
+    if i > j:
+        i, j = j, i
+    return P[FE_CRANK_XX1 + 4 * i - i * (i - 1) // 2 + j - i]
+
+
 @numba.njit(cache=True)
 def crank_compliance(P, phi, A):
     """Fill ``A`` (4 x 4, housing frame, (x1, y1, x2, y2)) with R(phi) C R(phi)^T, C the
     crank-frame table in P; phi the direction of eccentric 1."""
-    C = np.empty((4, 4))
-    for i in range(10):
-        r = (0, 0, 0, 0, 1, 1, 1, 2, 2, 3)[i]
-        c = (0, 1, 2, 3, 1, 2, 3, 2, 3, 3)[i]
-        C[r, c] = P[FE_CRANK_XX1 + i]
-        C[c, r] = P[FE_CRANK_XX1 + i]
     cp, sp = math.cos(phi), math.sin(phi)
     for k in range(2):
         for m in range(2):
             a, b = 2 * k, 2 * m
             # R C_km R^T with R = [[cp, -sp], [sp, cp]]
-            xx, xy, yx, yy = C[a, b], C[a, b + 1], C[a + 1, b], C[a + 1, b + 1]
+            xx, xy = _table(P, a, b), _table(P, a, b + 1)
+            yx, yy = _table(P, a + 1, b), _table(P, a + 1, b + 1)
             t00, t01 = cp * xx - sp * yx, cp * xy - sp * yy
             t10, t11 = sp * xx + cp * yx, sp * xy + cp * yy
             A[a, b] = t00 * cp - t01 * sp

@@ -443,9 +443,10 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
     tangent stiffness in series with the crank (the diagonal of dS/dr along its force).
     ``out[disc]`` receives the resultant forces; returns (energy, dissipated power)."""
     b = CRANK0 + CRANK_STRIDE * crank
-    r = np.empty((2, 2))
-    rate = np.empty((2, 2))
-    geo = np.empty((2, 8))           # wl, wu, ecc, cos phi, sin phi, hx, hy, unused
+    # one work array per call (views of it: no allocation per quantity, this runs every step)
+    work = np.empty((2, 16))
+    r, rate, guess, force = work[:, 0:2], work[:, 2:4], work[:, 4:6], work[:, 6:8]
+    geo = work[:, 8:16]              # wl, wu, ecc, cos phi, sin phi, hx, hy, series stiffness
     for disc in range(2):
         wl, wu, hole_x, hole_y = arm_station(P, holes, crank, disc)
         rx, ry, rvx, rvy, _, ecc, cos_p, sin_p, hx, hy = arm_geometry(
@@ -455,12 +456,10 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
         geo[disc, 3], geo[disc, 4], geo[disc, 5], geo[disc, 6] = cos_p, sin_p, hx, hy
     A = np.empty((4, 4))
     crank_compliance(P, q[b + 4], A)
-    guess = np.empty((2, 2))
     for disc in range(2):
         guess[disc, 0] = elastic[crank, FE_CRANK_SLOT0 + 2 * disc]
         guess[disc, 1] = elastic[crank, FE_CRANK_SLOT0 + 2 * disc + 1]
-    force = np.empty((2, 2))
-    series = np.empty(2)
+    series = work[:, 15]
     want = K.shape[0] > 0
     if want:
         dsdr = np.empty((4, 4))
