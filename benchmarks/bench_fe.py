@@ -6,8 +6,8 @@ with 20 modes, the 3-D crank at 3 mm, the carrier plate.
 Targets: meshing and condensing the RV-40E disc <= 10 s once per geometry (then loaded from the
 cache); a 360-position quasi-static TE curve with the FE disc <= 3 x the rigid-body one; a 4 s
 dynamic run with the FE disc <= 2 x the rigid-disc run; the same with the FE disc and the FE
-cranks (``fe_crank``, the default with model = fe; ``fe`` is the disc alone).  Prints medians (wall and CPU time),
-the machine and the date as JSON.  BLAS threads are limited to one; the cache is a fresh
+cranks (``fe_crank``, the default with model = fe; ``fe`` is the disc alone).  Prints medians
+(wall and CPU time), the machine and the date as JSON.  BLAS threads are limited to one; the cache is a fresh
 temporary folder.
 
 Usage:  python benchmarks/bench_fe.py [--repeat 5] [--dynamic-repeat 1]

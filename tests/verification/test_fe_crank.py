@@ -147,9 +147,12 @@ def test_crank_adds_its_complementary_energy_to_the_output_lag(solved):
             estimate[k] += s @ A @ s / TORQUE
     assert lag == pytest.approx(estimate, rel=1.5e-3)
     assert lag.mean() == pytest.approx(41.5e-6, rel=0.01)
-    # tangent stiffness (ltca's) from 3.40e6 to 2.31e6 N*m/rad
+    # the tangent stiffness (ltca's, 3.40e6 -> 2.31e6 N*m/rad) is the rigid crank's in series
+    # with the same compliance, sum S^T A S / T^2 (forces proportional to the torque)
     assert rigid.torsional_stiffness.mean() == pytest.approx(3.404e6, rel=0.01)
     assert fe.torsional_stiffness.mean() == pytest.approx(2.313e6, rel=0.01)
+    assert 1.0 / fe.torsional_stiffness == pytest.approx(
+        1.0 / rigid.torsional_stiffness + estimate / TORQUE, rel=2e-3)
 
 
 def _patched_table(monkeypatch, table):

@@ -48,6 +48,7 @@ from ._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 from ._bearings import conforming_force, radial_stiffness  # noqa: E402
+from ._fe_contacts import _eliminate  # noqa: E402
 from ._layout import (ARM_A1, ARM_A2, ARM_CB, ARM_CLEAR, ARM_J1, ARM_J2,  # noqa: E402
                       FE_CRANK_XX1)
 
@@ -196,16 +197,29 @@ def _evaluate(P, A, r, S, f, D, e):
 
 
 @numba.njit(cache=True)
+def _jacobian(D, A, jac):
+    """jac = I + D A."""
+    for i in range(4):
+        for j in range(4):
+            total = 1.0 if i == j else 0.0
+            for m in range(4):
+                total += D[i, m] * A[m, j]
+            jac[i, j] = total
+
+
+@numba.njit(cache=True)
 def coupled_arm_forces(P, A, r, guess, force, stiffness):
     """The coupled bushings solved to convergence (quasi-static engine), semi-smooth Newton
     from ``guess`` (2, 2).  Fills ``force`` (2, 2) and ``stiffness`` (4 x 4, dS/dr =
-    (I + D A)^-1 D); returns (potential energy, iterations, converged)."""
-    S = guess.copy()
-    f = np.empty((2, 2))
-    D = np.zeros((4, 4))
-    e = np.zeros(2)
-    jac = np.empty((4, 4))
-    g = np.empty(4)
+    (I + D A)^-1 D); returns (potential energy, iterations, converged).  The 4 x 4 systems are
+    solved by elimination without pivoting (I + D A is diagonally dominant: k C summed over a
+    row is below 1, as for the disc's pins)."""
+    # one work array (this runs at every evaluation of the quasi-static solver)
+    work = np.empty((4, 14))
+    D, jac, step = work[:, 0:4], work[:, 4:8], work[:, 8:9]
+    S, f, e = work[0:2, 9:11], work[2:4, 9:11], work[0:2, 11]
+    for k in range(2):
+        S[k, 0], S[k, 1] = guess[k, 0], guess[k, 1]
     converged = False
     iterations = 0
     for iterations in range(1, MAX_NEWTON + 1):
@@ -214,15 +228,11 @@ def coupled_arm_forces(P, A, r, guess, force, stiffness):
             converged = True
             break
         for i in range(4):
-            g[i] = S[i // 2, i % 2] - f[i // 2, i % 2]
-            for j in range(4):
-                total = 1.0 if i == j else 0.0
-                for m in range(4):
-                    total += D[i, m] * A[m, j]
-                jac[i, j] = total
-        step = np.linalg.solve(jac, g)
+            step[i, 0] = S[i // 2, i % 2] - f[i // 2, i % 2]
+        _jacobian(D, A, jac)
+        _eliminate(jac, step, 4)
         for i in range(4):
-            S[i // 2, i % 2] -= step[i]
+            S[i // 2, i % 2] -= step[i, 0]
     if not converged:
         # Newton can cycle where a bushing opens and closes: Gauss-Seidel sweeps finish
         k2 = np.empty(2)
@@ -235,14 +245,14 @@ def coupled_arm_forces(P, A, r, guess, force, stiffness):
                 break
     for k in range(2):
         force[k, 0], force[k, 1] = f[k, 0], f[k, 1]
+    _jacobian(D, A, jac)
     for i in range(4):
         for j in range(4):
-            total = 1.0 if i == j else 0.0
-            for m in range(4):
-                total += D[i, m] * A[m, j]
-            jac[i, j] = total
-    s = np.linalg.solve(jac, D)
+            stiffness[i, j] = D[i, j]
+    _eliminate(jac, stiffness, 4)
     for i in range(4):
-        for j in range(4):
-            stiffness[i, j] = 0.5 * (s[i, j] + s[j, i])
+        for j in range(i + 1, 4):
+            mean = 0.5 * (stiffness[i, j] + stiffness[j, i])
+            stiffness[i, j] = mean
+            stiffness[j, i] = mean
     return e[0] + e[1] + _pair_energy(A, force), iterations, converged

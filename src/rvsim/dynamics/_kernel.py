@@ -454,18 +454,18 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
         r[disc, 0], r[disc, 1], rate[disc, 0], rate[disc, 1] = rx, ry, rvx, rvy
         geo[disc, 0], geo[disc, 1], geo[disc, 2] = wl, wu, ecc
         geo[disc, 3], geo[disc, 4], geo[disc, 5], geo[disc, 6] = cos_p, sin_p, hx, hy
-    A = np.empty((4, 4))
+    mats = np.empty((4, 8))
+    A = mats[:, 0:4]
     crank_compliance(P, q[b + 4], A)
     for disc in range(2):
         guess[disc, 0] = elastic[crank, FE_CRANK_SLOT0 + 2 * disc]
         guess[disc, 1] = elastic[crank, FE_CRANK_SLOT0 + 2 * disc + 1]
     series = work[:, 15]
     want = K.shape[0] > 0
+    dsdr = mats[:, 4:8]
     if want:
-        dsdr = np.empty((4, 4))
         energy, _, _ = coupled_arm_forces(P, A, r, guess, force, dsdr)
     else:
-        dsdr = np.empty((0, 0))
         energy = lagged_arm_forces(P, A, r, guess, force, series)
     power = 0.0
     for disc in range(2):
@@ -496,6 +496,18 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
     return energy, power
 
 
+@numba.njit(cache=True, inline="always")
+def _arm_rows(q, geo, disc):
+    """d r / d(crank b..b+4, disc d..d+2) of eccentric ``disc``'s relative position (x and y
+    rows; :func:`arm_stiffness`)."""
+    d = DISC0 + DISC_STRIDE * disc
+    wl, wu, ecc, cos_p, sin_p = geo[disc, 0], geo[disc, 1], geo[disc, 2], geo[disc, 3], \
+        geo[disc, 4]
+    lx, ly = geo[disc, 5] - q[d], geo[disc, 6] - q[d + 1]
+    return ((wl, 0.0, wu, 0.0, -ecc * sin_p, -1.0, 0.0, ly),
+            (0.0, wl, 0.0, wu, ecc * cos_p, 0.0, -1.0, -lx), lx, ly)
+
+
 @numba.njit(cache=True)
 def arm_pair_stiffness(K, q, crank, geo, dsdr, force, w_in):
     """Stiffness matrix of :func:`arm_pair`: J^T (dS/dr) J over both eccentrics (the crank
@@ -503,32 +515,23 @@ def arm_pair_stiffness(K, q, crank, geo, dsdr, force, w_in):
     term).  The turning of the table with phi is left out (its torque is second order in the
     crank's anisotropy)."""
     b = CRANK0 + CRANK_STRIDE * crank
-    index = np.empty((2, 8), dtype=np.int64)
-    g = np.zeros((4, 8))
-    for disc in range(2):
-        d = DISC0 + DISC_STRIDE * disc
-        wl, wu, ecc, cos_p, sin_p = geo[disc, 0], geo[disc, 1], geo[disc, 2], geo[disc, 3], \
-            geo[disc, 4]
-        lx, ly = geo[disc, 5] - q[d], geo[disc, 6] - q[d + 1]
-        for c in range(5):
-            index[disc, c] = b + c
-        for c in range(3):
-            index[disc, 5 + c] = d + c
-        gx = (wl, 0.0, wu, 0.0, -ecc * sin_p, -1.0, 0.0, ly)
-        gy = (0.0, wl, 0.0, wu, ecc * cos_p, 0.0, -1.0, -lx)
-        for c in range(8):
-            g[2 * disc, c] = gx[c]
-            g[2 * disc + 1, c] = gy[c]
-        arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, 0.0, 0.0, 0.0,
-                      force[disc, 0], force[disc, 1], 0.0, 0.0, w_in)
-    for i in range(4):
-        for j in range(4):
-            s = dsdr[i, j]
-            if s == 0.0:
-                continue
-            for a in range(8):
-                for c in range(8):
-                    K[index[i // 2, a], index[j // 2, c]] += g[i, a] * s * g[j, c]
+    for k in range(2):
+        gx, gy, lx, ly = _arm_rows(q, geo, k)
+        dk = DISC0 + DISC_STRIDE * k
+        arm_stiffness(K, b, dk, geo[k, 0], geo[k, 1], geo[k, 2], geo[k, 3], geo[k, 4], lx,
+                      ly, 0.0, 0.0, 0.0, force[k, 0], force[k, 1], 0.0, 0.0, w_in)
+        for m in range(2):
+            hx, hy, _, _ = _arm_rows(q, geo, m)
+            dm = DISC0 + DISC_STRIDE * m
+            sxx, sxy = dsdr[2 * k, 2 * m], dsdr[2 * k, 2 * m + 1]
+            syx, syy = dsdr[2 * k + 1, 2 * m], dsdr[2 * k + 1, 2 * m + 1]
+            for c in range(8):
+                ax = sxx * hx[c] + sxy * hy[c]
+                ay = syx * hx[c] + syy * hy[c]
+                col = b + c if c < 5 else dm + c - 5
+                for a in range(8):
+                    row = b + a if a < 5 else dk + a - 5
+                    K[row, col] += gx[a] * ax + gy[a] * ay
 
 
 @numba.njit(cache=True)
