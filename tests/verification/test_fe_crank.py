@@ -13,6 +13,7 @@ import pytest
 
 from rvsim.dynamics import _kernel as Kn
 from rvsim.dynamics import _layout as L
+from rvsim.dynamics._bearings import conforming_approach
 from rvsim.dynamics._fe_crank import (coupled_arm_forces, compliance_torque, crank_compliance,
                                       lagged_arm_forces, pack_table)
 from rvsim.parameters import RV40E, with_values
@@ -129,6 +130,16 @@ def test_the_dynamic_sweep_contracts_to_the_coupled_solution(solved):
                 s = new
             factors += [errors[i + 1] / errors[i] for i in range(1, 5)]
             assert errors[-1] < 1e-4 * errors[0]
+            # the damping's stiffness: the bushing's tangent in series with its own crank
+            # compliance along its force, 1 / (d delta / dF + n^T A_kk n)
+            for k in range(2):
+                f = math.hypot(*s[k])
+                n = s[k] / f
+                law = conforming_approach(f, *(model.P[i] for i in (L.ARM_J1, L.ARM_A1,
+                                                                     L.ARM_J2, L.ARM_A2,
+                                                                     L.ARM_CB)))[1]
+                own = n @ A[2 * k:2 * k + 2, 2 * k:2 * k + 2] @ n
+                assert series[k] == pytest.approx(1.0 / (law + own), rel=1e-6)
     assert 0.05 < max(factors) < 0.13
 
 
