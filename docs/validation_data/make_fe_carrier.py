@@ -4,8 +4,8 @@ change (issue 13; docs/model.md section 17, "Carrier / flange").
 The RV-40E at 300 N*m through the quasi-static engine: ltca (360 positions: TE mean and
 peak-to-peak, mean local torsional stiffness) and the torque reversal (catalogue rigidity,
 lost motion), rigid bodies against flexibility.model = fe with and without the carrier
-(flexibility.fe_carrier), the disc rigid (A off) and finite-element (A on), and the default
-mesh against h = 0.8 mm.
+(flexibility.fe_carrier), the disc rigid (A off) and finite-element (A on), the crank rigid
+(flexibility.fe_crank = false) and finite-element.
 
 Usage:  python docs/validation_data/make_fe_carrier.py
 """
@@ -15,13 +15,15 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+NO_CRANK = {"flexibility.fe_crank": False}
 CASES = {"rigid (closed-form, A off)": {},
-         "fe, carrier only (A off)": {"flexibility.model": "fe"},
-         "fe disc (A on), no carrier": {"A": 1, "flexibility.model": "fe",
-                                        "flexibility.fe_carrier": False},
-         "fe disc + carrier (A on)": {"A": 1, "flexibility.model": "fe"},
-         "fe disc + carrier, h = 0.8 mm": {"A": 1, "flexibility.model": "fe",
-                                           "flexibility.fe_element_size": 0.8}}
+         "fe, carrier only (A off, no crank)": {"flexibility.model": "fe", **NO_CRANK},
+         "fe disc (A on), no crank, no carrier": {"A": 1, "flexibility.model": "fe", **NO_CRANK,
+                                                  "flexibility.fe_carrier": False},
+         "fe disc + carrier, no crank": {"A": 1, "flexibility.model": "fe", **NO_CRANK},
+         "fe disc + crank, no carrier": {"A": 1, "flexibility.model": "fe",
+                                         "flexibility.fe_carrier": False},
+         "fe disc + crank + carrier (A on, the default fe)": {"A": 1, "flexibility.model": "fe"}}
 
 
 def main() -> None:

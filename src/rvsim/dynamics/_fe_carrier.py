@@ -38,8 +38,7 @@ from ._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 from ._contact_law import damped  # noqa: E402
-from ._fe_crank import (compliance_torque, coupled_pair_forces, lagged_pair_forces,  # noqa: E402
-                        rotated_table)
+from ._fe_crank import compliance_torque, pair_forces, rotated_table  # noqa: E402
 from ._layout import (BORE_DR0, BORE_DT0, CARRIER, CENTRE_DIST, CH_SUP_FL0,  # noqa: E402
                       CRANK0, CRANK_STRIDE, FE_PLATE_XX1, M_NODE, SUP_A1, SUP_A2_L, SUP_A2_U,
                       SUP_CLEAR_L, SUP_CLEAR_U, SUP_J1, SUP_J2, SUP_SLOT0, ZETA)
@@ -133,10 +132,7 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
             # stored at another pose: start along the rigid approach with the stored size
             scale = f / dist if dist > law[0] else 0.0
             guess[j, 0], guess[j, 1] = scale * r[j, 0], scale * r[j, 1]
-    if want:
-        energy, _, _ = coupled_pair_forces(law, cm, r, guess, force, sm)
-    else:
-        energy = lagged_pair_forces(law, cm, r, guess, force, series)
+    energy = pair_forces(law, cm, r, guess, force, sm, series, want)
     power = 0.0
     for j in range(2):
         b = CRANK0 + CRANK_STRIDE * j + shift
@@ -148,10 +144,6 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
         if f == 0.0:
             continue
         nx, ny = sx / f, sy / f
-        if want:    # the tangent along the force (the crank's arm_pair does the same)
-            a = 2 * j
-            series[j] = (nx * (sm[a, a] * nx + sm[a, a + 1] * ny)
-                         + ny * (sm[a + 1, a] * nx + sm[a + 1, a + 1] * ny))
         # damping 2 zeta sqrt(k m) at the series stiffness, on the rigid bore's approach rate
         total, pw = damped(f, series[j], nx * rate[j, 0] + ny * rate[j, 1], P[ZETA], P[M_NODE])
         power += pw

@@ -55,6 +55,7 @@ from ._layout import (ARM_A1, ARM_A2, ARM_CB, ARM_CLEAR, ARM_J1, ARM_J2,  # noqa
 
 __all__ = ["TABLE_ORDER", "pack_table", "rotated_table", "crank_compliance",
            "compliance_torque", "arm_law", "lagged_pair_forces", "coupled_pair_forces",
+           "pair_forces",
            "lagged_arm_forces", "coupled_arm_forces", "MAX_NEWTON"]
 
 #: (row, column) of the 4 x 4 table held in P[FE_CRANK_XX1 + i] (its upper triangle)
@@ -286,3 +287,22 @@ def coupled_pair_forces(law, A, r, guess, force, stiffness):
             stiffness[i, j] = mean
             stiffness[j, i] = mean
     return e[0] + e[1] + _pair_energy(A, force), iterations, converged
+
+
+@numba.njit(cache=True)
+def pair_forces(law, A, r, guess, force, dsdr, series, want):
+    """The two coupled bushings for either engine: solved together with the tangent ``dsdr``
+    when the stiffness is ``want``ed (quasi-static), else one sweep (dynamic).  Fills
+    ``force`` (2, 2) and ``series`` (2: each bushing's stiffness along its force, for its
+    damping: the sweep's law in series with its projected compliance, or n^T (dS/dr)_kk n);
+    returns the potential energy."""
+    if not want:
+        return lagged_pair_forces(law, A, r, guess, force, series)
+    energy, _, _ = coupled_pair_forces(law, A, r, guess, force, dsdr)
+    for k in range(2):
+        a = 2 * k
+        f = math.sqrt(force[k, 0] ** 2 + force[k, 1] ** 2)
+        nx, ny = (force[k, 0] / f, force[k, 1] / f) if f > 0.0 else (0.0, 0.0)
+        series[k] = (nx * (dsdr[a, a] * nx + dsdr[a, a + 1] * ny)
+                     + ny * (dsdr[a + 1, a] * nx + dsdr[a + 1, a + 1] * ny))
+    return energy

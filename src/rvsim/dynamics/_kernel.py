@@ -25,7 +25,7 @@ from ._contact_law import EXPONENT, add_rank_one, contact, damped, spring_force 
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._fe_carrier import COLUMNS as PLATE_COLUMNS, bore_centre, plate_supports
-from ._fe_crank import compliance_torque, coupled_arm_forces, crank_compliance, lagged_arm_forces
+from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
 from ._layout import (ECC_ERR0, ECC_PHASE0)
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
@@ -464,10 +464,7 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
     series = work[:, 15]
     want = K.shape[0] > 0
     dsdr = mats[:, 4:8]
-    if want:
-        energy, _, _ = coupled_arm_forces(P, A, r, guess, force, dsdr)
-    else:
-        energy = lagged_arm_forces(P, A, r, guess, force, series)
+    energy = pair_forces(arm_law(P), A, r, guess, force, dsdr, series, want)
     power = 0.0
     for disc in range(2):
         sx, sy = force[disc, 0], force[disc, 1]
@@ -479,10 +476,6 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
         if f == 0.0:
             continue
         nx, ny = sx / f, sy / f
-        if want:
-            a = 2 * disc
-            series[disc] = (nx * (dsdr[a, a] * nx + dsdr[a, a + 1] * ny)
-                            + ny * (dsdr[a + 1, a] * nx + dsdr[a + 1, a + 1] * ny))
         fn, pw = damped(f, series[disc], nx * rate[disc, 0] + ny * rate[disc, 1], P[ZETA],
                         P[M_NODE])
         power += pw
