@@ -201,6 +201,9 @@ class Flexibility:
                                       positive=True)
     fe_segments_per_tooth: int = count(8, "contact segments per disc tooth onto which the "
                                        "finite-element disc is condensed", minimum=2)
+    fe_carrier: bool = flag(True, "with model = fe: the carrier and the flange are "
+                            "finite-element plates on which the crank support bushings bear "
+                            "(RV reducer; no effect with closed-form)")
     fe_crank: bool = flag(True, "with model = fe: the crankshafts are finite-element bodies "
                           "too (their eccentrics deflect under both discs' arm-bushing "
                           "forces; RV reducers with the paper's arm bushings)")
