@@ -242,6 +242,9 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
         _fe_pin_table(r, P)
     _bearing_constants(r, P)
     P[L.FE_DISC] = 1.0 if fe_disc else 0.0
+    if fe_crank_used(r):
+        P[L.FE_CRANK_XX1:L.FE_CRANK_XX1 + 10] = _fe_crank_constants(r)
+    _fe_plate_constants(r, P)      # finite-element carrier and flange (docs/model.md sec. 17)
     P[L.ZETA] = r.contact.damping_ratio
     P[L.V_FRIC] = r.contact.friction_velocity
     fill_friction_constants(r, P)       # P[MU] and the friction block (docs/model.md sec. 15)
@@ -317,6 +320,47 @@ def _fe_pin_table(r: Reducer, P: np.ndarray) -> None:
     table = pin_table(r)
     P[L.PIN_FE_STEP] = float(table.psi[1] - table.psi[0])
     P[L.PIN_FE0:L.PIN_FE0 + L.PIN_FE_N] = table.compliance
+
+
+def _fe_plate_constants(r: Reducer, P: np.ndarray) -> None:
+    """The carrier and flange plates' bore table into P (``flexibility.model = fe`` with
+    ``flexibility.fe_carrier``, RV reducer; dynamics._fe_carrier uses it): the parameter set
+    does not distinguish the two plates, so one table serves both (docs/decisions.md)."""
+    from ..errors import ParameterError
+    from ..fe.carrier import carrier_table
+    from ._fe_crank import pack_table
+
+    f = r.flexibility
+    if f.model != "fe" or not f.fe_carrier or r.layout.single_stage:
+        return
+    if r.bearings.support_rollers:
+        raise ParameterError("flexibility.fe_carrier", "the finite-element carrier takes the "
+                             "support bushings only so far, not bearings.support_rollers "
+                             "(set flexibility.fe_carrier = false)")
+    P[L.FE_PLATE_XX1:L.FE_PLATE_XX1 + 10] = pack_table(carrier_table(r).compliance)
+
+
+def fe_crank_used(r: Reducer) -> bool:
+    """Whether the crankshafts are finite-element bodies (flexibility.fe_crank with model = fe,
+    an RV reducer)."""
+    return (r.flexibility.model == "fe" and r.flexibility.fe_crank
+            and not r.layout.single_stage)
+
+
+def _fe_crank_constants(r: Reducer) -> np.ndarray:
+    """The crank's in-plane table (forces x, y of both eccentrics; rvsim.fe.crank, cached per
+    geometry) as the 10 constants of P."""
+    from ..errors import ParameterError
+    from ..fe.crank import crank_table
+    from ._fe_crank import pack_table
+
+    if r.bearings.arm_needles:
+        raise ParameterError("flexibility.fe_crank", "the finite-element crank takes the "
+                             "paper's arm bushings only (set bearings.arm_needles = false or "
+                             "flexibility.fe_crank = false)")
+    table = crank_table(r, r.flexibility.fe_crank_element_size).compliance
+    forces = [0, 1, 4, 5]                  # force x, y of eccentric 1, then of eccentric 2
+    return pack_table(table[np.ix_(forces, forces)])
 
 
 def _bearing_constants(r: Reducer, P: np.ndarray) -> None:

@@ -201,6 +201,14 @@ class Flexibility:
                                       positive=True)
     fe_segments_per_tooth: int = count(8, "contact segments per disc tooth onto which the "
                                        "finite-element disc is condensed", minimum=2)
+    fe_carrier: bool = flag(True, "with model = fe: the carrier and the flange are "
+                            "finite-element plates on which the crank support bushings bear "
+                            "(RV reducer; no effect with closed-form)")
+    fe_crank: bool = flag(True, "with model = fe: the crankshafts are finite-element bodies "
+                          "too (their eccentrics deflect under both discs' arm-bushing "
+                          "forces; RV reducers with the paper's arm bushings)")
+    fe_crank_element_size: float = quantity(3.0 * _MM, "mm", "element size of the "
+                                            "finite-element crankshaft (3-D)", positive=True)
 
 
 @dataclasses.dataclass(frozen=True)
