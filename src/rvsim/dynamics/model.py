@@ -239,6 +239,9 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.PIN_CB] = body
     _bearing_constants(r, P)
     P[L.FE_DISC] = 1.0 if fe_disc else 0.0
+    # the dynamic engine's disc modes (rvsim.dynamics.simulate builds them; docs/model.md 17)
+    P[L.FE_MODES] = r.flexibility.fe_modes if fe_disc else 0
+    P[L.MODE_ZETA] = r.contact.damping_ratio
     P[L.ZETA] = r.contact.damping_ratio
     P[L.V_FRIC] = r.contact.friction_velocity
     fill_friction_constants(r, P)       # P[MU] and the friction block (docs/model.md sec. 15)

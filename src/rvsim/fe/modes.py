@@ -37,8 +37,9 @@ from ..parameters import Reducer
 from . import cache
 from .elasticity import PlaneStressBody, _dense
 
-__all__ = ["CraigBampton", "FreeInterface", "craig_bampton", "disc_craig_bampton",
-           "disc_frequencies", "free_interface", "spring_frequencies", "supported_modes"]
+__all__ = ["CraigBampton", "FreeInterface", "MAX_OMEGA_DT", "craig_bampton",
+           "disc_craig_bampton", "disc_free_interface", "disc_frequencies", "disc_modal_arrays",
+           "free_interface", "spring_frequencies", "supported_modes"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -218,3 +219,71 @@ def disc_craig_bampton(reducer: Reducer, modes: int) -> tuple[CraigBampton, floa
                                           {**g, "density": density, "modes": modes}, compute)
     return (CraigBampton(a["stiffness"], a["mass"], int(a["interfaces"]), modes,
                          a["fixed_interface_hz"], a["compliance"]), seconds, from_cache)
+
+
+def disc_free_interface(reducer: Reducer, modes: int) -> tuple[FreeInterface, float, bool]:
+    """The free-interface model of disc 1 (:func:`free_interface`, the form the dynamic kernel
+    integrates) with its lowest ``modes`` modes: (model, seconds to build, loaded from the
+    cache).  Cached by the disc's geometry hash, its density and ``modes``."""
+    from .disc import disc_geometry
+
+    g = disc_geometry(reducer, 0)
+    density = reducer.materials.cycloid_disc.density
+
+    def compute():
+        _, body, supported, loads = _disc(reducer)
+        model = free_interface(body, density, loads, supported, modes)
+        return {"frequencies_hz": model.frequencies_hz, "participation": model.participation,
+                "residual": model.residual, "compliance": model.compliance}
+
+    a, seconds, from_cache = cache.cached("cycloid-disc-free-interface",
+                                          {**g, "density": density, "modes": modes}, compute)
+    return (FreeInterface(a["frequencies_hz"], a["participation"].reshape(-1, modes),
+                          a["residual"], a["compliance"]), seconds, from_cache)
+
+
+#: largest omega * dt of a disc mode that the dynamic kernel integrates (docs/decisions.md,
+#: "Disc modes in the dynamic kernel"): the semi-implicit Euler step is stable up to 2 and
+#: turns a mode of omega into one of (2 / dt) asin(omega dt / 2), 4.7 % fast at 1; the pin
+#: contacts raise the top frequency of the coupled system by 1.2-1.8x (measured at 1-3e9 N/m
+#: per pin), which 1 keeps below 2
+MAX_OMEGA_DT = 1.0
+
+
+def disc_modal_arrays(reducer: Reducer, tables: np.ndarray, modes: int, time_step: float
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """The dynamic kernel's view of both discs with ``modes`` modes each, from their condensed
+    ``tables`` (2, m, m): the residual tables R (2, m, m) that replace the condensed ones in
+    the contacts, and the modal array (2, m + 4, modes): rows 0..m-1 the participation P
+    (segment x mode), row m Omega^2, rows m + 1 .. m + 3 the state (eta, eta', modal force),
+    zero at rest (:mod:`rvsim.dynamics._fe_modes`).  With 0 modes, R is ``tables`` itself.
+
+    A mode above omega dt = :data:`MAX_OMEGA_DT` raises ParameterError on
+    ``flexibility.fe_modes``.  Disc 2 is disc 1 turned half a turn: for an odd tooth count
+    its arrays are disc 1's shifted by (zc + 1) / 2 teeth of segments (as
+    :func:`rvsim.fe.disc.disc_tables`); an even count would need its own modes (refused)."""
+    from ..errors import ParameterError
+
+    m = tables.shape[1]
+    if modes == 0:
+        return tables, np.zeros((2, m + 4, 0))
+    zc = reducer.cycloid.disc_teeth
+    if zc % 2 == 0:
+        raise ParameterError("flexibility.fe_modes", "the disc modes need an odd tooth count "
+                             "(disc 2 is then disc 1 turned by whole teeth); use 0")
+    model = disc_free_interface(reducer, modes)[0]
+    omega = 2.0 * math.pi * model.frequencies_hz
+    admissible = int(np.sum(omega * time_step <= MAX_OMEGA_DT))
+    if admissible < modes:
+        raise ParameterError(
+            "flexibility.fe_modes", f"{modes} modes reach {model.frequencies_hz[-1] / 1e3:.3g}"
+            f" kHz, beyond what the time step {time_step:g} s integrates (omega dt <= "
+            f"{MAX_OMEGA_DT:g}): at most {admissible} at this step")
+    shift = (zc + 1) // 2 * reducer.flexibility.fe_segments_per_tooth
+    residual = np.stack([model.residual, np.roll(model.residual, shift, axis=(0, 1))])
+    modal = np.zeros((2, m + 4, modes))
+    for disc, rows in enumerate((model.participation,
+                                 np.roll(model.participation, shift, axis=0))):
+        modal[disc, :m] = rows
+        modal[disc, m] = omega ** 2
+    return residual, modal
