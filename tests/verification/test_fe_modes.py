@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 from rvsim.dynamics._fe_contacts import coupled_forces, lagged_forces
-from rvsim.dynamics._fe_modes import (ETA, FORCE, OMEGA2, RATE, add_modal_force, advance_modes,
-                                      modal_deflection, self_correction)
+from rvsim.dynamics._fe_modes import (ETA, FORCE, HEADER, OMEGA2, RATE, add_modal_force,
+                                      advance_modes, modal_array, modal_deflection,
+                                      self_correction)
 from rvsim.dynamics.compliance import palmgren_coefficient
 from rvsim.errors import ParameterError
 from rvsim.parameters import RV40E, with_values
@@ -41,7 +42,8 @@ def test_kernel_arrays_hold_the_disc_modes_and_keep_the_statics():
     r = with_values(RV40E, COARSE)
     tables = disc_tables(r)
     m = tables.shape[1]
-    residual, modal = disc_modal_arrays(r, tables, 6, 5e-6)
+    residual, participation, omega = disc_modal_arrays(r, tables, 6, 5e-6)
+    modal = modal_array(participation, omega)
     body, supported, _ = disc_body(disc_geometry(r))
     hz = supported_modes(body, r.materials.cycloid_disc.density, supported, 6)[0]
     assert hz[0] == pytest.approx(10.1e3, rel=0.01)
@@ -53,8 +55,8 @@ def test_kernel_arrays_hold_the_disc_modes_and_keep_the_statics():
         assert not np.any(modal[disc, m + ETA:])          # at rest
     assert np.array_equal(modal[1, :m], np.roll(modal[0, :m], 20 * 2, axis=0))
     # zero modes: the condensed tables themselves
-    same, empty = disc_modal_arrays(r, tables, 0, 5e-6)
-    assert same is tables and empty.shape == (2, m + 4, 0)
+    same, empty, none = disc_modal_arrays(r, tables, 0, 5e-6)
+    assert same is tables and modal_array(empty, none).shape == (2, m + HEADER, 0)
     with pytest.raises(ParameterError) as refused:
         disc_modal_arrays(r, tables, 13, 5e-6)
     assert refused.value.field == "flexibility.fe_modes"
@@ -71,9 +73,7 @@ def test_free_vibration_of_a_modal_coordinate(omega_dt):
     at omega dt = 0.3, 5.4 % at 1, as (1 - 2 zeta omega dt)^(t / 2 dt) says)."""
     dt = 5e-6
     omega = omega_dt / dt
-    modal = np.zeros((6, 1))             # two segments, one mode
-    modal[:2, 0] = (1.0, 0.5)
-    modal[2 + OMEGA2, 0] = omega ** 2
+    modal = modal_array(np.array([[[1.0], [0.5]]]), np.array([omega]))[0]   # 2 segments, 1 mode
     modal[2 + ETA, 0] = 1.0
     steps = int(40 * 2 * math.pi / omega / dt)
     eta = np.empty(steps)
@@ -117,9 +117,7 @@ def test_modes_at_their_static_deflection_give_the_condensed_contacts():
     a = rng.uniform(size=(m, m))
     residual = 1e-11 * (a @ a.T + m * np.eye(m))
     table = residual + (shapes / omega2) @ shapes.T
-    modal = np.zeros((m + 4, n_modes))
-    modal[:m] = shapes
-    modal[m + OMEGA2] = omega2
+    modal = modal_array(shapes[None], np.sqrt(omega2))[0]
     c = palmgren_coefficient(0.015, RV40E.materials.cycloid_disc, RV40E.materials.pin)
     foot = np.array([0.5, 2.2, 3.9])               # between segment centres
     delta = np.array([2e-6, 1.5e-6, 1e-6])
@@ -189,3 +187,17 @@ def test_too_many_modes_is_one_line(cli):
     assert result.err.count("\n") == 1
     assert "flexibility.fe_modes" in result.err and "at most 12" in result.err
     assert result.out == ""
+
+
+def test_the_quasi_static_engine_does_not_read_the_modes(cli):
+    """Static: the modes' statics is the condensed table, so ltca is the same with any n."""
+    import json
+
+    args = ("ltca", "--positions", "8", "--json", "--set", "A=1", "--set",
+            "flexibility.model=fe", "--set", "flexibility.fe_element_size=4", "--set",
+            "flexibility.fe_segments_per_tooth=2")
+    plain = json.loads(cli(*args).out)
+    modal = json.loads(cli(*args, "--set", "flexibility.fe_modes=4").out)
+    drop = ("wall_s",)
+    assert {k: v for k, v in plain.items() if k not in drop} == \
+        {k: v for k, v in modal.items() if k not in drop}

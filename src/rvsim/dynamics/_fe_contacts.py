@@ -243,8 +243,8 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     damping of a pin is 2 zeta sqrt(k m) at its series stiffness k = 1 / (1/k_contact + C_ii).
     ``forces``/``elastic`` are the disc's rows.  With ``K`` wanted (the quasi-static engine)
     the system is solved to convergence (:func:`coupled_forces`); without (the dynamic
-    engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).  ``modal`` (m + 4,
-    modes) the disc's modes (:mod:`rvsim.dynamics._fe_modes`; ``table`` is then their
+    engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).  ``modal``
+    (m + HEADER, modes) the disc's modes (:mod:`rvsim.dynamics._fe_modes`; ``table`` is then their
     residual): each approach is less the modes' deflection at its foot, and the elastic
     forces are added to the modal force.  Returns (energy, dissipated power, converged)."""
     n = count
@@ -252,11 +252,14 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     foot = work[:n, 2].copy()
     moving = modal.shape[1] > 0
     extra = np.zeros(n)
+    lo = np.empty(n if moving else 0, dtype=np.int64)
+    hi = np.empty(n if moving else 0, dtype=np.int64)
+    weight = np.empty(n if moving else 0)
     if moving:
         for a in range(n):
-            i0, i1, frac = _segment(foot[a], table.shape[0])
-            delta[a] -= modal_deflection(modal, i0, i1, frac)
-            extra[a] = self_correction(modal, i0, i1, frac)
+            lo[a], hi[a], weight[a] = _segment(foot[a], table.shape[0])
+            delta[a] -= modal_deflection(modal, lo[a], hi[a], weight[a])
+            extra[a] = self_correction(modal, lo[a], hi[a], weight[a])
     guess = np.empty(n)
     for a in range(n):
         guess[a] = elastic[slots[a]]
@@ -291,8 +294,7 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
         forces[i] = fn
         elastic[i] = f
         if moving:
-            i0, i1, frac = _segment(foot[a], table.shape[0])
-            add_modal_force(modal, i0, i1, frac, f)
+            add_modal_force(modal, lo[a], hi[a], weight[a], f)
         Q[d] += fn * work[a, 3]
         Q[d + 1] += fn * work[a, 4]
         Q[d + 2] += fn * work[a, 5]

@@ -15,9 +15,10 @@ table C in the Gauss-Seidel sweep (:func:`rvsim.dynamics._fe_contacts.lagged_for
 eta = Omega^-2 P^T f, so the deflection is (P Omega^-2 P^T + R) f = C f, whatever n (read
 between segment centres as the table is: :func:`self_correction`).
 
-A disc's array ``modal`` (m + 4, n) holds P in rows 0..m-1 and, from row m, Omega^2, eta, eta'
-and the modal force P^T f that the contacts of the current evaluation accumulate.  With n = 0
-every loop is empty and the contacts are those of the condensed disc.
+A disc's array ``modal`` (m + HEADER, n) holds P in rows 0..m-1 and, from row m, Omega^2,
+Omega^-2, Omega (constants: no division or root in the step), eta, eta' and the modal force
+P^T f that the contacts of the current evaluation accumulate (:func:`modal_array` builds it).
+With n = 0 every loop is empty and the contacts are those of the condensed disc.
 """
 
 from __future__ import annotations
@@ -25,16 +26,31 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
 
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-__all__ = ["OMEGA2", "ETA", "RATE", "FORCE", "modal_deflection", "self_correction",
-           "add_modal_force", "clear_modal_force", "advance_modes", "modal_energy"]
+__all__ = ["OMEGA2", "INV_OMEGA2", "OMEGA", "ETA", "RATE", "FORCE", "HEADER", "modal_array",
+           "modal_deflection", "self_correction", "add_modal_force", "clear_modal_force",
+           "advance_modes", "modal_energy"]
 
 #: rows of a disc's modal array after its m participation rows: modal[m + OMEGA2] ...
-OMEGA2, ETA, RATE, FORCE = 0, 1, 2, 3
+OMEGA2, INV_OMEGA2, OMEGA, ETA, RATE, FORCE = range(6)
+HEADER = 6
+
+
+def modal_array(participation: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """The kernel's modal array (discs, m + HEADER, n) of discs with participation P (discs,
+    m, n) and circular frequencies ``omega`` (n,) [rad/s], at rest."""
+    discs, m, n = participation.shape
+    modal = np.zeros((discs, m + HEADER, n))
+    modal[:, :m] = participation
+    modal[:, m + OMEGA2] = omega ** 2
+    modal[:, m + INV_OMEGA2] = 1.0 / omega ** 2
+    modal[:, m + OMEGA] = omega
+    return modal
 
 
 @numba.njit(cache=True)
@@ -44,7 +60,7 @@ def modal_deflection(modal, i0, i1, frac):
     n = modal.shape[1]
     if n == 0:
         return 0.0
-    m = modal.shape[0] - 4
+    m = modal.shape[0] - HEADER
     total = 0.0
     for k in range(n):
         total += ((1.0 - frac) * modal[i0, k] + frac * modal[i1, k]) * modal[m + ETA, k]
@@ -58,11 +74,11 @@ def self_correction(modal, i0, i1, frac):
     compliance linearly along the diagonal, (1 - s) C_00 + s C_11, the modes bilinearly,
     w^T M w with M = P Omega^-2 P^T and w = (1 - s, s); the difference is
     s (1 - s) (M_00 + M_11 - 2 M_01) = s (1 - s) sum_k (P_0k - P_1k)^2 / Omega_k^2."""
-    m = modal.shape[0] - 4
+    m = modal.shape[0] - HEADER
     total = 0.0
     for k in range(modal.shape[1]):
         diff = modal[i0, k] - modal[i1, k]
-        total += diff * diff / modal[m + OMEGA2, k]
+        total += diff * diff * modal[m + INV_OMEGA2, k]
     return frac * (1.0 - frac) * total
 
 
@@ -73,7 +89,7 @@ def add_modal_force(modal, i0, i1, frac, force):
     n = modal.shape[1]
     if n == 0:
         return
-    m = modal.shape[0] - 4
+    m = modal.shape[0] - HEADER
     for k in range(n):
         modal[m + FORCE, k] += ((1.0 - frac) * modal[i0, k] + frac * modal[i1, k]) * force
 
@@ -81,7 +97,7 @@ def add_modal_force(modal, i0, i1, frac, force):
 @numba.njit(cache=True)
 def clear_modal_force(modal):
     """Zero the modal force before the contacts of an evaluation add theirs."""
-    m = modal.shape[0] - 4
+    m = modal.shape[0] - HEADER
     for k in range(modal.shape[1]):
         modal[m + FORCE, k] = 0.0
 
@@ -91,10 +107,10 @@ def advance_modes(modal, dt, zeta):
     """One semi-implicit Euler step of the modal coordinates under the modal force of the
     step's evaluation (velocities first, then positions); returns the power the modal damping
     2 zeta Omega dissipates at the velocities of the start of the step."""
-    m = modal.shape[0] - 4
+    m = modal.shape[0] - HEADER
     power = 0.0
     for k in range(modal.shape[1]):
-        damping = 2.0 * zeta * math.sqrt(modal[m + OMEGA2, k])
+        damping = 2.0 * zeta * modal[m + OMEGA, k]
         rate = modal[m + RATE, k]
         power += damping * rate * rate
         modal[m + RATE, k] = rate + dt * (modal[m + FORCE, k] - modal[m + OMEGA2, k]
@@ -106,7 +122,7 @@ def advance_modes(modal, dt, zeta):
 @numba.njit(cache=True)
 def modal_energy(modal):
     """(kinetic, strain) energy of the disc's modes [J] (mass-normalised coordinates)."""
-    m = modal.shape[0] - 4
+    m = modal.shape[0] - HEADER
     kinetic = 0.0
     strain = 0.0
     for k in range(modal.shape[1]):

@@ -194,7 +194,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
 
     ``fe`` (2, m, m): the discs' finite-element compliance tables; the touching pins of a disc
     are then solved together (:func:`rvsim.dynamics._fe_contacts.apply_coupled`).  (2, 0, 0):
-    independent contacts.  ``modal`` (2, m + 4, modes): the discs' modes
+    independent contacts.  ``modal`` (2, m + HEADER, modes): the discs' modes
     (:mod:`rvsim.dynamics._fe_modes`; ``fe`` then holds their residual tables), whose modal
     force this evaluation fills.
     """
@@ -624,8 +624,8 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     is ``n_steps + 1``.  Samples every ``sample_every`` steps into ``channels`` (rows) and
     ``pin_forces`` (rows x 2 discs x zp pins).  ``energy`` accumulates the steady-window
     balance.  ``fe``: the discs' finite-element compliance tables, (2, 0, 0) for none;
-    ``modal`` (2, m + 4, modes): the discs' modes and their state (``fe`` then the residual
-    tables; :mod:`rvsim.dynamics._fe_modes`), (2, m + 4, 0) or (2, 0, 0) for none.
+    ``modal`` (2, m + HEADER, modes): the discs' modes and their state (``fe`` then the residual
+    tables; :mod:`rvsim.dynamics._fe_modes`), (2, m + HEADER, 0) or (2, 0, 0) for none.
     """
     dt = P[DT]
     Q = np.zeros(N_DOF)

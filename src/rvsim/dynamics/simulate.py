@@ -132,14 +132,18 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
 
 def disc_modes(reducer: Reducer, model, time_step: float) -> tuple[np.ndarray, np.ndarray]:
     """The finite-element discs as the dynamic kernel takes them: (tables, modal).  With
-    ``flexibility.fe_modes`` = n > 0, the residual tables and the n modes of each disc
-    (:func:`rvsim.fe.modes.disc_modal_arrays`, zero state: a fresh copy per run); with 0, the
-    condensed tables and no modes.  Closed-form bodies: ``model.fe`` (empty) and no modes."""
+    ``flexibility.fe_modes`` = n > 0, the residual tables and the n modes of each disc at rest
+    (:func:`rvsim.fe.modes.disc_modal_arrays`, :func:`rvsim.dynamics._fe_modes.modal_array`);
+    with 0, the condensed tables and no modes.  Closed-form bodies: ``model.fe`` (empty) and
+    no modes."""
     if model.fe.shape[1] == 0:
         return model.fe, np.zeros((2, 0, 0))
     from ..fe.modes import disc_modal_arrays
+    from ._fe_modes import modal_array
 
-    return disc_modal_arrays(reducer, model.fe, int(model.P[L.FE_MODES]), time_step)
+    tables, participation, omega = disc_modal_arrays(reducer, model.fe,
+                                                     int(model.P[L.FE_MODES]), time_step)
+    return tables, modal_array(participation, omega)
 
 
 def _progress_bar(duration: float):

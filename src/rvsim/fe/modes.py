@@ -251,22 +251,21 @@ MAX_OMEGA_DT = 1.0
 
 
 def disc_modal_arrays(reducer: Reducer, tables: np.ndarray, modes: int, time_step: float
-                      ) -> tuple[np.ndarray, np.ndarray]:
-    """The dynamic kernel's view of both discs with ``modes`` modes each, from their condensed
-    ``tables`` (2, m, m): the residual tables R (2, m, m) that replace the condensed ones in
-    the contacts, and the modal array (2, m + 4, modes): rows 0..m-1 the participation P
-    (segment x mode), row m Omega^2, rows m + 1 .. m + 3 the state (eta, eta', modal force),
-    zero at rest (:mod:`rvsim.dynamics._fe_modes`).  With 0 modes, R is ``tables`` itself.
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Both discs with ``modes`` modes each, as the dynamic kernel integrates them, from their
+    condensed ``tables`` (2, m, m): (residual tables R (2, m, m) that replace the condensed ones
+    in the contacts, participation P (2, m, modes), circular frequencies Omega (modes,)
+    [rad/s]).  With 0 modes, R is ``tables`` itself.
 
     A mode above omega dt = :data:`MAX_OMEGA_DT` raises ParameterError on
     ``flexibility.fe_modes``.  Disc 2 is disc 1 turned half a turn: for an odd tooth count
-    its arrays are disc 1's shifted by (zc + 1) / 2 teeth of segments (as
+    its R and P are disc 1's shifted by (zc + 1) / 2 teeth of segments (as
     :func:`rvsim.fe.disc.disc_tables`); an even count would need its own modes (refused)."""
     from ..errors import ParameterError
 
     m = tables.shape[1]
     if modes == 0:
-        return tables, np.zeros((2, m + 4, 0))
+        return tables, np.zeros((2, m, 0)), np.zeros(0)
     zc = reducer.cycloid.disc_teeth
     if zc % 2 == 0:
         raise ParameterError("flexibility.fe_modes", "the disc modes need an odd tooth count "
@@ -281,9 +280,5 @@ def disc_modal_arrays(reducer: Reducer, tables: np.ndarray, modes: int, time_ste
             f"{MAX_OMEGA_DT:g}): at most {admissible} at this step")
     shift = (zc + 1) // 2 * reducer.flexibility.fe_segments_per_tooth
     residual = np.stack([model.residual, np.roll(model.residual, shift, axis=(0, 1))])
-    modal = np.zeros((2, m + 4, modes))
-    for disc, rows in enumerate((model.participation,
-                                 np.roll(model.participation, shift, axis=0))):
-        modal[disc, :m] = rows
-        modal[disc, m] = omega ** 2
-    return residual, modal
+    participation = np.stack([model.participation, np.roll(model.participation, shift, axis=0)])
+    return residual, participation, omega
