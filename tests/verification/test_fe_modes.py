@@ -11,8 +11,7 @@ import pytest
 
 from rvsim.dynamics._fe_contacts import coupled_forces, lagged_forces
 from rvsim.dynamics._fe_modes import (ETA, FORCE, HEADER, OMEGA2, RATE, add_modal_force,
-                                      advance_modes, modal_array, modal_deflection,
-                                      self_correction)
+                                      advance_modes, foot_modes, modal_array)
 from rvsim.dynamics.compliance import palmgren_coefficient
 from rvsim.errors import ParameterError
 from rvsim.parameters import RV40E, with_values
@@ -134,8 +133,8 @@ def test_modes_at_their_static_deflection_give_the_condensed_contacts():
     for a_pin in range(3):
         add_modal_force(modal, *weights(foot[a_pin]), exact[a_pin])
     modal[m + ETA] = modal[m + FORCE] / omega2
-    own = np.array([delta[i] - modal_deflection(modal, *weights(foot[i])) for i in range(3)])
-    extra = np.array([self_correction(modal, *weights(u)) for u in foot])
+    deflection, extra = np.array([foot_modes(modal, *weights(u)) for u in foot]).T
+    own = delta - deflection
     for corrected, tol in ((True, 1e-12), (False, None)):
         force, cii = np.zeros(3), np.zeros(3)
         for _ in range(60):

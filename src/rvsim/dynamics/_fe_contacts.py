@@ -28,7 +28,7 @@ from ._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 from ._contact_law import EXPONENT, spring_force  # noqa: E402
-from ._fe_modes import add_modal_force, modal_deflection, self_correction  # noqa: E402
+from ._fe_modes import add_modal_force, foot_modes  # noqa: E402
 
 __all__ = ["table_compliance", "coupled_forces", "lagged_forces", "apply_coupled",
            "MAX_NEWTON"]
@@ -93,7 +93,7 @@ def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance, e
     taken as they are (already swept, or ``guess``, their forces of the previous step: the
     coupling lags at most one time step).  Fills ``force`` and ``self_compliance``; returns
     the potential energy.  ``extra`` (n), if given, adds to each pin's own compliance (the
-    modes' interpolation term, :func:`rvsim.dynamics._fe_modes.self_correction`)."""
+    modes' interpolation term, :func:`rvsim.dynamics._fe_modes.foot_modes`)."""
     m = table.shape[0]
     lo = np.empty(n, dtype=np.int64)
     hi = np.empty(n, dtype=np.int64)
@@ -258,8 +258,8 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     if moving:
         for a in range(n):
             lo[a], hi[a], weight[a] = _segment(foot[a], table.shape[0])
-            delta[a] -= modal_deflection(modal, lo[a], hi[a], weight[a])
-            extra[a] = self_correction(modal, lo[a], hi[a], weight[a])
+            deflection, extra[a] = foot_modes(modal, lo[a], hi[a], weight[a])
+            delta[a] -= deflection
     guess = np.empty(n)
     for a in range(n):
         guess[a] = elastic[slots[a]]

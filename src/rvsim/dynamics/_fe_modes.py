@@ -13,7 +13,7 @@ displacement over the segments.  A pin's contact sees the disc's deflection (P e
 foot u plus the residual R's (massless, the modes left out), which replaces the condensed
 table C in the Gauss-Seidel sweep (:func:`rvsim.dynamics._fe_contacts.lagged_forces`).  Static:
 eta = Omega^-2 P^T f, so the deflection is (P Omega^-2 P^T + R) f = C f, whatever n (read
-between segment centres as the table is: :func:`self_correction`).
+between segment centres as the table is: :func:`foot_modes`).
 
 A disc's array ``modal`` (m + HEADER, n) holds P in rows 0..m-1 and, from row m, Omega^2,
 Omega^-2, Omega (constants: no division or root in the step), eta, eta' and the modal force
@@ -33,8 +33,8 @@ from ._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 __all__ = ["OMEGA2", "INV_OMEGA2", "OMEGA", "ETA", "RATE", "FORCE", "HEADER", "modal_array",
-           "modal_deflection", "self_correction", "add_modal_force", "clear_modal_force",
-           "advance_modes", "modal_energy"]
+           "foot_modes", "add_modal_force", "clear_modal_force", "advance_modes",
+           "modal_energy"]
 
 #: rows of a disc's modal array after its m participation rows: modal[m + OMEGA2] ...
 OMEGA2, INV_OMEGA2, OMEGA, ETA, RATE, FORCE = range(6)
@@ -54,32 +54,22 @@ def modal_array(participation: np.ndarray, omega: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(cache=True)
-def modal_deflection(modal, i0, i1, frac):
-    """The modes' normal deflection (P eta)(u) of the disc at a foot parameter u between
-    segment centres i0 and i1 (weight ``frac`` of i1) [m]."""
-    n = modal.shape[1]
-    if n == 0:
-        return 0.0
-    m = modal.shape[0] - HEADER
-    total = 0.0
-    for k in range(n):
-        total += ((1.0 - frac) * modal[i0, k] + frac * modal[i1, k]) * modal[m + ETA, k]
-    return total
-
-
-@numba.njit(cache=True)
-def self_correction(modal, i0, i1, frac):
-    """The own compliance that a pin between segment centres i0 and i1 adds to the residual's
-    so that its statics is the condensed table's [m/N]: the table reads a pin's own
-    compliance linearly along the diagonal, (1 - s) C_00 + s C_11, the modes bilinearly,
+def foot_modes(modal, i0, i1, frac):
+    """At a foot parameter u between segment centres i0 and i1 (weight ``frac`` of i1): the
+    modes' normal deflection (P eta)(u) [m], and the own compliance that the pin adds to the
+    residual's so that its statics is the condensed table's [m/N].  The table reads a pin's
+    own compliance linearly along the diagonal, (1 - s) C_00 + s C_11, the modes bilinearly,
     w^T M w with M = P Omega^-2 P^T and w = (1 - s, s); the difference is
     s (1 - s) (M_00 + M_11 - 2 M_01) = s (1 - s) sum_k (P_0k - P_1k)^2 / Omega_k^2."""
     m = modal.shape[0] - HEADER
+    deflection = 0.0
     total = 0.0
     for k in range(modal.shape[1]):
-        diff = modal[i0, k] - modal[i1, k]
+        p0, p1 = modal[i0, k], modal[i1, k]
+        deflection += ((1.0 - frac) * p0 + frac * p1) * modal[m + ETA, k]
+        diff = p0 - p1
         total += diff * diff * modal[m + INV_OMEGA2, k]
-    return frac * (1.0 - frac) * total
+    return deflection, frac * (1.0 - frac) * total
 
 
 @numba.njit(cache=True)

@@ -649,7 +649,8 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
             pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe,
             modal)
-        if modal.shape[2] > 0:      # the discs' modes: their energies
+        # the discs' modes: their energies, where the balance reads them
+        if modal.shape[2] > 0 and (step == n_steps or in_window != (t >= P[STEADY_START])):
             for disc in range(2):
                 kinetic, strain = modal_energy(modal[disc])
                 pot += strain

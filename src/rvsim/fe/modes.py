@@ -199,10 +199,10 @@ def disc_frequencies(reducer: Reducer, count: int) -> np.ndarray:
     return supported_modes(body, reducer.materials.cycloid_disc.density, supported, count)[0]
 
 
-def disc_craig_bampton(reducer: Reducer, modes: int) -> tuple[CraigBampton, float, bool]:
-    """The Craig-Bampton model of disc 1 on its contact segments with ``modes`` fixed-interface
-    modes: (model, seconds to build, loaded from the cache).  Cached by the disc's geometry
-    hash, its density and ``modes``."""
+def _disc_reduction(reducer: Reducer, kind: str, modes: int, reduce
+                    ) -> tuple[dict, float, bool]:
+    """``reduce(body, density, loads, supported, modes)`` (a dict of arrays) of disc 1, cached
+    by the disc's geometry hash, its density and ``modes``: (arrays, seconds, from cache)."""
     from .disc import disc_geometry
 
     g = disc_geometry(reducer, 0)
@@ -210,13 +210,23 @@ def disc_craig_bampton(reducer: Reducer, modes: int) -> tuple[CraigBampton, floa
 
     def compute():
         _, body, supported, loads = _disc(reducer)
-        model = craig_bampton(body, density, loads, supported, modes)
+        return reduce(body, density, loads, supported, modes)
+
+    return cache.cached(kind, {**g, "density": density, "modes": modes}, compute)
+
+
+def disc_craig_bampton(reducer: Reducer, modes: int) -> tuple[CraigBampton, float, bool]:
+    """The Craig-Bampton model of disc 1 on its contact segments with ``modes`` fixed-interface
+    modes: (model, seconds to build, loaded from the cache).  Cached by the disc's geometry
+    hash, its density and ``modes``."""
+    def reduce(*args):
+        model = craig_bampton(*args)
         return {"stiffness": model.stiffness, "mass": model.mass,
                 "interfaces": np.array(model.interfaces),
                 "fixed_interface_hz": model.fixed_interface_hz, "compliance": model.compliance}
 
-    a, seconds, from_cache = cache.cached("cycloid-disc-craig-bampton",
-                                          {**g, "density": density, "modes": modes}, compute)
+    a, seconds, from_cache = _disc_reduction(reducer, "cycloid-disc-craig-bampton", modes,
+                                             reduce)
     return (CraigBampton(a["stiffness"], a["mass"], int(a["interfaces"]), modes,
                          a["fixed_interface_hz"], a["compliance"]), seconds, from_cache)
 
@@ -225,19 +235,9 @@ def disc_free_interface(reducer: Reducer, modes: int) -> tuple[FreeInterface, fl
     """The free-interface model of disc 1 (:func:`free_interface`, the form the dynamic kernel
     integrates) with its lowest ``modes`` modes: (model, seconds to build, loaded from the
     cache).  Cached by the disc's geometry hash, its density and ``modes``."""
-    from .disc import disc_geometry
-
-    g = disc_geometry(reducer, 0)
-    density = reducer.materials.cycloid_disc.density
-
-    def compute():
-        _, body, supported, loads = _disc(reducer)
-        model = free_interface(body, density, loads, supported, modes)
-        return {"frequencies_hz": model.frequencies_hz, "participation": model.participation,
-                "residual": model.residual, "compliance": model.compliance}
-
-    a, seconds, from_cache = cache.cached("cycloid-disc-free-interface",
-                                          {**g, "density": density, "modes": modes}, compute)
+    a, seconds, from_cache = _disc_reduction(
+        reducer, "cycloid-disc-free-interface", modes,
+        lambda *args: dataclasses.asdict(free_interface(*args)))
     return (FreeInterface(a["frequencies_hz"], a["participation"].reshape(-1, modes),
                           a["residual"], a["compliance"]), seconds, from_cache)
 
