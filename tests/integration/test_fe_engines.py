@@ -6,8 +6,9 @@ import json
 
 import pytest
 
+# the disc's figures: the finite-element crank (on by default with model = fe) left out
 COARSE = ("--set", "flexibility.fe_element_size=4", "--set",
-          "flexibility.fe_segments_per_tooth=2")
+          "flexibility.fe_segments_per_tooth=2", "--set", "flexibility.fe_crank=false")
 SHORT = ("--set", "operating.duration=0.3", "--set", "operating.speed_ramp_time=0.1",
          "--set", "operating.load_start=0.1", "--set", "operating.load_ramp_end=0.2",
          "--set", "operating.steady_start=0.2")
@@ -68,3 +69,16 @@ def test_friction_with_the_fe_disc_is_refused(cli):
                  "contact.friction_coefficient=0.05", *COARSE)
     assert result.code == 2
     assert "flexibility.model" in result.err and "friction" in result.err
+
+
+def test_the_fe_crank_refuses_needle_bearings(cli):
+    result = cli("ltca", "--params", "RV-40E-bearings", "--set", "flexibility.model=fe")
+    assert result.code == 2
+    assert result.err.count("\n") == 1 and "flexibility.fe_crank" in result.err
+
+
+def test_bad_crank_element_size_is_one_line(cli):
+    result = cli("ltca", "--set", "flexibility.fe_crank_element_size=0")
+    assert result.code == 2
+    assert result.err.startswith("rvsim: error: parameter 'flexibility.fe_crank_element_size'")
+    assert result.err.count("\n") == 1

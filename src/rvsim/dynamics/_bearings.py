@@ -28,7 +28,7 @@ from ._contact_law import contact
 invalidate_stale_cache(__file__)
 
 __all__ = ["WRAP_RATIO", "johnson_interface", "conforming_approach", "conforming_force",
-           "roller_set"]
+           "radial_stiffness", "roller_set"]
 
 #: a / F at which the Hertz half-width of the conforming pair reaches the journal radius
 WRAP_RATIO = 16.0
@@ -118,6 +118,14 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess):
         f = new
     d, c, e = _conforming(f, j1, a1, j2, a2, cb, shift)
     return f, 1.0 / c, e
+
+
+@numba.njit(cache=True)
+def radial_stiffness(nx, ny, k, force, dist):
+    """dS/dr of a force ``force`` along n = r / dist with tangent stiffness ``k``: k n n^T +
+    F/dist t t^T (the normal turns with r)."""
+    turn = force / dist
+    return (k * nx * nx + turn * ny * ny, (k - turn) * nx * ny, k * ny * ny + turn * nx * nx)
 
 
 @numba.njit(cache=True)

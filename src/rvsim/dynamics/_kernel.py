@@ -20,11 +20,12 @@ from ._cache_guard import invalidate_stale_cache
 invalidate_stale_cache()
 
 from ..geometry._curve import deviated_gap, pin_gap, pin_opening, profile_axes
-from ._bearings import conforming_force, roller_set
+from ._bearings import conforming_force, radial_stiffness, roller_set
 from ._contact_law import EXPONENT, add_rank_one, contact, damped, spring_force  # noqa: F401
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
+from ._fe_crank import compliance_torque, coupled_arm_forces, crank_compliance, lagged_arm_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
 from ._layout import (BORE_DR0, BORE_DT0, ECC_ERR0, ECC_PHASE0, MODE_ZETA)
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
@@ -33,7 +34,7 @@ from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLE
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
                       CONTACT_RATIO, CRANK0, CRANK_COUNT, CRANK_STRIDE, DISC0, DISC_COUNT,
-                      DISC_STRIDE, DT, E_DISSIPATED, FRICTION_ON,
+                      DISC_STRIDE, DT, E_DISSIPATED, FE_CRANK_SLOT0, FE_CRANK_XX1, FRICTION_ON,
                       E_INPUT, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
@@ -294,14 +295,6 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
 
 
 @numba.njit(cache=True)
-def _radial_stiffness(nx, ny, k, force, dist):
-    """dS/dr of a force ``force`` along n = r / dist with tangent stiffness ``k``: k n n^T +
-    F/dist t t^T (the normal turns with r)."""
-    turn = force / dist
-    return (k * nx * nx + turn * ny * ny, (k - turn) * nx * ny, k * ny * ny + turn * nx * nx)
-
-
-@numba.njit(cache=True)
 def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx, sy, cx, cy,
                   w_in):
     """Stiffness matrix -dQ/dq of an arm element whose elastic force S (on the disc hole;
@@ -353,19 +346,28 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess):
     nx, ny = rx / dist, ry / dist
     f, k, energy = conforming_force(delta, j1, a1, j2, a2, cb, guess)
     fn, power = damped(f, k, nx * vx + ny * vy, zeta, mass)
-    kxx, kxy, kyy = _radial_stiffness(nx, ny, k, f, dist)
+    kxx, kxy, kyy = radial_stiffness(nx, ny, k, f, dist)
     return fn * nx, fn * ny, energy, power, fn, f, kxx, kxy, kyy
 
 
 @numba.njit(cache=True)
-def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
-    """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
-    contact, :func:`~rvsim.dynamics._bearings.conforming_force`) or a needle roller bearing
-    (:func:`~rvsim.dynamics._bearings.roller_set`; P[ARM_KIND]).
+def arm_station(P, holes, crank, disc):
+    """Station weights (wl, wu) of disc ``disc``'s eccentric on crank ``crank`` and the centre
+    of its hole in the disc's axes (with the per-disc hole offsets of per-part errors)."""
+    wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
+    wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
+    hole_x, hole_y = holes[crank, 0], holes[crank, 1]
+    if holes.shape[1] > 2:
+        hole_x += holes[crank, 2 + 2 * disc]
+        hole_y += holes[crank, 3 + 2 * disc]
+    return wl, wu, hole_x, hole_y
 
-    ``elastic[crank, disc]`` carries the bushing's elastic force from step to step (Newton
-    start).  ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic
-    force (:func:`arm_stiffness`).  Returns (resultant force, energy, dissipated power)."""
+
+@numba.njit(cache=True)
+def arm_geometry(P, q, v, crank, disc, hole_x, hole_y, wl, wu):
+    """Crank ``crank``'s eccentric for disc ``disc`` and that disc's hole: (rx, ry, vx, vy,
+    phi, ecc, cos phi, sin phi, hx, hy), r = eccentric centre - hole centre and v its rate,
+    phi the eccentric's direction, (hx, hy) the hole centre."""
     ax, ay, avx, avy = crank_point(q, v, crank, wl, wu)
     b = CRANK0 + CRANK_STRIDE * crank
     phi = q[b + 4] + disc * math.pi + P[ECC_PHASE0 + 2 * crank + disc]
@@ -381,13 +383,42 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     hy = q[d + 1] + sin_t * hole_x + cos_t * hole_y
     hvx = v[d] - v[d + 2] * (hy - q[d + 1])
     hvy = v[d + 1] + v[d + 2] * (hx - q[d])
-    rx, ry = ex - hx, ey - hy
+    return ex - hx, ey - hy, evx - hvx, evy - hvy, phi, ecc, cos_p, sin_p, hx, hy
+
+
+@numba.njit(cache=True)
+def apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy):
+    """Generalised forces of an arm element's force (sx, sy) on the disc hole (-S on the
+    eccentric)."""
+    b = CRANK0 + CRANK_STRIDE * crank
+    d = DISC0 + DISC_STRIDE * disc
+    fx, fy = -sx, -sy                                # on the crank
+    add_crank_force(Q, crank, wl, wu, fx, fy)
+    Q[b + 4] += fx * (-ecc * sin_p) + fy * (ecc * cos_p)
+    Q[d] -= fx
+    Q[d + 1] -= fy
+    Q[d + 2] -= -fx * (hy - q[d + 1]) + fy * (hx - q[d])
+
+
+@numba.njit(cache=True)
+def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
+    """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
+    contact, :func:`~rvsim.dynamics._bearings.conforming_force`) or a needle roller bearing
+    (:func:`~rvsim.dynamics._bearings.roller_set`; P[ARM_KIND]).
+
+    ``elastic[crank, disc]`` carries the bushing's elastic force from step to step (Newton
+    start).  ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic
+    force (:func:`arm_stiffness`).  Returns (resultant force, energy, dissipated power)."""
+    rx, ry, rvx, rvy, phi, ecc, cos_p, sin_p, hx, hy = arm_geometry(P, q, v, crank, disc,
+                                                                    hole_x, hole_y, wl, wu)
+    b = CRANK0 + CRANK_STRIDE * crank
+    d = DISC0 + DISC_STRIDE * disc
     cx = cy = 0.0
     w_in = P[ARM_CAGE_IN]
     if P[ARM_KIND] == 1.0:
         cage = w_in * phi + (1.0 - w_in) * q[d + 2]
         sx, sy, energy, power, _, kxx, kxy, kyy, cx, cy = roller_set(
-            rx, ry, evx - hvx, evy - hvy, P[ARM_ROLLERS], cage, P[ARM_C], P[ARM_CLEAR], 1.0,
+            rx, ry, rvx, rvy, P[ARM_ROLLERS], cage, P[ARM_C], P[ARM_CLEAR], 1.0,
             P[ZETA], P[M_NODE])
         fn = math.sqrt(sx * sx + sy * sy)
         ex_el, ey_el = sx, sy
@@ -395,7 +426,7 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
             return 0.0, 0.0, 0.0
     else:
         sx, sy, energy, power, fn, f_el, kxx, kxy, kyy = _bushing(
-            rx, ry, evx - hvx, evy - hvy, P[ARM_CLEAR], P[ARM_J1], P[ARM_A1], P[ARM_J2],
+            rx, ry, rvx, rvy, P[ARM_CLEAR], P[ARM_J1], P[ARM_A1], P[ARM_J2],
             P[ARM_A2], P[ARM_CB], P[ZETA], P[M_NODE], elastic[crank, disc])
         elastic[crank, disc] = f_el
         if fn == 0.0 and f_el == 0.0:
@@ -405,13 +436,108 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     if K.shape[0] > 0:
         arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, hx - q[d], hy - q[d + 1], kxx, kxy,
                       kyy, ex_el, ey_el, cx, cy, w_in)
-    fx, fy = -sx, -sy                                # on the crank
-    add_crank_force(Q, crank, wl, wu, fx, fy)
-    Q[b + 4] += fx * (-ecc * sin_p) + fy * (ecc * cos_p)
-    Q[d] -= fx
-    Q[d + 1] -= fy
-    Q[d + 2] -= -fx * (hy - q[d + 1]) + fy * (hx - q[d])
+    apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy)
     return fn, energy, power
+
+
+@numba.njit(cache=True)
+def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
+    """Crank ``crank``'s two eccentrics in their discs' holes with the finite-element crank
+    between them (docs/model.md section 17; :mod:`rvsim.dynamics._fe_crank`): the two arm
+    bushings solved together, to convergence with ``K`` wanted (the quasi-static engine), one
+    Gauss-Seidel sweep per step otherwise (the dynamic engine).  Each bushing is damped at its
+    tangent stiffness in series with the crank (the diagonal of dS/dr along its force).
+    ``out[disc]`` receives the resultant forces; returns (energy, dissipated power)."""
+    b = CRANK0 + CRANK_STRIDE * crank
+    # one work array per call (views of it: no allocation per quantity, this runs every step)
+    work = np.empty((2, 16))
+    r, rate, guess, force = work[:, 0:2], work[:, 2:4], work[:, 4:6], work[:, 6:8]
+    geo = work[:, 8:16]              # wl, wu, ecc, cos phi, sin phi, hx, hy, series stiffness
+    for disc in range(2):
+        wl, wu, hole_x, hole_y = arm_station(P, holes, crank, disc)
+        rx, ry, rvx, rvy, _, ecc, cos_p, sin_p, hx, hy = arm_geometry(
+            P, q, v, crank, disc, hole_x, hole_y, wl, wu)
+        r[disc, 0], r[disc, 1], rate[disc, 0], rate[disc, 1] = rx, ry, rvx, rvy
+        geo[disc, 0], geo[disc, 1], geo[disc, 2] = wl, wu, ecc
+        geo[disc, 3], geo[disc, 4], geo[disc, 5], geo[disc, 6] = cos_p, sin_p, hx, hy
+    mats = np.empty((4, 8))
+    A = mats[:, 0:4]
+    crank_compliance(P, q[b + 4], A)
+    for disc in range(2):
+        guess[disc, 0] = elastic[crank, FE_CRANK_SLOT0 + 2 * disc]
+        guess[disc, 1] = elastic[crank, FE_CRANK_SLOT0 + 2 * disc + 1]
+    series = work[:, 15]
+    want = K.shape[0] > 0
+    dsdr = mats[:, 4:8]
+    if want:
+        energy, _, _ = coupled_arm_forces(P, A, r, guess, force, dsdr)
+    else:
+        energy = lagged_arm_forces(P, A, r, guess, force, series)
+    power = 0.0
+    for disc in range(2):
+        sx, sy = force[disc, 0], force[disc, 1]
+        elastic[crank, FE_CRANK_SLOT0 + 2 * disc] = sx
+        elastic[crank, FE_CRANK_SLOT0 + 2 * disc + 1] = sy
+        f = math.sqrt(sx * sx + sy * sy)
+        elastic[crank, disc] = f
+        out[disc] = f
+        if f == 0.0:
+            continue
+        nx, ny = sx / f, sy / f
+        if want:
+            a = 2 * disc
+            series[disc] = (nx * (dsdr[a, a] * nx + dsdr[a, a + 1] * ny)
+                            + ny * (dsdr[a + 1, a] * nx + dsdr[a + 1, a + 1] * ny))
+        fn, pw = damped(f, series[disc], nx * rate[disc, 0] + ny * rate[disc, 1], P[ZETA],
+                        P[M_NODE])
+        power += pw
+        out[disc] = fn
+        apply_arm_force(Q, q, crank, disc, geo[disc, 0], geo[disc, 1], geo[disc, 2],
+                        geo[disc, 3], geo[disc, 4], geo[disc, 5], geo[disc, 6], fn * nx,
+                        fn * ny)
+    # the table turns with the crank: -dU/dphi at fixed relative positions
+    Q[b + 4] += compliance_torque(A, force)
+    if want:
+        arm_pair_stiffness(K, q, crank, geo, dsdr, force, P[ARM_CAGE_IN])
+    return energy, power
+
+
+@numba.njit(cache=True, inline="always")
+def _arm_rows(q, geo, disc):
+    """d r / d(crank b..b+4, disc d..d+2) of eccentric ``disc``'s relative position (x and y
+    rows; :func:`arm_stiffness`)."""
+    d = DISC0 + DISC_STRIDE * disc
+    wl, wu, ecc, cos_p, sin_p = geo[disc, 0], geo[disc, 1], geo[disc, 2], geo[disc, 3], \
+        geo[disc, 4]
+    lx, ly = geo[disc, 5] - q[d], geo[disc, 6] - q[d + 1]
+    return ((wl, 0.0, wu, 0.0, -ecc * sin_p, -1.0, 0.0, ly),
+            (0.0, wl, 0.0, wu, ecc * cos_p, 0.0, -1.0, -lx), lx, ly)
+
+
+@numba.njit(cache=True)
+def arm_pair_stiffness(K, q, crank, geo, dsdr, force, w_in):
+    """Stiffness matrix of :func:`arm_pair`: J^T (dS/dr) J over both eccentrics (the crank
+    couples them) and each element's S . d2r/dq2 (:func:`arm_stiffness` with no material
+    term).  The turning of the table with phi is left out (its torque is second order in the
+    crank's anisotropy)."""
+    b = CRANK0 + CRANK_STRIDE * crank
+    for k in range(2):
+        gx, gy, lx, ly = _arm_rows(q, geo, k)
+        dk = DISC0 + DISC_STRIDE * k
+        arm_stiffness(K, b, dk, geo[k, 0], geo[k, 1], geo[k, 2], geo[k, 3], geo[k, 4], lx,
+                      ly, 0.0, 0.0, 0.0, force[k, 0], force[k, 1], 0.0, 0.0, w_in)
+        for m in range(2):
+            hx, hy, _, _ = _arm_rows(q, geo, m)
+            dm = DISC0 + DISC_STRIDE * m
+            sxx, sxy = dsdr[2 * k, 2 * m], dsdr[2 * k, 2 * m + 1]
+            syx, syy = dsdr[2 * k + 1, 2 * m], dsdr[2 * k + 1, 2 * m + 1]
+            for c in range(8):
+                ax = sxx * hx[c] + sxy * hy[c]
+                ay = syx * hx[c] + syy * hy[c]
+                col = b + c if c < 5 else dm + c - 5
+                for a in range(8):
+                    row = b + a if a < 5 else dk + a - 5
+                    K[row, col] += gx[a] * ax + gy[a] * ay
 
 
 @numba.njit(cache=True)
@@ -547,14 +673,21 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         power += pw
         if pen > worst:
             worst = pen
+    pair = np.empty(2)
     for j in range(int(P[CRANK_COUNT])):
+        coupled = P[FE_CRANK_XX1] > 0.0 and n_discs == 2 and not single
+        if coupled:     # finite-element crank: both bushings together
+            e, pw = arm_pair(P, q, v, Q, K, j, holes, arm_elastic, pair)
+            energy += e
+            power += pw
         for disc in range(n_discs):
-            wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
-            wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
-            hole_x, hole_y = holes[j, 0], holes[j, 1]
-            if holes.shape[1] > 2:          # per-disc hole offsets (per-part errors)
-                hole_x += holes[j, 2 + 2 * disc]
-                hole_y += holes[j, 3 + 2 * disc]
+            if coupled:
+                force = pair[disc]
+                channel[CH_ARM_F00 + 2 * j + disc] = force
+                if P[FRICTION_ON] == 1.0:
+                    power += arm_bearing_friction(P, v, Q, j, disc, force)
+                continue
+            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc)
             force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
                                        arm_elastic)
             channel[CH_ARM_F00 + 2 * j + disc] = force

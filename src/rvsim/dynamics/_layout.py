@@ -15,9 +15,12 @@ DISC_STRIDE = 3
 N_DOF = 17
 #: columns of the kernel's ``arm_elastic`` array: arm_elastic[crank, disc] the arm bushing's
 #: elastic force, arm_elastic[crank, SUP_SLOT0 + upper] the support bushing's (Newton starts),
+#: arm_elastic[crank, FE_CRANK_SLOT0 + 2 disc + (0, 1)] the arm bushing's elastic force vector
+#: (x, y, housing frame) with a finite-element crank (rvsim.dynamics._fe_crank),
 #: arm_elastic[disc, OUT_SLOT0 + m] output pin m's in disc ``disc`` (single-stage drive)
 SUP_SLOT0 = 2
-OUT_SLOT0 = 4
+FE_CRANK_SLOT0 = 4
+OUT_SLOT0 = 8
 N_CRANKS = 2
 N_DISCS = 2
 
@@ -148,6 +151,19 @@ RING_OUTPUT    = 120       # single-stage: 1.0 = the pin ring is the output (CAR
 FE_DISC        = 130       # 1: the discs' pins are coupled through finite-element tables
 # (disc: 130-139; crankshaft: 140-149; carrier and flange: 150-159; disc modes: 160-169;
 # finite-element pins: 170-179)
+# crankshaft (docs/model.md section 17, rvsim.dynamics._fe_crank): the upper triangle of the
+# crank's 4 x 4 compliance of its eccentric centres (x1, y1, x2, y2; crank frame, eccentric 1
+# towards +x) relative to its support line [m/N]; FE_CRANK_XX1 > 0: the crank is flexible
+FE_CRANK_XX1   = 140
+FE_CRANK_XY1   = 141
+FE_CRANK_X1X2  = 142
+FE_CRANK_X1Y2  = 143
+FE_CRANK_YY1   = 144
+FE_CRANK_Y1X2  = 145
+FE_CRANK_Y1Y2  = 146
+FE_CRANK_XX2   = 147
+FE_CRANK_XY2   = 148
+FE_CRANK_YY2   = 149
 
 
 # ---- disc modes: 160-169 (rvsim.dynamics._fe_modes; the modes travel in the ``modal`` array)

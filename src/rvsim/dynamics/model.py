@@ -242,6 +242,8 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     # the dynamic engine's disc modes (rvsim.dynamics.simulate builds them; docs/model.md 17)
     P[L.FE_MODES] = r.flexibility.fe_modes if fe_disc else 0
     P[L.MODE_ZETA] = r.contact.damping_ratio
+    if fe_crank_used(r):
+        P[L.FE_CRANK_XX1:L.FE_CRANK_XX1 + 10] = _fe_crank_constants(r)
     P[L.ZETA] = r.contact.damping_ratio
     P[L.V_FRIC] = r.contact.friction_velocity
     fill_friction_constants(r, P)       # P[MU] and the friction block (docs/model.md sec. 15)
@@ -308,6 +310,29 @@ def _fe_tables(r: Reducer) -> np.ndarray:
                              "friction yet (set contact.friction_coefficient = 0 or use "
                              "closed-form)")
     return disc_tables(r)
+
+
+def fe_crank_used(r: Reducer) -> bool:
+    """Whether the crankshafts are finite-element bodies (flexibility.fe_crank with model = fe,
+    an RV reducer)."""
+    return (r.flexibility.model == "fe" and r.flexibility.fe_crank
+            and not r.layout.single_stage)
+
+
+def _fe_crank_constants(r: Reducer) -> np.ndarray:
+    """The crank's in-plane table (forces x, y of both eccentrics; rvsim.fe.crank, cached per
+    geometry) as the 10 constants of P."""
+    from ..errors import ParameterError
+    from ..fe.crank import crank_table
+    from ._fe_crank import pack_table
+
+    if r.bearings.arm_needles:
+        raise ParameterError("flexibility.fe_crank", "the finite-element crank takes the "
+                             "paper's arm bushings only (set bearings.arm_needles = false or "
+                             "flexibility.fe_crank = false)")
+    table = crank_table(r, r.flexibility.fe_crank_element_size).compliance
+    forces = [0, 1, 4, 5]                  # force x, y of eccentric 1, then of eccentric 2
+    return pack_table(table[np.ix_(forces, forces)])
 
 
 def _bearing_constants(r: Reducer, P: np.ndarray) -> None:

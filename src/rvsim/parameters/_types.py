@@ -205,6 +205,11 @@ class Flexibility:
                           "that the dynamic engine integrates; 0: massless condensed disc "
                           "(the quasi-static engine is static: modes do not change it)",
                           minimum=0)
+    fe_crank: bool = flag(True, "with model = fe: the crankshafts are finite-element bodies "
+                          "too (their eccentrics deflect under both discs' arm-bushing "
+                          "forces; RV reducers with the paper's arm bushings)")
+    fe_crank_element_size: float = quantity(3.0 * _MM, "mm", "element size of the "
+                                            "finite-element crankshaft (3-D)", positive=True)
 
 
 @dataclasses.dataclass(frozen=True)
