@@ -2,7 +2,9 @@
 
 Times a default 4 s run (RV-40E, 300 N*m, step 5e-6 s) with the rigid disc, the FE disc as a
 massless condensed table (``flexibility.fe_modes = 0``) and the FE disc with 4 and 12 modes
-(12: the most the step admits); target: the flexible disc <= 2 x the rigid one.  Also the
+(12: the most the step admits), the crankshafts rigid (``flexibility.fe_crank = false``: the
+disc's cost alone); target: the flexible disc <= 2 x the rigid one.  Also 0 and 12 modes with
+the FE crankshafts as well (the default of ``flexibility.model = fe``).  Also the
 first build of the 12-mode model (eigenproblem of the disc held at its crank holes, after its
 mesh).  Runs are interleaved (rigid, 0, 4, 12, rigid, ...) so that the other processes' load
 falls on all alike; prints the medians (CPU and wall), the machine and the date as JSON.
@@ -43,8 +45,9 @@ def main() -> None:
     from rvsim.fe.modes import disc_free_interface
     from rvsim.parameters import RV40E, with_values
 
-    def fe(modes):
+    def fe(modes, crank=False):
         return with_values(RV40E, {"A": 1, "flexibility.model": "fe",
+                                   "flexibility.fe_crank": crank,
                                    "flexibility.fe_modes": modes})
 
     disc_table(fe(0))
@@ -55,7 +58,8 @@ def main() -> None:
                       f"load average {os.getloadavg()[0]:.1f}",
            "modes_12_first_build_wall_s": time.perf_counter() - wall,
            "modes_12_first_build_cpu_s": time.process_time() - cpu}
-    cases = {"rigid": RV40E, "fe_0_modes": fe(0), "fe_4_modes": fe(4), "fe_12_modes": fe(12)}
+    cases = {"rigid": RV40E, "fe_0_modes": fe(0), "fe_4_modes": fe(4), "fe_12_modes": fe(12),
+             "fe_crank_0_modes": fe(0, True), "fe_crank_12_modes": fe(12, True)}
     for r in cases.values():
         simulate(with_values(r, SHORT))         # compile, load the caches
     times = {name: ([], []) for name in cases}
@@ -68,7 +72,7 @@ def main() -> None:
         out[f"simulate4s_{name}_wall_s"] = statistics.median(walls)
         out[f"simulate4s_{name}_cpu_s"] = statistics.median(cpus)
         out[f"simulate4s_{name}_cpu_all_s"] = cpus
-    for name in ("fe_0_modes", "fe_4_modes", "fe_12_modes"):
+    for name in list(cases)[1:]:
         out[f"{name}_over_rigid_cpu"] = (out[f"simulate4s_{name}_cpu_s"]
                                          / out["simulate4s_rigid_cpu_s"])
     out["load_average_end"] = os.getloadavg()[0]
