@@ -251,14 +251,13 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     delta = work[:n, 0].copy()
     foot = work[:n, 2].copy()
     moving = modal.shape[1] > 0
-    extra = np.zeros(n)
-    lo = np.empty(n if moving else 0, dtype=np.int64)
-    hi = np.empty(n if moving else 0, dtype=np.int64)
-    weight = np.empty(n if moving else 0)
+    # per pin with modes: its segments (lower, upper), the upper's weight, the self-term
+    at = np.empty((4, n if moving else 0))
     if moving:
         for a in range(n):
-            lo[a], hi[a], weight[a] = _segment(foot[a], table.shape[0])
-            deflection, extra[a] = foot_modes(modal, lo[a], hi[a], weight[a])
+            i0, i1, frac = _segment(foot[a], table.shape[0])
+            deflection, at[3, a] = foot_modes(modal, i0, i1, frac)
+            at[0, a], at[1, a], at[2, a] = i0, i1, frac
             delta[a] -= deflection
     guess = np.empty(n)
     for a in range(n):
@@ -274,7 +273,7 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     else:
         s = np.empty((0, 0))
         if moving:
-            energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii, extra)
+            energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii, at[3])
         else:
             energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii)
         converged = True
@@ -294,7 +293,7 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
         forces[i] = fn
         elastic[i] = f
         if moving:
-            add_modal_force(modal, lo[a], hi[a], weight[a], f)
+            add_modal_force(modal, int(at[0, a]), int(at[1, a]), at[2, a], f)
         Q[d] += fn * work[a, 3]
         Q[d + 1] += fn * work[a, 4]
         Q[d + 2] += fn * work[a, 5]
