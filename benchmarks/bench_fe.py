@@ -1,13 +1,14 @@
-"""Benchmark the finite-element disc and crank (issue 13, item 4).
+"""Benchmark the finite-element disc, crank and carrier (issue 13, item 4).
 
 Also times (CPU and wall) the bodies the engines do not use yet: the disc's Craig-Bampton model
-with 20 modes, the 3-D crank at 3 mm, the carrier plate.
+with 20 modes, the 3-D crank at 3 mm; and the carrier plate's table.
 
 Targets: meshing and condensing the RV-40E disc <= 10 s once per geometry (then loaded from the
-cache); a 360-position quasi-static TE curve with the FE disc <= 3 x the rigid-body one; a 4 s
-dynamic run with the FE disc <= 2 x the rigid-disc run; the same with the FE disc and the FE
-cranks (``fe_crank``, the default with model = fe; ``fe`` is the disc alone).  Prints medians
-(wall and CPU time), the machine and the date as JSON.  BLAS threads are limited to one; the cache is a fresh
+cache); a 360-position quasi-static TE curve with FE bodies <= 3 x the rigid-body one; a 4 s
+dynamic run with them <= 2 x the rigid-disc run.  Cases: ``fe`` the FE disc alone,
+``fe_crank`` with the FE cranks, ``fe_carrier`` with the FE carrier and flange, ``fe_all``
+all three (the default with model = fe).  Prints medians (wall and CPU time), the machine and
+the date as JSON.  BLAS threads are limited to one; the cache is a fresh
 temporary folder.
 
 Usage:  python benchmarks/bench_fe.py [--repeat 5] [--dynamic-repeat 1]
@@ -52,8 +53,11 @@ def main() -> None:
 
     rigid = RV40E
     tooth = with_values(RV40E, {"A": 1})
-    fe = with_values(RV40E, {"A": 1, "flexibility.model": "fe", "flexibility.fe_crank": False})
-    fe_crank = with_values(RV40E, {"A": 1, "flexibility.model": "fe"})
+    alone = {"flexibility.fe_crank": False, "flexibility.fe_carrier": False}
+    fe = with_values(RV40E, {"A": 1, "flexibility.model": "fe", **alone})
+    fe_crank = with_values(fe, {"flexibility.fe_crank": True})
+    fe_carrier = with_values(fe, {"flexibility.fe_carrier": True})
+    fe_all = with_values(RV40E, {"A": 1, "flexibility.model": "fe"})
     start, cpu = time.perf_counter(), time.process_time()
     table = disc_table(fe)
     first_build = time.perf_counter() - start
@@ -71,7 +75,7 @@ def main() -> None:
         out_bodies[f"{name}_cpu_s"] = time.process_time() - cpu
     torque = RV40E.rating.rated_torque
     crank_table(fe_crank)                   # (timed above, now from the cache)
-    for r in (rigid, tooth, fe, fe_crank):  # compile and warm
+    for r in (rigid, tooth, fe, fe_crank, fe_carrier, fe_all):  # compile and warm
         ltca(r, torque=torque, positions=8)
     out = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
            "machine": f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
@@ -80,18 +84,20 @@ def main() -> None:
            "disc_mesh_and_condense_cpu_s": first_build_cpu, "disc_from_cache_s": from_cache,
            "disc_dofs": table.n_dofs, "disc_triangles": table.n_triangles,
            "segments": table.segments, **out_bodies}
-    cases = (("rigid", rigid), ("tooth", tooth), ("fe", fe), ("fe_crank", fe_crank))
+    cases = (("rigid", rigid), ("tooth", tooth), ("fe", fe), ("fe_crank", fe_crank),
+             ("fe_carrier", fe_carrier), ("fe_all", fe_all))
+    fe_cases = ("fe", "fe_crank", "fe_carrier", "fe_all")
     for name, r in cases:
         out[f"ltca360_{name}_wall_s"], out[f"ltca360_{name}_cpu_s"] = timed(
             lambda: ltca(r, torque=torque), args.repeat)
-    for name in ("fe", "fe_crank"):
+    for name in fe_cases:
         out[f"ltca_{name}_over_rigid_cpu"] = (out[f"ltca360_{name}_cpu_s"]
                                               / out["ltca360_rigid_cpu_s"])
     for name, r in cases:
         simulate(with_values(r, SHORT))         # load the compiled kernel
         out[f"simulate4s_{name}_wall_s"], out[f"simulate4s_{name}_cpu_s"] = timed(
             lambda: simulate(r), args.dynamic_repeat)
-    for name in ("fe", "fe_crank"):
+    for name in fe_cases:
         out[f"simulate_{name}_over_rigid_cpu"] = (out[f"simulate4s_{name}_cpu_s"]
                                                   / out["simulate4s_rigid_cpu_s"])
     print(json.dumps(out, indent=2))

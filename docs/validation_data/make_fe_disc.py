@@ -20,6 +20,10 @@ from pathlib import Path
 
 import pandas as pd
 
+#: the figures of the FE disc alone (the FE carrier, on by default since, is
+#: make_fe_carrier.py's)
+DISC_ONLY = {"flexibility.fe_carrier": False}
+
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -34,9 +38,9 @@ def main() -> None:
     out: dict = {"rated": {}}
     torque = RV40E.rating.rated_torque
     cases = {"rigid": {}, "tooth (closed-form)": {"A": 1},
-             "fe h=1.6 mm": {"A": 1, "flexibility.model": "fe"},
+             "fe h=1.6 mm": {"A": 1, "flexibility.model": "fe", **DISC_ONLY},
              "fe h=0.8 mm": {"A": 1, "flexibility.model": "fe",
-                             "flexibility.fe_element_size": 0.8}}
+                             "flexibility.fe_element_size": 0.8, **DISC_ONLY}}
     for name, values in cases.items():
         s = ltca(with_values(RV40E, values), torque=torque).summary()
         out["rated"][name] = {k: s[k] for k in ("te_mean_arcmin", "te_pp_arcmin",
@@ -51,7 +55,7 @@ def main() -> None:
             row = scheme[scheme["run"] == run].iloc[0]
             rec = {"run": int(run), **{f: int(row[f]) for f in "ABCDEFGHIJKLMNO"}}
             for model in ("closed-form", "fe"):
-                r = with_values(RV40E, {**values, "flexibility.model": model})
+                r = with_values(RV40E, {**values, "flexibility.model": model, **DISC_ONLY})
                 s = ltca(r, positions=args.positions, raise_on_failure=False).summary()
                 rec[f"te_mean_{model}"] = s["te_mean_arcmin"]
                 rec[f"te_pp_{model}"] = s["te_pp_arcmin"]

@@ -19,6 +19,10 @@ from pathlib import Path
 
 import pandas as pd
 
+#: the figures of the FE disc alone (the FE carrier, on by default since, is
+#: make_fe_carrier.py's)
+DISC_ONLY = {"flexibility.fe_carrier": False}
+
 PATH = Path(__file__).with_name("fe_disc_dynamic.json")
 
 
@@ -42,7 +46,7 @@ def main() -> None:
         rec = {"run": int(run), **{f: int(row[f]) for f in "ABCDEFGHIJKLMNO"}}
         for model in ("closed-form", "fe"):
             start = time.process_time()
-            s = simulate(with_values(RV40E, {**values, "flexibility.model": model})).summary()
+            s = simulate(with_values(RV40E, {**values, "flexibility.model": model, **DISC_ONLY})).summary()
             rec[f"te_mean_{model}"] = s["te_mean_arcmin"]
             rec[f"te_pp_{model}"] = s["te_pp_arcmin"]
             rec[f"status_{model}"] = s["status"]

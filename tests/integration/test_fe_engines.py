@@ -40,7 +40,8 @@ def test_ltca_with_the_fe_disc_is_softer_than_the_tooth_model(cli):
 
 def test_switch_a_off_leaves_the_model_unchanged(cli):
     rigid = cli("ltca", "--positions", "12", "--json")
-    fe = cli("ltca", "--positions", "12", "--json", "--set", "flexibility.model=fe", *COARSE)
+    fe = cli("ltca", "--positions", "12", "--json", "--set", "flexibility.model=fe", *COARSE,
+             "--set", "flexibility.fe_carrier=false")
     drop = ("wall_s",)
     a, b = json.loads(rigid.out), json.loads(fe.out)
     assert {k: v for k, v in a.items() if k not in drop} == \
@@ -71,6 +72,41 @@ def test_friction_with_the_fe_disc_is_refused(cli):
     assert "flexibility.model" in result.err and "friction" in result.err
 
 
+def test_the_fe_carrier_softens_every_command(cli):
+    """flexibility.fe_carrier (default on with model = fe): the support bushings bear on
+    finite-element plates, in the quasi-static and the dynamic engine."""
+    rigid = cli("ltca", "--positions", "12", "--json", "--set", "flexibility.model=fe",
+                *COARSE, "--set", "flexibility.fe_carrier=false")
+    plate = cli("ltca", "--positions", "12", "--json", "--set", "flexibility.model=fe", *COARSE)
+    a, b = json.loads(rigid.out), json.loads(plate.out)
+    assert b["status"] == "ok"
+    # the plates add 1.7e-8 rad/(N*m) (docs/validation.md): stiffness -6 %, mean TE +4 %
+    assert b["torsional_stiffness_nm_per_arcmin"] == pytest.approx(
+        0.94 * a["torsional_stiffness_nm_per_arcmin"], rel=0.01)
+    assert b["te_mean_arcmin"] == pytest.approx(1.04 * a["te_mean_arcmin"], rel=0.01)
+    loop = cli("hysteresis", "--json", "--set", "flexibility.model=fe", *COARSE)
+    assert loop.code == 0, loop.err
+    dynamic = cli("simulate", "--json", "--set", "flexibility.model=fe", *COARSE, *SHORT)
+    assert dynamic.code == 0, dynamic.err
+    assert json.loads(dynamic.out)["status"] == "ok"
+
+
+def test_fe_carrier_with_roller_supports_is_refused(cli):
+    result = cli("ltca", "--set", "flexibility.model=fe", "--set",
+                 "bearings.support_rollers=true", *COARSE)
+    assert result.code == 2
+    assert result.err.startswith("rvsim: error: parameter 'flexibility.fe_carrier': ")
+    assert result.err.count("\n") == 1
+    ok = cli("ltca", "--positions", "8", "--json", "--set", "flexibility.model=fe", "--set",
+             "bearings.support_rollers=true", "--set", "flexibility.fe_carrier=false", *COARSE)
+    assert ok.code == 0, ok.err
+
+
+def test_bad_fe_carrier_value_is_one_line(cli):
+    result = cli("ltca", "--set", "flexibility.fe_carrier=maybe")
+    assert result.code == 2
+    assert result.err == ("rvsim: error: parameter 'flexibility.fe_carrier': 'maybe' is not a "
+                          "yes/no value (use true or false)\n")
 def test_the_fe_crank_refuses_needle_bearings(cli):
     result = cli("ltca", "--params", "RV-40E-bearings", "--set", "flexibility.model=fe")
     assert result.code == 2

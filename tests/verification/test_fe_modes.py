@@ -18,7 +18,8 @@ from rvsim.parameters import RV40E, with_values
 
 #: coarse disc (h = 4 mm, 2 segments per tooth: 78 segments; meshed and solved in ~1 s)
 COARSE = {"A": 1, "flexibility.model": "fe", "flexibility.fe_element_size": 4.0,
-          "flexibility.fe_segments_per_tooth": 2, "flexibility.fe_crank": False}
+          "flexibility.fe_segments_per_tooth": 2, "flexibility.fe_crank": False,
+          "flexibility.fe_carrier": False}
 SHORT = {"operating.duration": 0.3, "operating.speed_ramp_time": 0.1,
          "operating.load_start": 0.1, "operating.load_ramp_end": 0.2,
          "operating.steady_start": 0.2}
@@ -181,7 +182,7 @@ def test_too_many_modes_is_one_line(cli):
     result = cli("simulate", "--json", "--set", "A=1", "--set", "flexibility.model=fe",
                  "--set", "flexibility.fe_element_size=4", "--set",
                  "flexibility.fe_segments_per_tooth=2", "--set", "flexibility.fe_crank=false",
-                 "--set", "flexibility.fe_modes=13",
+                 "--set", "flexibility.fe_carrier=false", "--set", "flexibility.fe_modes=13",
                  *(arg for key, value in SHORT.items() for arg in ("--set", f"{key}={value}")))
     assert result.code == 2
     assert result.err.count("\n") == 1
@@ -195,7 +196,8 @@ def test_the_quasi_static_engine_does_not_read_the_modes(cli):
 
     args = ("ltca", "--positions", "8", "--json", "--set", "A=1", "--set",
             "flexibility.model=fe", "--set", "flexibility.fe_element_size=4", "--set",
-            "flexibility.fe_segments_per_tooth=2", "--set", "flexibility.fe_crank=false")
+            "flexibility.fe_segments_per_tooth=2", "--set", "flexibility.fe_crank=false",
+            "--set", "flexibility.fe_carrier=false")
     plain = json.loads(cli(*args).out)
     modal = json.loads(cli(*args, "--set", "flexibility.fe_modes=4").out)
     drop = ("wall_s",)

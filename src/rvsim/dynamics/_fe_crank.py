@@ -1,5 +1,6 @@
 """Arm bushings of a finite-element crank, solved together (numba; docs/model.md section 17,
-"Crankshaft").
+"Crankshaft"); the same solvers serve the support bushings of the finite-element carrier and
+flange (:mod:`rvsim.dynamics._fe_carrier`: a plate's two bores in place of the two eccentrics).
 
 With ``flexibility.model = fe`` and ``flexibility.fe_crank`` a crank's eccentrics deflect
 relative to the straight line through its support nodes under the arm-bushing forces of both
@@ -52,7 +53,9 @@ from ._fe_contacts import _eliminate  # noqa: E402
 from ._layout import (ARM_A1, ARM_A2, ARM_CB, ARM_CLEAR, ARM_J1, ARM_J2,  # noqa: E402
                       FE_CRANK_XX1)
 
-__all__ = ["TABLE_ORDER", "pack_table", "crank_compliance", "compliance_torque",
+__all__ = ["TABLE_ORDER", "pack_table", "rotated_table", "crank_compliance",
+           "compliance_torque", "arm_law", "lagged_pair_forces", "coupled_pair_forces",
+           "pair_forces",
            "lagged_arm_forces", "coupled_arm_forces", "MAX_NEWTON"]
 
 #: (row, column) of the 4 x 4 table held in P[FE_CRANK_XX1 + i] (its upper triangle)
@@ -70,30 +73,38 @@ def pack_table(force_block: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(cache=True, inline="always")
-def _table(P, i, j):
-    """C[i, j] of the crank-frame table held in P (upper triangle, :data:`TABLE_ORDER`)."""
+def _table(P, base, i, j):
+    """C[i, j] of a body-frame table held in P from ``base`` (upper triangle,
+    :data:`TABLE_ORDER`)."""
     if i > j:
         i, j = j, i
-    return P[FE_CRANK_XX1 + 4 * i - i * (i - 1) // 2 + j - i]
+    return P[base + 4 * i - i * (i - 1) // 2 + j - i]
 
 
 @numba.njit(cache=True)
-def crank_compliance(P, phi, A):
+def rotated_table(P, base, phi, A):
     """Fill ``A`` (4 x 4, housing frame, (x1, y1, x2, y2)) with R(phi) C R(phi)^T, C the
-    crank-frame table in P; phi the direction of eccentric 1."""
+    body-frame table held in P from ``base`` (the crank's, or the carrier's:
+    :mod:`rvsim.dynamics._fe_carrier`); phi the direction of the body frame's x axis."""
     cp, sp = math.cos(phi), math.sin(phi)
     for k in range(2):
         for m in range(2):
             a, b = 2 * k, 2 * m
             # R C_km R^T with R = [[cp, -sp], [sp, cp]]
-            xx, xy = _table(P, a, b), _table(P, a, b + 1)
-            yx, yy = _table(P, a + 1, b), _table(P, a + 1, b + 1)
+            xx, xy = _table(P, base, a, b), _table(P, base, a, b + 1)
+            yx, yy = _table(P, base, a + 1, b), _table(P, base, a + 1, b + 1)
             t00, t01 = cp * xx - sp * yx, cp * xy - sp * yy
             t10, t11 = sp * xx + cp * yx, sp * xy + cp * yy
             A[a, b] = t00 * cp - t01 * sp
             A[a, b + 1] = t00 * sp + t01 * cp
             A[a + 1, b] = t10 * cp - t11 * sp
             A[a + 1, b + 1] = t10 * sp + t11 * cp
+
+
+@numba.njit(cache=True)
+def crank_compliance(P, phi, A):
+    """:func:`rotated_table` of the crank's table; phi the direction of eccentric 1."""
+    rotated_table(P, FE_CRANK_XX1, phi, A)
 
 
 @numba.njit(cache=True)
@@ -112,14 +123,20 @@ def compliance_torque(A, S):
 
 
 @numba.njit(cache=True)
-def _law(P, rx, ry, cb, guess):
-    """The arm bushing's law (compliance ``cb`` in series) at the relative position (rx, ry):
-    (Sx, Sy, force, tangent stiffness, energy, distance)."""
+def arm_law(P):
+    """The arm bushing's law as (clearance, j1, a1, j2, a2, series compliance)."""
+    return P[ARM_CLEAR], P[ARM_J1], P[ARM_A1], P[ARM_J2], P[ARM_A2], P[ARM_CB]
+
+
+@numba.njit(cache=True)
+def _law(law, rx, ry, cb, guess):
+    """A conforming bushing's law ``law`` (:func:`arm_law`; compliance ``cb`` added in series)
+    at the relative position (rx, ry): (Sx, Sy, force, tangent stiffness, energy, distance)."""
     dist = math.sqrt(rx * rx + ry * ry)
-    delta = dist - P[ARM_CLEAR]
+    delta = dist - law[0]
     if delta <= 0.0 or dist < 1e-15:
         return 0.0, 0.0, 0.0, 0.0, 0.0, dist
-    f, k, e = conforming_force(delta, P[ARM_J1], P[ARM_A1], P[ARM_J2], P[ARM_A2], cb, guess)
+    f, k, e = conforming_force(delta, law[1], law[2], law[3], law[4], law[5] + cb, guess)
     return f * rx / dist, f * ry / dist, f, k, e, dist
 
 
@@ -135,7 +152,14 @@ def _pair_energy(A, S):
 
 @numba.njit(cache=True)
 def lagged_arm_forces(P, A, r, guess, force, stiffness):
-    """One Gauss-Seidel sweep (dynamic engine): ``r`` (2, 2) the rigid relative positions,
+    """:func:`lagged_pair_forces` of a crank's arm bushings."""
+    return lagged_pair_forces(arm_law(P), A, r, guess, force, stiffness)
+
+
+@numba.njit(cache=True)
+def lagged_pair_forces(law, A, r, guess, force, stiffness):
+    """One Gauss-Seidel sweep (dynamic engine) of two bushings of law ``law`` coupled by
+    ``A``: ``r`` (2, 2) the rigid relative positions,
     ``guess`` (2, 2) the previous step's elastic forces.  Fills ``force`` (2, 2) and
     ``stiffness`` (2: each bushing's tangent stiffness in series with its projected crank
     compliance, for its damping); returns the potential energy."""
@@ -161,7 +185,7 @@ def lagged_arm_forces(P, A, r, guess, force, stiffness):
         # the anisotropic rest (A_kk - own I) S_k of the previous step
         wx += A[a, a] * gx + A[a, a + 1] * gy - own * gx
         wy += A[a + 1, a] * gx + A[a + 1, a + 1] * gy - own * gy
-        sx, sy, f, kt, e, _ = _law(P, r[k, 0] - wx, r[k, 1] - wy, P[ARM_CB] + own, g)
+        sx, sy, f, kt, e, _ = _law(law, r[k, 0] - wx, r[k, 1] - wy, own, g)
         force[k, 0], force[k, 1] = sx, sy
         stiffness[k] = kt
         # the series law's energy holds own f^2 / 2; the crank's comes below
@@ -170,7 +194,7 @@ def lagged_arm_forces(P, A, r, guess, force, stiffness):
 
 
 @numba.njit(cache=True)
-def _evaluate(P, A, r, S, f, D, e):
+def _evaluate(law, A, r, S, f, D, e):
     """The bushings' laws at r - A S: forces f (2, 2), tangent matrices D (4 x 4, block
     diagonal), energies e (2); returns (largest force, largest |S - f|)."""
     largest = 0.0
@@ -185,7 +209,7 @@ def _evaluate(P, A, r, S, f, D, e):
             rx -= A[a, j] * S[j // 2, j % 2]
             ry -= A[a + 1, j] * S[j // 2, j % 2]
         guess = math.sqrt(S[k, 0] ** 2 + S[k, 1] ** 2)
-        sx, sy, fk, kt, ek, dist = _law(P, rx, ry, P[ARM_CB], guess)
+        sx, sy, fk, kt, ek, dist = _law(law, rx, ry, 0.0, guess)
         e[k] = ek
         f[k, 0], f[k, 1] = sx, sy
         if fk > 0.0:
@@ -209,7 +233,14 @@ def _jacobian(D, A, jac):
 
 @numba.njit(cache=True)
 def coupled_arm_forces(P, A, r, guess, force, stiffness):
-    """The coupled bushings solved to convergence (quasi-static engine), semi-smooth Newton
+    """:func:`coupled_pair_forces` of a crank's arm bushings."""
+    return coupled_pair_forces(arm_law(P), A, r, guess, force, stiffness)
+
+
+@numba.njit(cache=True)
+def coupled_pair_forces(law, A, r, guess, force, stiffness):
+    """Two bushings of law ``law`` coupled by ``A``, solved to convergence (quasi-static
+    engine), semi-smooth Newton
     from ``guess`` (2, 2).  Fills ``force`` (2, 2) and ``stiffness`` (4 x 4, dS/dr =
     (I + D A)^-1 D); returns (potential energy, iterations, converged).  The 4 x 4 systems are
     solved by elimination without pivoting (I + D A is diagonally dominant: k C summed over a
@@ -223,7 +254,7 @@ def coupled_arm_forces(P, A, r, guess, force, stiffness):
     converged = False
     iterations = 0
     for iterations in range(1, MAX_NEWTON + 1):
-        largest, worst = _evaluate(P, A, r, S, f, D, e)
+        largest, worst = _evaluate(law, A, r, S, f, D, e)
         if worst <= 1e-10 * largest + 1e-12:
             converged = True
             break
@@ -237,8 +268,8 @@ def coupled_arm_forces(P, A, r, guess, force, stiffness):
         # Newton can cycle where a bushing opens and closes: Gauss-Seidel sweeps finish
         k2 = np.empty(2)
         for sweep in range(MAX_SWEEPS):
-            lagged_arm_forces(P, A, r, S.copy(), S, k2)
-            largest, worst = _evaluate(P, A, r, S, f, D, e)
+            lagged_pair_forces(law, A, r, S.copy(), S, k2)
+            largest, worst = _evaluate(law, A, r, S, f, D, e)
             iterations += 1
             if worst <= 1e-10 * largest + 1e-12:
                 converged = True
@@ -256,3 +287,22 @@ def coupled_arm_forces(P, A, r, guess, force, stiffness):
             stiffness[i, j] = mean
             stiffness[j, i] = mean
     return e[0] + e[1] + _pair_energy(A, force), iterations, converged
+
+
+@numba.njit(cache=True)
+def pair_forces(law, A, r, guess, force, dsdr, series, want):
+    """The two coupled bushings for either engine: solved together with the tangent ``dsdr``
+    when the stiffness is ``want``ed (quasi-static), else one sweep (dynamic).  Fills
+    ``force`` (2, 2) and ``series`` (2: each bushing's stiffness along its force, for its
+    damping: the sweep's law in series with its projected compliance, or n^T (dS/dr)_kk n);
+    returns the potential energy."""
+    if not want:
+        return lagged_pair_forces(law, A, r, guess, force, series)
+    energy, _, _ = coupled_pair_forces(law, A, r, guess, force, dsdr)
+    for k in range(2):
+        a = 2 * k
+        f = math.sqrt(force[k, 0] ** 2 + force[k, 1] ** 2)
+        nx, ny = (force[k, 0] / f, force[k, 1] / f) if f > 0.0 else (0.0, 0.0)
+        series[k] = (nx * (dsdr[a, a] * nx + dsdr[a, a + 1] * ny)
+                     + ny * (dsdr[a + 1, a] * nx + dsdr[a + 1, a + 1] * ny))
+    return energy

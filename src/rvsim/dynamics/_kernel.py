@@ -25,9 +25,10 @@ from ._contact_law import EXPONENT, add_rank_one, contact, damped, spring_force 
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
-from ._fe_crank import compliance_torque, coupled_arm_forces, crank_compliance, lagged_arm_forces
+from ._fe_carrier import COLUMNS as PLATE_COLUMNS, bore_centre, plate_supports
+from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
-from ._layout import (BORE_DR0, BORE_DT0, ECC_ERR0, ECC_PHASE0, MODE_ZETA)
+from ._layout import (ECC_ERR0, ECC_PHASE0, MODE_ZETA)
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
                       ARM_J2, ARM_KIND, ARM_ROLLERS, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
                       SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, BACKLASH, BASE_PITCH, CARRIER,
@@ -39,7 +40,7 @@ from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLE
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
                       MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C, PIN_CB,
-                      PIN_RADIUS, PROFILE_OFFSET,
+                      PIN_RADIUS, FE_PLATE_XX1, PROFILE_OFFSET,
                       PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RING_OUTPUT, RUNOUT_X0, RUNOUT_X1,
                       RUNOUT_Y0, RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
                       STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CLEAR_L, SUP_CLEAR_U,
@@ -469,10 +470,7 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
     series = work[:, 15]
     want = K.shape[0] > 0
     dsdr = mats[:, 4:8]
-    if want:
-        energy, _, _ = coupled_arm_forces(P, A, r, guess, force, dsdr)
-    else:
-        energy = lagged_arm_forces(P, A, r, guess, force, series)
+    energy = pair_forces(arm_law(P), A, r, guess, force, dsdr, series, want)
     power = 0.0
     for disc in range(2):
         sx, sy = force[disc, 0], force[disc, 1]
@@ -484,10 +482,6 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
         if f == 0.0:
             continue
         nx, ny = sx / f, sy / f
-        if want:
-            a = 2 * disc
-            series[disc] = (nx * (dsdr[a, a] * nx + dsdr[a, a + 1] * ny)
-                            + ny * (dsdr[a + 1, a] * nx + dsdr[a + 1, a + 1] * ny))
         fn, pw = damped(f, series[disc], nx * rate[disc, 0] + ny * rate[disc, 1], P[ZETA],
                         P[M_NODE])
         power += pw
@@ -551,10 +545,7 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
     :func:`arm_bushing`).  Returns (resultant force, energy, dissipated power)."""
     b = CRANK0 + CRANK_STRIDE * crank + (2 if upper else 0)
     phi = CRANK0 + CRANK_STRIDE * crank + 4
-    carrier_angle = q[CARRIER] + crank_angle
-    radius = P[CENTRE_DIST] + P[BORE_DR0 + crank]
-    bx = radius * math.cos(carrier_angle) - P[BORE_DT0 + crank] * math.sin(carrier_angle)
-    by = radius * math.sin(carrier_angle) + P[BORE_DT0 + crank] * math.cos(carrier_angle)
+    bx, by = bore_centre(P, q, crank, crank_angle)
     rx, ry = q[b] - bx, q[b + 1] - by
     wc = v[CARRIER]
     vx, vy = v[b] + wc * by, v[b + 1] - wc * bx
@@ -695,7 +686,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             power += pw
             if P[FRICTION_ON] == 1.0:
                 power += arm_bearing_friction(P, v, Q, j, disc, force)
-        for upper in range(2):
+        for upper in range(2 if P[FE_PLATE_XX1] == 0.0 else 0):
             force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j],
                                            arm_elastic)
             channel[CH_SUP_FL0 + 2 * j + upper] = force
@@ -703,6 +694,16 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             power += pw
             if P[FRICTION_ON] == 1.0:
                 power += support_bearing_friction(P, v, Q, j, force)
+    if P[FE_PLATE_XX1] != 0.0:    # finite-element carrier and flange (dynamics._fe_carrier)
+        for upper in range(2):
+            e, pw = plate_supports(P, q, v, Q, K, upper == 1, crank_angles, arm_elastic,
+                                   channel)
+            energy += e
+            power += pw
+            for j in range(2):
+                if P[FRICTION_ON] == 1.0:
+                    power += support_bearing_friction(P, v, Q, j,
+                                                      channel[CH_SUP_FL0 + 2 * j + upper])
     if single:
         for disc in range(n_discs):
             for m in range(int(P[OUT_COUNT])):
@@ -736,11 +737,12 @@ def new_state(n_pins, n_channels, n_output_pins=0):
     """Work arrays that :func:`integrate` carries from one call to the next (all zero at t = 0):
     (pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic, mesh_state, channel,
     counters).  ``arm_elastic`` has a column per output pin after the two arm and the two
-    support columns (_layout.OUT_SLOT0)."""
+    support columns (_layout.OUT_SLOT0), and the support forces on finite-element plates in
+    its last columns (dynamics._fe_carrier)."""
     pin_angle = 2.0 * np.pi * np.arange(n_pins) / n_pins
     return (pin_angle, np.zeros((2, n_pins)), np.zeros((2, n_pins), dtype=np.int64),
             np.zeros((2, n_pins)), np.zeros((2, n_pins)),
-            np.zeros((2, OUT_SLOT0 + n_output_pins)), np.zeros((2, 2)),
+            np.zeros((2, OUT_SLOT0 + n_output_pins + PLATE_COLUMNS)), np.zeros((2, 2)),
             np.zeros(n_channels), np.zeros(2, dtype=np.int64))
 
 

@@ -151,6 +151,19 @@ RING_OUTPUT    = 120       # single-stage: 1.0 = the pin ring is the output (CAR
 FE_DISC        = 130       # 1: the discs' pins are coupled through finite-element tables
 # (disc: 130-139; crankshaft: 140-149; carrier and flange: 150-159; disc modes: 160-169;
 # finite-element pins: 170-179)
+# carrier and flange (docs/model.md section 17, rvsim.dynamics._fe_carrier): the upper
+# triangle of the plates' 4 x 4 bore table (x1, y1, x2, y2; carrier frame, bore 1 = crank 0's
+# on +x) [m/N], packed as the crank's; one table for both plates; FE_PLATE_XX1 > 0: flexible
+FE_PLATE_XX1   = 150
+FE_PLATE_XY1   = 151
+FE_PLATE_X1X2  = 152
+FE_PLATE_X1Y2  = 153
+FE_PLATE_YY1   = 154
+FE_PLATE_Y1X2  = 155
+FE_PLATE_Y1Y2  = 156
+FE_PLATE_XX2   = 157
+FE_PLATE_XY2   = 158
+FE_PLATE_YY2   = 159
 # crankshaft (docs/model.md section 17, rvsim.dynamics._fe_crank): the upper triangle of the
 # crank's 4 x 4 compliance of its eccentric centres (x1, y1, x2, y2; crank frame, eccentric 1
 # towards +x) relative to its support line [m/N]; FE_CRANK_XX1 > 0: the crank is flexible

@@ -244,6 +244,7 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.MODE_ZETA] = r.contact.damping_ratio
     if fe_crank_used(r):
         P[L.FE_CRANK_XX1:L.FE_CRANK_XX1 + 10] = _fe_crank_constants(r)
+    _fe_plate_constants(r, P)      # finite-element carrier and flange (docs/model.md sec. 17)
     P[L.ZETA] = r.contact.damping_ratio
     P[L.V_FRIC] = r.contact.friction_velocity
     fill_friction_constants(r, P)       # P[MU] and the friction block (docs/model.md sec. 15)
@@ -310,6 +311,24 @@ def _fe_tables(r: Reducer) -> np.ndarray:
                              "friction yet (set contact.friction_coefficient = 0 or use "
                              "closed-form)")
     return disc_tables(r)
+
+
+def _fe_plate_constants(r: Reducer, P: np.ndarray) -> None:
+    """The carrier and flange plates' bore table into P (``flexibility.model = fe`` with
+    ``flexibility.fe_carrier``, RV reducer; dynamics._fe_carrier uses it): the parameter set
+    does not distinguish the two plates, so one table serves both (docs/decisions.md)."""
+    from ..errors import ParameterError
+    from ..fe.carrier import carrier_table
+    from ._fe_crank import pack_table
+
+    f = r.flexibility
+    if f.model != "fe" or not f.fe_carrier or r.layout.single_stage:
+        return
+    if r.bearings.support_rollers:
+        raise ParameterError("flexibility.fe_carrier", "the finite-element carrier takes the "
+                             "support bushings only so far, not bearings.support_rollers "
+                             "(set flexibility.fe_carrier = false)")
+    P[L.FE_PLATE_XX1:L.FE_PLATE_XX1 + 10] = pack_table(carrier_table(r).compliance)
 
 
 def fe_crank_used(r: Reducer) -> bool:

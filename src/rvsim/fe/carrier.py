@@ -1,8 +1,9 @@
 """The carrier (and the flange) as a plane-stress body condensed onto its crank bores
 (docs/model.md section 17, "Carrier").
 
-The kernel's carrier is rigid: the crank support bushings bear on bores at the crank circle
-that turn with it.  This module computes how far a bore moves, relative to the carrier held at
+With ``flexibility.fe_carrier`` the engines' crank support bushings bear on these plates'
+bores (rvsim.dynamics._fe_carrier); else on rigid bores that turn with the carrier.  This
+module computes how far a bore moves, relative to the carrier held at
 its rim, under a bearing load on it or on the other bore: a plane-stress plate of radius
 ``cycloid.carrier_radius`` and thickness ``thickness`` (default half of
 ``cycloid.carrier_thickness``: the carrier and the flange each take one support), with the

@@ -205,6 +205,9 @@ class Flexibility:
                           "that the dynamic engine integrates; 0: massless condensed disc "
                           "(the quasi-static engine is static: modes do not change it)",
                           minimum=0)
+    fe_carrier: bool = flag(True, "with model = fe: the carrier and the flange are "
+                            "finite-element plates on which the crank support bushings bear "
+                            "(RV reducer; no effect with closed-form)")
     fe_crank: bool = flag(True, "with model = fe: the crankshafts are finite-element bodies "
                           "too (their eccentrics deflect under both discs' arm-bushing "
                           "forces; RV reducers with the paper's arm bushings)")
