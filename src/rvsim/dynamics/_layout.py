@@ -179,6 +179,11 @@ FE_CRANK_XY2   = 148
 FE_CRANK_YY2   = 149
 
 
+# ---- disc modes: 160-169 (rvsim.dynamics._fe_modes; the modes travel in the ``modal`` array)
+FE_MODES       = 160       # flexibility.fe_modes: modes of each disc the kernel integrates
+MODE_ZETA      = 161       # their modal damping ratio (contact.damping_ratio)
+
+
 _P_INDEX = {name: value for name, value in dict(globals()).items()
             if name not in _BEFORE_P and name.isupper()}
 N_PARAMS = 180
