@@ -29,6 +29,7 @@ from ._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 from ._contact_law import EXPONENT, spring_force  # noqa: E402
+from ._fe_modes import add_modal_force, foot_modes  # noqa: E402
 
 __all__ = ["table_compliance", "coupled_forces", "lagged_forces", "apply_coupled",
            "MAX_NEWTON"]
@@ -87,13 +88,14 @@ def table_compliance(table, ui, uj, same):
 
 
 @numba.njit(cache=True)
-def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance):
+def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance, extra=None):
     """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine (``cb`` (n) the
     contacts' own series compliances): pin i's own law
     in series with its own disc compliance C_ii is solved exactly, its neighbours' forces
     taken as they are (already swept, or ``guess``, their forces of the previous step: the
     coupling lags at most one time step).  Fills ``force`` and ``self_compliance``; returns
-    the potential energy."""
+    the potential energy.  ``extra`` (n), if given, adds to each pin's own compliance (the
+    modes' interpolation term, :func:`rvsim.dynamics._fe_modes.foot_modes`)."""
     m = table.shape[0]
     lo = np.empty(n, dtype=np.int64)
     hi = np.empty(n, dtype=np.int64)
@@ -113,6 +115,8 @@ def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance):
                    + fa * ((1.0 - fb) * table[a1, b0] + fb * table[a1, b1]))
             w += cij * force[j]
         cii = (1.0 - fa) * table[a0, a0] + fa * table[a1, a1]
+        if extra is not None:
+            cii += extra[i]
         self_compliance[i] = cii
         own = delta[i] - w
         if own > 0.0:
@@ -234,7 +238,7 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
 
 
 @numba.njit(cache=True)
-def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, d):
+def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, d, modal):
     """Solve the ``count`` touching pins of a disc together and add their forces to ``Q`` (and
     their stiffness to a 17 x 17 ``K``); ``work`` rows hold each pin's (approach, approach
     rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta, own series compliance) and
@@ -242,12 +246,23 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
     damping of a pin is 2 zeta sqrt(k m) at its series stiffness k = 1 / (1/k_contact + C_ii).
     ``forces``/``elastic`` are the disc's rows.  With ``K`` wanted (the quasi-static engine)
     the system is solved to convergence (:func:`coupled_forces`); without (the dynamic
-    engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).  Returns (energy, dissipated power,
-    converged)."""
+    engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).  ``modal``
+    (m + HEADER, modes) the disc's modes (:mod:`rvsim.dynamics._fe_modes`; ``table`` is then their
+    residual): each approach is less the modes' deflection at its foot, and the elastic
+    forces are added to the modal force.  Returns (energy, dissipated power, converged)."""
     n = count
     delta = work[:n, 0].copy()
     foot = work[:n, 2].copy()
     cb = work[:n, 6].copy()
+    moving = modal.shape[1] > 0
+    # per pin with modes: its segments (lower, upper), the upper's weight, the self-term
+    at = np.empty((4, n if moving else 0))
+    if moving:
+        for a in range(n):
+            i0, i1, frac = _segment(foot[a], table.shape[0])
+            deflection, at[3, a] = foot_modes(modal, i0, i1, frac)
+            at[0, a], at[1, a], at[2, a] = i0, i1, frac
+            delta[a] -= deflection
     guess = np.empty(n)
     for a in range(n):
         guess[a] = elastic[slots[a]]
@@ -261,7 +276,10 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
             cii[a] = table_compliance(table, foot[a], foot[a], True)
     else:
         s = np.empty((0, 0))
-        energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii)
+        if moving:
+            energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii, at[3])
+        else:
+            energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii)
         converged = True
     power = 0.0
     for a in range(n):
@@ -278,6 +296,8 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
             power += (fn - f) * work[a, 1]
         forces[i] = fn
         elastic[i] = f
+        if moving:
+            add_modal_force(modal, int(at[0, a]), int(at[1, a]), at[2, a], f)
         Q[d] += fn * work[a, 3]
         Q[d + 1] += fn * work[a, 4]
         Q[d + 2] += fn * work[a, 5]

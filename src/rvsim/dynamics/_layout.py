@@ -179,6 +179,11 @@ FE_CRANK_XY2   = 148
 FE_CRANK_YY2   = 149
 
 
+# ---- disc modes: 160-169 (rvsim.dynamics._fe_modes; the modes travel in the ``modal`` array)
+FE_MODES       = 160       # flexibility.fe_modes: modes of each disc the kernel integrates
+MODE_ZETA      = 161       # their modal damping ratio (contact.damping_ratio)
+
+
 # ---- finite-element pins in their grooves: 170-179 (rvsim.fe.pin) --------------------------
 PIN_FE_STEP    = 170       # psi step of the pin table [rad]; 0: no finite-element pin
 PIN_FE0        = 171       # c_pin(k step) [m/N], k = 0 .. PIN_FE_N - 1 (added to PIN_CB):

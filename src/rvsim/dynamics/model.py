@@ -242,6 +242,9 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
         _fe_pin_table(r, P)
     _bearing_constants(r, P)
     P[L.FE_DISC] = 1.0 if fe_disc else 0.0
+    # the dynamic engine's disc modes (rvsim.dynamics.simulate builds them; docs/model.md 17)
+    P[L.FE_MODES] = r.flexibility.fe_modes if fe_disc else 0
+    P[L.MODE_ZETA] = r.contact.damping_ratio
     if fe_crank_used(r):
         P[L.FE_CRANK_XX1:L.FE_CRANK_XX1 + 10] = _fe_crank_constants(r)
     _fe_plate_constants(r, P)      # finite-element carrier and flange (docs/model.md sec. 17)

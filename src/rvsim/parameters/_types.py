@@ -201,6 +201,10 @@ class Flexibility:
                                       positive=True)
     fe_segments_per_tooth: int = count(8, "contact segments per disc tooth onto which the "
                                        "finite-element disc is condensed", minimum=2)
+    fe_modes: int = count(0, "modes of the finite-element disc (held at its crank holes) "
+                          "that the dynamic engine integrates; 0: massless condensed disc "
+                          "(the quasi-static engine is static: modes do not change it)",
+                          minimum=0)
     fe_carrier: bool = flag(True, "with model = fe: the carrier and the flange are "
                             "finite-element plates on which the crank support bushings bear "
                             "(RV reducer; no effect with closed-form)")
