@@ -161,8 +161,11 @@ def test_pin_table_interpolation(coarse_pin):
 # --- both engines read the table at each contact's angle --------------------------------
 
 def _coarse(values):
+    """A coarse FE disc (when A), the crank and the plates rigid: the pins are what is tested."""
     return with_values(RV40E, {"flexibility.fe_element_size": 4.0,        # mm
-                               "flexibility.fe_segments_per_tooth": 2, **values})
+                               "flexibility.fe_segments_per_tooth": 2,
+                               "flexibility.fe_crank": False, "flexibility.fe_carrier": False,
+                               **values})
 
 
 def test_a_constant_table_is_the_closed_form_pin(monkeypatch):
