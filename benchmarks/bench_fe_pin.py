@@ -21,7 +21,6 @@ os.environ["RVSIM_CACHE_DIR"] = tempfile.mkdtemp(prefix="rvsim-bench-fe-pin-")
 
 import argparse  # noqa: E402
 import json  # noqa: E402
-import math  # noqa: E402
 import platform  # noqa: E402
 import time  # noqa: E402
 
