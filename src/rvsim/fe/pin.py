@@ -39,13 +39,13 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..dynamics._layout import PIN_FE_N
+from ..errors import RvsimError
 from ..parameters import Reducer
 from . import cache
 from .elasticity import Factor, PlaneStressBody, edge_force
 from .mesh import mesh_plane_region
 
-__all__ = ["PinTable", "TABLE_STEPS", "pin_geometry", "pin_table", "pin_compliance_at",
-           "PIN_VERSION"]
+__all__ = ["PinModel", "PinTable", "TABLE_STEPS", "pin_geometry", "pin_table", "PIN_VERSION"]
 
 #: table intervals and their size: psi = 0 .. 80 deg (the kernel's P block holds
 #: TABLE_STEPS + 1 values; the reducer's contacts stay below arcsin(a zp / r_p), 47 deg for
@@ -93,7 +93,8 @@ def pin_geometry(reducer: Reducer) -> dict:
 
 
 class PinModel:
-    """The meshed pin of geometry ``g`` (:func:`pin_geometry`); :meth:`compliance` at psi."""
+    """The meshed pin of geometry ``g`` (:func:`pin_geometry`); :meth:`solve` gives c_pin at
+    an angle psi."""
 
     def __init__(self, g: dict, edges_per_load: int = EDGES_PER_LOAD):
         radius = g["radius"]
@@ -106,7 +107,11 @@ class PinModel:
         theta = self.edge_angle * np.arange(n)
         outline = radius * np.column_stack([np.cos(theta), np.sin(theta)])
         edge = 2.0 * radius * math.sin(0.5 * self.edge_angle)
-        mesh = mesh_plane_region(outline, [], 2.0 * edge)
+        try:
+            mesh = mesh_plane_region(outline, [], 2.0 * edge)
+        except (ImportError, OSError) as exc:
+            raise RvsimError(f"flexibility.model: the finite-element pin needs gmsh and "
+                             f"scikit-fem (pip install 'rvsim[fe]'): {exc}") from None
         self.body = PlaneStressBody(mesh.points, mesh.triangles, g["E"], g["nu"], g["length"],
                                     plane_strain=True)
         self.outline = mesh.outline
@@ -193,10 +198,3 @@ def pin_table(reducer: Reducer) -> PinTable:
     return PinTable(arrays["psi"], arrays["compliance"], int(arrays["n_dofs"]),
                     int(arrays["n_triangles"]), seconds, from_cache)
 
-
-def pin_compliance_at(table: np.ndarray, step: float, psi: float) -> float:
-    """c_pin at contact angle ``psi`` [rad] from a table at psi = 0, step, ..: the kernel's
-    own interpolation (:func:`rvsim.dynamics._pin_compliance.table_value`)."""
-    from ..dynamics._pin_compliance import table_value
-
-    return float(table_value(np.asarray(table, dtype=float), step, math.cos(psi)))
