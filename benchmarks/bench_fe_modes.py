@@ -15,24 +15,18 @@ Usage:  python benchmarks/bench_fe_modes.py [--repeat 3]
 
 from __future__ import annotations
 
-import os
-import tempfile
+from _timing import one_thread
 
-for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
-    os.environ.setdefault(_name, "1")
-os.environ["RVSIM_CACHE_DIR"] = tempfile.mkdtemp(prefix="rvsim-bench-fe-modes-")
+one_thread("rvsim-bench-fe-modes-")
 
 import argparse  # noqa: E402
+import os  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
 import statistics  # noqa: E402
 import time  # noqa: E402
 
-from _timing import samples  # noqa: E402
-
-SHORT = {"operating.duration": 0.3, "operating.speed_ramp_time": 0.1,
-         "operating.load_start": 0.1, "operating.load_ramp_end": 0.2,
-         "operating.steady_start": 0.2}
+from _timing import SHORT, samples  # noqa: E402
 
 
 def main() -> None:
