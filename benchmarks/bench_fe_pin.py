@@ -13,11 +13,10 @@ Usage:  python benchmarks/bench_fe_pin.py [--dynamic]
 from __future__ import annotations
 
 import os
-import tempfile
 
-for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
-    os.environ.setdefault(_name, "1")
-os.environ["RVSIM_CACHE_DIR"] = tempfile.mkdtemp(prefix="rvsim-bench-fe-pin-")
+from _timing import SHORT, one_thread
+
+one_thread("rvsim-bench-fe-pin-")
 
 import argparse  # noqa: E402
 import json  # noqa: E402
@@ -89,10 +88,7 @@ def main() -> None:
         for name, values, pins in (("roark", both, "roark"), ("fe", both, "fe")):
             fe_pin.pin_table = real if pins == "fe" else (lambda reducer: constant)
             r = with_values(RV40E, values)
-            simulate(with_values(r, {"operating.duration": 0.05, "operating.steady_start": 0.0,
-                                     "operating.speed_ramp_time": 0.02,
-                                     "operating.load_start": 0.02,
-                                     "operating.load_ramp_end": 0.04}))
+            simulate(with_values(r, SHORT))                 # compile and warm
             wall, cpu = time.perf_counter(), time.process_time()
             result = simulate(r)
             dyn[name] = {"cpu_s": time.process_time() - cpu, "wall_s": time.perf_counter() - wall,
