@@ -122,7 +122,7 @@ def test_modes_at_their_static_deflection_give_the_condensed_contacts():
     foot = np.array([0.5, 2.2, 3.9])               # between segment centres
     delta = np.array([2e-6, 1.5e-6, 1e-6])
     exact = np.zeros(3)
-    _, _, converged = coupled_forces(table, delta, foot, np.zeros(3), 3, c, 0.0, exact,
+    _, _, converged = coupled_forces(table, delta, foot, np.zeros(3), 3, c, np.zeros(3), exact,
                                      np.zeros((0, 0)))
     assert converged
 
@@ -140,9 +140,9 @@ def test_modes_at_their_static_deflection_give_the_condensed_contacts():
         force, cii = np.zeros(3), np.zeros(3)
         for _ in range(60):
             if corrected:
-                lagged_forces(residual, own, foot, force.copy(), 3, c, 0.0, force, cii, extra)
+                lagged_forces(residual, own, foot, force.copy(), 3, c, np.zeros(3), force, cii, extra)
             else:
-                lagged_forces(residual, own, foot, force.copy(), 3, c, 0.0, force, cii)
+                lagged_forces(residual, own, foot, force.copy(), 3, c, np.zeros(3), force, cii)
         if corrected:
             assert np.allclose(force, exact, rtol=tol)
         else:

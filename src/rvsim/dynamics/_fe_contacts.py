@@ -3,7 +3,8 @@
 
 With ``flexibility.model = fe`` a disc's pins are not independent springs: the approach
 delta_i of pin i (the rigid overlap of its gap) is shared by its own contact (Palmgren line
-contact in series with the pin body, h_i(F) = c F^0.9 + cb F) and the disc's elastic
+contact in series with the pin body, h_i(F) = c F^0.9 + cb_i F, cb_i the pin's compliance at
+its contact's direction, :mod:`rvsim.dynamics._pin_compliance`) and the disc's elastic
 displacement there, which every loaded pin causes:
 
     delta_i = h_i(F_i) + sum_j C(u_i, u_j) F_j      for a loaded pin (F_i > 0),
@@ -88,7 +89,8 @@ def table_compliance(table, ui, uj, same):
 
 @numba.njit(cache=True)
 def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance, extra=None):
-    """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine: pin i's own law
+    """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine (``cb`` (n) the
+    contacts' own series compliances): pin i's own law
     in series with its own disc compliance C_ii is solved exactly, its neighbours' forces
     taken as they are (already swept, or ``guess``, their forces of the previous step: the
     coupling lags at most one time step).  Fills ``force`` and ``self_compliance``; returns
@@ -118,7 +120,7 @@ def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance, e
         self_compliance[i] = cii
         own = delta[i] - w
         if own > 0.0:
-            force[i], _, e = spring_force(own, c, cb + cii, force[i])
+            force[i], _, e = spring_force(own, c, cb[i] + cii, force[i])
             # the series law's energy holds F^2 C_ii / 2; the pair terms come once each
             energy += e + 0.5 * w * force[i]
         else:
@@ -139,7 +141,7 @@ def _contact_forces(cm, delta, force, n, c, cb, f, k, e, g):
             w += cm[i, j] * force[j]
         own = delta[i] - w
         if own > 0.0:
-            f[i], k[i], e[i] = spring_force(own, c, cb, force[i])
+            f[i], k[i], e[i] = spring_force(own, c, cb[i], force[i])
         else:
             f[i], k[i], e[i] = 0.0, 0.0, 0.0
         g[i] = force[i] - f[i]
@@ -150,8 +152,9 @@ def _contact_forces(cm, delta, force, n, c, cb, f, k, e, g):
 
 @numba.njit(cache=True)
 def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
-    """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot``,
-    Newton from ``guess``.  Fills ``force`` (n) and, if ``stiffness`` is n x n, the tangent
+    """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot`` and
+    own series compliances ``cb`` (n), Newton from ``guess``.  Fills ``force`` (n) and, if
+    ``stiffness`` is n x n, the tangent
     S = dF/d(delta).  Returns (potential energy, Newton iterations, converged)."""
     cm = np.empty((n, n))
     m = table.shape[0]
@@ -235,11 +238,11 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
 
 
 @numba.njit(cache=True)
-def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic, Q, K, d,
-                  modal):
+def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, d, modal):
     """Solve the ``count`` touching pins of a disc together and add their forces to ``Q`` (and
     their stiffness to a 17 x 17 ``K``); ``work`` rows hold each pin's (approach, approach
-    rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta) and ``slots`` its index.  The
+    rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta, own series compliance) and
+    ``slots`` its index.  The
     damping of a pin is 2 zeta sqrt(k m) at its series stiffness k = 1 / (1/k_contact + C_ii).
     ``forces``/``elastic`` are the disc's rows.  With ``K`` wanted (the quasi-static engine)
     the system is solved to convergence (:func:`coupled_forces`); without (the dynamic
@@ -250,6 +253,7 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     n = count
     delta = work[:n, 0].copy()
     foot = work[:n, 2].copy()
+    cb = work[:n, 6].copy()
     moving = modal.shape[1] > 0
     # per pin with modes: its segments (lower, upper), the upper's weight, the self-term
     at = np.empty((4, n if moving else 0))
@@ -284,7 +288,7 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
         fn = f
         if f > 0.0 and zeta > 0.0:
             # tangent stiffness of the contact's own law at f: 1 / (0.9 c f^-0.1 + cb)
-            k_contact = 1.0 / (EXPONENT * c * f ** (EXPONENT - 1.0) + cb)
+            k_contact = 1.0 / (EXPONENT * c * f ** (EXPONENT - 1.0) + cb[a])
             k = 1.0 / (1.0 / k_contact + cii[a])
             fn = f + 2.0 * zeta * math.sqrt(k * mass) * work[a, 1]
             if fn < 0.0:

@@ -24,6 +24,7 @@ from ._bearings import conforming_force, radial_stiffness, roller_set
 from ._contact_law import EXPONENT, add_rank_one, contact, damped, spring_force  # noqa: F401
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
+from ._pin_compliance import pin_series_compliance
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
 from ._fe_carrier import COLUMNS as PLATE_COLUMNS, bore_centre, plate_supports
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
@@ -39,7 +40,7 @@ from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLE
                       E_INPUT, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
-                      MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C, PIN_CB,
+                      MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C,
                       PIN_RADIUS, FE_PLATE_XX1, PROFILE_OFFSET,
                       PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RING_OUTPUT, RUNOUT_X0, RUNOUT_X1,
                       RUNOUT_Y0, RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
@@ -221,7 +222,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     n = pins.shape[0]
     coupled = fe.shape[1] > 0
     slots = np.empty(n if coupled else 0, dtype=np.int64)
-    work = np.empty((n if coupled else 0, 6))
+    work = np.empty((n if coupled else 0, 7))
     count = 0
     if coupled:
         clear_modal_force(modal[disc])
@@ -253,13 +254,15 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         # generalised forces Q = F d(gap)/dq on the disc
         gx = -(cos_t * nx - sin_t * ny)                 # d(gap)/d(x, y) of the disc
         gy = -(sin_t * nx + cos_t * ny)
+        cb = pin_series_compliance(P, nx, ny, nominal)   # the pin's (and tooth's) own
         if coupled:
             slots[count] = i
             work[count, 0], work[count, 1], work[count, 2] = delta, -gap_rate, ui
             work[count, 3], work[count, 4], work[count, 5] = gx, gy, lever
+            work[count, 6] = cb
             count += 1
             continue
-        fn, e, pw, fel, k = contact(delta, -gap_rate, P[PIN_C], P[PIN_CB], P[ZETA],
+        fn, e, pw, fel, k = contact(delta, -gap_rate, P[PIN_C], cb, P[ZETA],
                                     P[M_DISC], elastic[disc, i])
         forces[disc, i] = fn
         elastic[disc, i] = fel
@@ -287,7 +290,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         Q[d + 1] += fy
         Q[d + 2] += torque
     if count > 0:
-        e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[PIN_CB], P[ZETA],
+        e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[ZETA],
                                  P[M_DISC], forces[disc], elastic[disc], Q, K, d,
                                  modal[disc])
         energy += e

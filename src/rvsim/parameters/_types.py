@@ -195,7 +195,8 @@ class Flexibility:
     arm_bushing: bool = flag(False, "C: arm bushing flexible")
     model: str = choice("closed-form", ("closed-form", "fe"),
                         "how the flexible parts deform: closed-form series compliances, or "
-                        "the disc from finite elements (rvsim.fe; cached per geometry)")
+                        "the disc (A) and the pins in their grooves (B) from finite elements "
+                        "(rvsim.fe; cached per geometry)")
     fe_element_size: float = quantity(1.6 * _MM, "mm", "finite-element size along the disc "
                                       "profile and holes (the inside grows to 4x)",
                                       positive=True)
