@@ -145,11 +145,11 @@ def _contact_forces(cm, delta, force, n, c, cb, f, k, e, g):
 
 
 @numba.njit(cache=True)
-def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
-    """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot``,
-    Newton from ``guess``.  Fills ``force`` (n) and, if ``stiffness`` is n x n, the tangent
-    S = dF/d(delta).  Returns (potential energy, Newton iterations, converged)."""
-    cm = np.empty((n, n))
+def _solve_coupled(table, delta, foot, guess, n, c, cb, force, cm, k, jac):
+    """Newton solve of :func:`coupled_forces` (the forces into ``force``), leaving the
+    interpolated compliance in ``cm`` and the contacts' tangent stiffnesses at the solution in
+    ``k`` (``jac``: n x n scratch).  Returns (potential energy, Newton iterations,
+    converged)."""
     m = table.shape[0]
     lo = np.empty(n, dtype=np.int64)
     hi = np.empty(n, dtype=np.int64)
@@ -166,17 +166,16 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
             cm[i, j] = cij
             cm[j, i] = cij
     f = np.empty(n)
-    k = np.zeros(n)
     e = np.zeros(n)
     for i in range(n):
         force[i] = max(guess[i], 0.0)
-    jac = np.empty((n, n))
-    g = np.empty(n)
-    want = stiffness.shape[0] == n
+        k[i] = 0.0
+    g = np.empty((n, 1))
+    gv = g[:, 0]
     converged = False
     iterations = 0
     for iterations in range(1, MAX_NEWTON + 1):
-        largest, worst = _contact_forces(cm, delta, force, n, c, cb, f, k, e, g)
+        largest, worst = _contact_forces(cm, delta, force, n, c, cb, f, k, e, gv)
         if worst <= 1e-10 * largest + 1e-12:
             converged = True
             break
@@ -184,10 +183,9 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
             for j in range(n):
                 jac[i, j] = k[i] * cm[i, j]
             jac[i, i] += 1.0
-        step = g.copy()
-        _eliminate(jac, step.reshape((n, 1)), n)
+        _eliminate(jac, g, n)
         for i in range(n):
-            force[i] = max(force[i] - step[i], 0.0)
+            force[i] = max(force[i] - gv[i], 0.0)
     if not converged:
         # Newton can cycle where pins open and close between iterations: Gauss-Seidel sweeps
         # (a contraction, k C summed over the neighbours < 1) then finish the solve
@@ -205,7 +203,7 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
                 converged = True
                 break
         iterations += sweep + 1
-        _contact_forces(cm, delta, force, n, c, cb, f, k, e, g)
+        _contact_forces(cm, delta, force, n, c, cb, f, k, e, gv)
     energy = 0.0
     for i in range(n):
         force[i] = f[i]
@@ -213,14 +211,40 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
     for i in range(n):
         for j in range(n):
             energy += 0.5 * force[i] * cm[i, j] * force[j]
-    if want:
+    return energy, iterations, converged
+
+
+@numba.njit(cache=True)
+def _tangent_times(cm, k, n, b, jac):
+    """S B for the coupled contacts' tangent S = dF/d(delta) = (I + D C)^-1 D (D = diag k,
+    C = ``cm``): ``b`` (n x r) holds B on entry, S B on return (``jac``: n x n scratch).  With
+    B = I this is S itself; with B = G, the rows d(gap)/dq of the contacts, S G (G^T S G the
+    stiffness in those coordinates) at the cost of r instead of n right-hand sides."""
+    for i in range(n):
+        for j in range(n):
+            jac[i, j] = k[i] * cm[i, j]
+        jac[i, i] += 1.0
+        for r in range(b.shape[1]):
+            b[i, r] *= k[i]
+    _eliminate(jac, b, n)
+
+
+@numba.njit(cache=True)
+def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
+    """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot``,
+    Newton from ``guess``.  Fills ``force`` (n) and, if ``stiffness`` is n x n, the tangent
+    S = dF/d(delta).  Returns (potential energy, Newton iterations, converged)."""
+    cm = np.empty((n, n))
+    k = np.empty(n)
+    jac = np.empty((n, n))
+    energy, iterations, converged = _solve_coupled(table, delta, foot, guess, n, c, cb, force,
+                                                   cm, k, jac)
+    if stiffness.shape[0] == n:
         for i in range(n):
             for j in range(n):
-                jac[i, j] = k[i] * cm[i, j]
                 stiffness[i, j] = 0.0
-            jac[i, i] += 1.0
-            stiffness[i, i] = k[i]
-        _eliminate(jac, stiffness, n)
+            stiffness[i, i] = 1.0
+        _tangent_times(cm, k, n, stiffness, jac)
         # symmetric in exact arithmetic
         for i in range(n):
             for j in range(i + 1, n):
@@ -237,8 +261,9 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta) and ``slots`` its index.  The
     damping of a pin is 2 zeta sqrt(k m) at its series stiffness k = 1 / (1/k_contact + C_ii).
     ``forces``/``elastic`` are the disc's rows.  With ``K`` wanted (the quasi-static engine)
-    the system is solved to convergence (:func:`coupled_forces`); without (the dynamic
-    engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).  Returns (energy, dissipated power,
+    the system is solved to convergence (:func:`coupled_forces`) and K_dd gets G^T S G,
+    computed as G^T (S G) (three right-hand sides); without (the dynamic engine, steps of
+    1e-5 s) one sweep per step (:func:`lagged_forces`).  Returns (energy, dissipated power,
     converged)."""
     n = count
     delta = work[:n, 0].copy()
@@ -250,12 +275,15 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     cii = np.empty(n)
     want = K.shape[0] > 0
     if want:
-        s = np.empty((n, n))
-        energy, _, converged = coupled_forces(table, delta, foot, guess, n, c, cb, fel, s)
+        cm = np.empty((n, n))
+        k = np.empty(n)
+        jac = np.empty((n, n))
+        energy, _, converged = _solve_coupled(table, delta, foot, guess, n, c, cb, fel, cm,
+                                              k, jac)
         for a in range(n):
-            cii[a] = table_compliance(table, foot[a], foot[a], True)
+            cii[a] = cm[a, a]
     else:
-        s = np.empty((0, 0))
+        cm, k, jac = np.empty((0, 0)), np.empty(0), np.empty((0, 0))
         energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii)
         converged = True
     power = 0.0
@@ -266,8 +294,8 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
         if f > 0.0 and zeta > 0.0:
             # tangent stiffness of the contact's own law at f: 1 / (0.9 c f^-0.1 + cb)
             k_contact = 1.0 / (EXPONENT * c * f ** (EXPONENT - 1.0) + cb)
-            k = 1.0 / (1.0 / k_contact + cii[a])
-            fn = f + 2.0 * zeta * math.sqrt(k * mass) * work[a, 1]
+            k_series = 1.0 / (1.0 / k_contact + cii[a])
+            fn = f + 2.0 * zeta * math.sqrt(k_series * mass) * work[a, 1]
             if fn < 0.0:
                 fn = 0.0
             power += (fn - f) * work[a, 1]
@@ -278,16 +306,14 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
         Q[d + 2] += fn * work[a, 5]
     if want:
         # K_dd += G^T S G, G the rows (d gap / d(x, y, theta)) of the touching pins
-        sg = np.zeros((n, 3))
-        for a in range(n):
-            for b in range(n):
-                sab = s[a, b]
-                for r in range(3):
-                    sg[a, r] += sab * work[b, 3 + r]
+        sg = work[:n, 3:6].copy()
+        _tangent_times(cm, k, n, sg, jac)
         for p in range(3):
-            for r in range(3):
+            for r in range(p, 3):
                 total = 0.0
                 for a in range(n):
-                    total += work[a, 3 + p] * sg[a, r]
-                K[d + p, d + r] += total
+                    total += work[a, 3 + p] * sg[a, r] + work[a, 3 + r] * sg[a, p]
+                K[d + p, d + r] += 0.5 * total
+                if r != p:
+                    K[d + r, d + p] += 0.5 * total
     return energy, power, converged
