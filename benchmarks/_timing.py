@@ -1,7 +1,24 @@
 """Timing shared by the benchmark scripts (run as ``python benchmarks/bench_*.py``)."""
 
+import os
 import statistics
+import tempfile
 import time
+
+#: a short schedule (0.3 s) for the warm-up run that loads the compiled kernel
+SHORT = {"operating.duration": 0.3, "operating.speed_ramp_time": 0.1,
+         "operating.load_start": 0.1, "operating.load_ramp_end": 0.2,
+         "operating.steady_start": 0.2}
+
+
+def one_thread(cache_prefix: str | None = None) -> None:
+    """Limit BLAS and numba to one thread and, with ``cache_prefix``, point the FE cache at a
+    fresh temporary folder; call before numpy is imported."""
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
+                 "NUMBA_NUM_THREADS"):
+        os.environ.setdefault(name, "1")
+    if cache_prefix is not None:
+        os.environ["RVSIM_CACHE_DIR"] = tempfile.mkdtemp(prefix=cache_prefix)
 
 
 def samples(function, repeat: int) -> tuple[list[float], list[float]]:

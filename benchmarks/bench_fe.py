@@ -16,25 +16,17 @@ Usage:  python benchmarks/bench_fe.py [--repeat 5] [--dynamic-repeat 1]
 
 from __future__ import annotations
 
-import os
-import tempfile
+from _timing import one_thread
 
-for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
-    os.environ.setdefault(_name, "1")
-os.environ["RVSIM_CACHE_DIR"] = tempfile.mkdtemp(prefix="rvsim-bench-fe-")
+one_thread("rvsim-bench-fe-")
 
 import argparse  # noqa: E402
+import os  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
 import time  # noqa: E402
 
-from _timing import timed  # noqa: E402
-
-
-#: a short schedule for the warm-up run
-SHORT = {"operating.duration": 0.3, "operating.speed_ramp_time": 0.1,
-         "operating.load_start": 0.1, "operating.load_ramp_end": 0.2,
-         "operating.steady_start": 0.2}
+from _timing import SHORT, timed  # noqa: E402
 
 
 def main() -> None:

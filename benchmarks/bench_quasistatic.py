@@ -13,8 +13,9 @@ from __future__ import annotations
 
 import os
 
-for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
-    os.environ.setdefault(_name, "1")
+from _timing import one_thread
+
+one_thread()
 
 import argparse  # noqa: E402
 import json  # noqa: E402

@@ -130,7 +130,8 @@ def _pair_table():
 
 def test_coupled_contacts_satisfy_the_compatibility_equations():
     table = _pair_table()
-    c, cb = palmgren_coefficient(0.015, RV40E.materials.cycloid_disc, RV40E.materials.pin), 0.0
+    c = palmgren_coefficient(0.015, RV40E.materials.cycloid_disc, RV40E.materials.pin)
+    cb = np.array([0.0, 2e-10, 6e-10])          # each pin its own series compliance
     foot = np.array([0.3, 2.1, 4.0])
     delta = np.array([2e-6, 1.5e-6, 3e-8])
     force = np.zeros(3)
@@ -164,11 +165,11 @@ def test_lagged_sweeps_converge_to_the_coupled_solution():
     foot = np.array([0.3, 2.1, 4.0])
     delta = np.array([2e-6, 1.5e-6, 1e-6])
     exact = np.zeros(3)
-    coupled_forces(table, delta, foot, np.zeros(3), 3, c, 0.0, exact, np.zeros((0, 0)))
+    coupled_forces(table, delta, foot, np.zeros(3), 3, c, np.zeros(3), exact, np.zeros((0, 0)))
     force = np.zeros(3)
     cii = np.zeros(3)
     for _ in range(40):
-        lagged_forces(table, delta, foot, force.copy(), 3, c, 0.0, force, cii)
+        lagged_forces(table, delta, foot, force.copy(), 3, c, np.zeros(3), force, cii)
     assert np.allclose(force, exact, rtol=1e-9)
 
 
@@ -177,7 +178,7 @@ def test_zero_table_leaves_the_contacts_independent():
     c = palmgren_coefficient(0.015, RV40E.materials.cycloid_disc, RV40E.materials.pin)
     delta = np.array([2e-6, 1e-6])
     force = np.zeros(2)
-    coupled_forces(table, delta, np.array([0.1, 3.0]), np.zeros(2), 2, c, 0.0, force,
+    coupled_forces(table, delta, np.array([0.1, 3.0]), np.zeros(2), 2, c, np.zeros(2), force,
                    np.zeros((0, 0)))
     assert np.allclose(force, (delta / c) ** (1 / 0.9), rtol=1e-10)
 

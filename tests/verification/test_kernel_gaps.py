@@ -34,7 +34,8 @@ def _kernel_gaps(model, q, disc, step, u, next_eval):
     forces = np.zeros((2, n))
     elastic = np.zeros((2, n))
     pin_contacts(P, q, np.zeros(L.N_DOF), np.zeros(L.N_DOF), np.zeros((0, 0)), disc,
-                 model.pins, pin_angle, u, next_eval, step, forces, elastic, model.fe)
+                 model.pins, pin_angle, u, next_eval, step, forces, elastic, model.fe,
+                 np.zeros((2, 0, 0)))
     assert np.all(forces[disc] > 0.0)           # every pin was evaluated and in contact
     return PUSH - P[L.PIN_C] * forces[disc] ** EXPONENT
 

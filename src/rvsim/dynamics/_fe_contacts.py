@@ -3,7 +3,8 @@
 
 With ``flexibility.model = fe`` a disc's pins are not independent springs: the approach
 delta_i of pin i (the rigid overlap of its gap) is shared by its own contact (Palmgren line
-contact in series with the pin body, h_i(F) = c F^0.9 + cb F) and the disc's elastic
+contact in series with the pin body, h_i(F) = c F^0.9 + cb_i F, cb_i the pin's compliance at
+its contact's direction, :mod:`rvsim.dynamics._pin_compliance`) and the disc's elastic
 displacement there, which every loaded pin causes:
 
     delta_i = h_i(F_i) + sum_j C(u_i, u_j) F_j      for a loaded pin (F_i > 0),
@@ -28,6 +29,7 @@ from ._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 from ._contact_law import EXPONENT, spring_force  # noqa: E402
+from ._fe_modes import add_modal_force, foot_modes  # noqa: E402
 
 __all__ = ["table_compliance", "coupled_forces", "lagged_forces", "apply_coupled",
            "MAX_NEWTON"]
@@ -151,12 +153,14 @@ def table_compliance(table, ui, uj, same):
 
 
 @numba.njit(cache=True)
-def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance):
-    """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine: pin i's own law
+def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance, extra=None):
+    """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine (``cb`` (n) the
+    contacts' own series compliances): pin i's own law
     in series with its own disc compliance C_ii is solved exactly, its neighbours' forces
     taken as they are (already swept, or ``guess``, their forces of the previous step: the
     coupling lags at most one time step).  Fills ``force`` and ``self_compliance``; returns
-    the potential energy."""
+    the potential energy.  ``extra`` (n), if given, adds to each pin's own compliance (the
+    modes' interpolation term, :func:`rvsim.dynamics._fe_modes.foot_modes`)."""
     m = table.shape[0]
     lo = np.empty(n, dtype=np.int64)
     hi = np.empty(n, dtype=np.int64)
@@ -176,10 +180,12 @@ def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance):
                    + fa * ((1.0 - fb) * table[a1, b0] + fb * table[a1, b1]))
             w += cij * force[j]
         cii = (1.0 - fa) * table[a0, a0] + fa * table[a1, a1]
+        if extra is not None:
+            cii += extra[i]
         self_compliance[i] = cii
         own = delta[i] - w
         if own > 0.0:
-            force[i], _, e = spring_force(own, c, cb + cii, force[i])
+            force[i], _, e = spring_force(own, c, cb[i] + cii, force[i])
             # the series law's energy holds F^2 C_ii / 2; the pair terms come once each
             energy += e + 0.5 * w * force[i]
         else:
@@ -200,7 +206,7 @@ def _contact_forces(cm, delta, force, n, c, cb, f, k, e, g):
             w += cm[i, j] * force[j]
         own = delta[i] - w
         if own > 0.0:
-            f[i], k[i], e[i] = spring_force(own, c, cb, force[i])
+            f[i], k[i], e[i] = spring_force(own, c, cb[i], force[i])
         else:
             f[i], k[i], e[i] = 0.0, 0.0, 0.0
         g[i] = force[i] - f[i]
@@ -215,7 +221,8 @@ def _solve_coupled(table, delta, foot, guess, n, c, cb, force, cm, k, jac, scrat
     interpolated compliance in ``cm``, the contacts' tangent stiffnesses at the solution in
     ``k`` and the factor of :func:`_factor_tangent` at them in ``jac`` (n x n); ``scratch``
     (>= 5 n floats) and ``index`` (>= 3 n integers) are work space.  Returns (potential
-    energy, Newton iterations, converged, loaded contacts in ``index[:n]``, their number)."""
+    energy, Newton iterations, converged, number of loaded contacts (listed in
+    ``index[2 n:3 n]``) or -1 where the factorisation failed)."""
     m = table.shape[0]
     lo = index[:n]
     hi = index[n:2 * n]
@@ -297,9 +304,10 @@ def _solve_coupled(table, delta, foot, guess, n, c, cb, force, cm, k, jac, scrat
 
 @numba.njit(cache=True)
 def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
-    """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot``,
-    Newton from ``guess``.  Fills ``force`` (n) and, if ``stiffness`` is n x n, the tangent
-    S = dF/d(delta).  Returns (potential energy, Newton iterations, converged)."""
+    """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot`` and
+    own series compliances ``cb`` (n), Newton from ``guess``.  Fills ``force`` (n) and, if
+    ``stiffness`` is n x n, the tangent S = dF/d(delta).  Returns (potential energy, Newton
+    iterations, converged)."""
     cm = np.empty((n, n))
     k = np.empty(n)
     jac = np.empty((n, n))
@@ -320,37 +328,52 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
 
 
 @numba.njit(cache=True)
-def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic, Q, K, d):
+def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, d, modal):
     """Solve the ``count`` touching pins of a disc together and add their forces to ``Q`` (and
     their stiffness to a 17 x 17 ``K``); ``work`` rows hold each pin's (approach, approach
-    rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta) and ``slots`` its index.  The
+    rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta, own series compliance) and
+    ``slots`` its index.  The
     damping of a pin is 2 zeta sqrt(k m) at its series stiffness k = 1 / (1/k_contact + C_ii).
     ``forces``/``elastic`` are the disc's rows.  With ``K`` wanted (the quasi-static engine)
     the system is solved to convergence (:func:`coupled_forces`) and K_dd gets G^T S G =
     (L^-1 G_A)^T (L^-1 G_A), L the Cholesky factor of the tangent's loaded block; without
     (the dynamic engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).
-    Returns (energy, dissipated power, converged)."""
+    ``modal`` (m + HEADER, modes) the disc's modes (:mod:`rvsim.dynamics._fe_modes`; ``table``
+    is then their residual): each approach is less the modes' deflection at its foot, and the
+    elastic forces are added to the modal force.  Returns (energy, dissipated power,
+    converged)."""
     n = count
     want = K.shape[0] > 0
-    # one block of work space: delta, foot, guess, forces, C_ii, k; with K 5 n of scratch,
-    # L^-1 G, the interpolated C and the factor L
-    space = np.empty(6 * n + (8 * n + 2 * n * n if want else 0))
+    # one block of work space: delta, foot, own compliances, guess, forces, C_ii, k; with K
+    # 5 n of scratch, L^-1 G, the interpolated C and the factor L
+    space = np.empty(7 * n + (8 * n + 2 * n * n if want else 0))
     delta = space[:n]
     foot = space[n:2 * n]
-    guess = space[2 * n:3 * n]
-    fel = space[3 * n:4 * n]
-    cii = space[4 * n:5 * n]
-    k = space[5 * n:6 * n]
+    cb = space[2 * n:3 * n]
+    guess = space[3 * n:4 * n]
+    fel = space[4 * n:5 * n]
+    cii = space[5 * n:6 * n]
+    k = space[6 * n:7 * n]
     for a in range(n):
         delta[a] = work[a, 0]
         foot[a] = work[a, 2]
+        cb[a] = work[a, 6]
         guess[a] = elastic[slots[a]]
+    moving = modal.shape[1] > 0
+    # per pin with modes: its segments (lower, upper), the upper's weight, the self-term
+    at = np.empty((4, n if moving else 0))
+    if moving:
+        for a in range(n):
+            i0, i1, frac = _segment(foot[a], table.shape[0])
+            deflection, at[3, a] = foot_modes(modal, i0, i1, frac)
+            at[0, a], at[1, a], at[2, a] = i0, i1, frac
+            delta[a] -= deflection
     index = np.empty(3 * n if want else 0, dtype=np.int64)
     if want:
-        scratch = space[6 * n:11 * n]
-        sg = space[11 * n:14 * n].reshape((n, 3))
-        cm = space[14 * n:14 * n + n * n].reshape((n, n))
-        jac = space[14 * n + n * n:14 * n + 2 * n * n].reshape((n, n))
+        scratch = space[7 * n:12 * n]
+        sg = space[12 * n:15 * n].reshape((n, 3))
+        cm = space[15 * n:15 * n + n * n].reshape((n, n))
+        jac = space[15 * n + n * n:15 * n + 2 * n * n].reshape((n, n))
         energy, _, converged, na = _solve_coupled(table, delta, foot, guess, n, c, cb, fel,
                                                   cm, k, jac, scratch, index)
         for a in range(n):
@@ -358,7 +381,10 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
     else:
         sg = jac = space[:0].reshape((0, 0))
         na = 0
-        energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii)
+        if moving:
+            energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii, at[3])
+        else:
+            energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii)
         converged = True
     power = 0.0
     for a in range(n):
@@ -368,7 +394,7 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
         rate = work[a, 1]
         if f > 0.0 and zeta > 0.0 and rate != 0.0:
             # tangent stiffness of the contact's own law at f: 1 / (0.9 c f^-0.1 + cb)
-            k_contact = 1.0 / (EXPONENT * c * f ** (EXPONENT - 1.0) + cb)
+            k_contact = 1.0 / (EXPONENT * c * f ** (EXPONENT - 1.0) + cb[a])
             k_series = 1.0 / (1.0 / k_contact + cii[a])
             fn = f + 2.0 * zeta * math.sqrt(k_series * mass) * rate
             if fn < 0.0:
@@ -376,6 +402,8 @@ def apply_coupled(table, slots, work, count, c, cb, zeta, mass, forces, elastic,
             power += (fn - f) * rate
         forces[i] = fn
         elastic[i] = f
+        if moving:
+            add_modal_force(modal, int(at[0, a]), int(at[1, a]), at[2, a], f)
         Q[d] += fn * work[a, 3]
         Q[d + 1] += fn * work[a, 4]
         Q[d + 2] += fn * work[a, 5]

@@ -24,10 +24,12 @@ from ._bearings import conforming_force, radial_stiffness, roller_set
 from ._contact_law import EXPONENT, add_rank_one, contact, damped, spring_force  # noqa: F401
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
+from ._pin_compliance import pin_series_compliance
+from ._fe_modes import advance_modes, clear_modal_force, modal_energy
 from ._fe_carrier import COLUMNS as PLATE_COLUMNS, bore_centre, plate_supports
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
-from ._layout import (ECC_ERR0, ECC_PHASE0)
+from ._layout import (ECC_ERR0, ECC_PHASE0, MODE_ZETA)
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
                       ARM_J2, ARM_KIND, ARM_ROLLERS, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
                       SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, BACKLASH, BASE_PITCH, CARRIER,
@@ -38,7 +40,7 @@ from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLE
                       E_INPUT, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
-                      MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C, PIN_CB,
+                      MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C,
                       PIN_RADIUS, FE_PLATE_XX1, PROFILE_OFFSET,
                       PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RING_OUTPUT, RUNOUT_X0, RUNOUT_X1,
                       RUNOUT_Y0, RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
@@ -176,7 +178,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 
 @numba.njit(cache=True)
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
-                 fe):
+                 fe, modal):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
@@ -195,7 +197,9 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
 
     ``fe`` (2, m, m): the discs' finite-element compliance tables; the touching pins of a disc
     are then solved together (:func:`rvsim.dynamics._fe_contacts.apply_coupled`).  (2, 0, 0):
-    independent contacts.
+    independent contacts.  ``modal`` (2, m + HEADER, modes): the discs' modes
+    (:mod:`rvsim.dynamics._fe_modes`; ``fe`` then holds their residual tables), whose modal
+    force this evaluation fills.
     """
     d = DISC0 + DISC_STRIDE * disc
     ox, oy, th = q[d], q[d + 1], q[d + 2]
@@ -218,8 +222,10 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     n = pins.shape[0]
     coupled = fe.shape[1] > 0
     slots = np.empty(n if coupled else 0, dtype=np.int64)
-    work = np.empty((n if coupled else 0, 6))
+    work = np.empty((n if coupled else 0, 7))
     count = 0
+    if coupled:
+        clear_modal_force(modal[disc])
     for i in range(n):
         if step < next_eval[disc, i]:
             forces[disc, i] = 0.0
@@ -248,13 +254,15 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         # generalised forces Q = F d(gap)/dq on the disc
         gx = -(cos_t * nx - sin_t * ny)                 # d(gap)/d(x, y) of the disc
         gy = -(sin_t * nx + cos_t * ny)
+        cb = pin_series_compliance(P, nx, ny, nominal)   # the pin's (and tooth's) own
         if coupled:
             slots[count] = i
             work[count, 0], work[count, 1], work[count, 2] = delta, -gap_rate, ui
             work[count, 3], work[count, 4], work[count, 5] = gx, gy, lever
+            work[count, 6] = cb
             count += 1
             continue
-        fn, e, pw, fel, k = contact(delta, -gap_rate, P[PIN_C], P[PIN_CB], P[ZETA],
+        fn, e, pw, fel, k = contact(delta, -gap_rate, P[PIN_C], cb, P[ZETA],
                                     P[M_DISC], elastic[disc, i])
         forces[disc, i] = fn
         elastic[disc, i] = fel
@@ -282,8 +290,9 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         Q[d + 1] += fy
         Q[d + 2] += torque
     if count > 0:
-        e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[PIN_CB], P[ZETA],
-                                 P[M_DISC], forces[disc], elastic[disc], Q, K, d)
+        e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[ZETA],
+                                 P[M_DISC], forces[disc], elastic[disc], Q, K, d,
+                                 modal[disc])
         energy += e
         power += pw
     return energy, power, worst
@@ -596,7 +605,7 @@ def kinetic_energy(P, v):
 @numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-              channel, mesh_state, mesh_hold, fe):
+              channel, mesh_state, mesh_hold, fe, modal=None):
     """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
     ``torque_load``: the one evaluation of the force elements that both engines use.
 
@@ -607,8 +616,13 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     ``mesh_state`` also receives the pairs at the roll position and the loaded flank.
     With P[FRICTION_ON], the mesh and bearing friction (dynamics._friction) act after their
     elements with the normal forces those return.  Returns (potential energy, dissipated
-    power, input torque, max pin penetration).
+    power, input torque, max pin penetration).  ``modal``: the discs' modes (dynamic engine,
+    :mod:`rvsim.dynamics._fe_modes`; omitted: none).
     """
+    if modal is None:
+        modes = np.zeros((2, 0, 0))
+    else:
+        modes = modal
     for i in range(N_DOF):
         Q[i] = 0.0
     energy = 0.0
@@ -644,11 +658,11 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         if ring:  # the pins turn with the output: contacts found in the ring's axes
             qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
             e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
-                                      step, pin_force, pin_elastic, fe)
+                                      step, pin_force, pin_elastic, fe, modes)
             ring_forces(q, qr, Qr, Kr, Q, K, disc)
         else:
             e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
-                                      pin_force, pin_elastic, fe)
+                                      pin_force, pin_elastic, fe, modes)
         energy += e
         power += pw
         if pen > worst:
@@ -705,7 +719,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
 
 @numba.njit(cache=True, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe):
+           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe, modal):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
     the run's schedule). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration, input angle, input speed)."""
@@ -714,7 +728,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     energy, power, torque_in, worst = forces_at(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-        mesh_state, mesh_hold, fe)
+        mesh_state, mesh_hold, fe, modal)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
@@ -738,7 +752,7 @@ def new_state(n_pins, n_channels, n_output_pins=0):
 @numba.njit(cache=True)
 def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes, crank_angles,
               mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic,
-              mesh_state, channel, counters, channels, pin_forces, energy, fe):
+              mesh_state, channel, counters, channels, pin_forces, energy, fe, modal):
     """Advance from step ``first_step`` to ``stop_step`` (exclusive) of a run of ``n_steps``
     steps of size P[DT] that starts at t = 0; returns (status, next step).
 
@@ -747,7 +761,9 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     ``energy``.  The last step, ``n_steps``, only evaluates and samples; after it the next step
     is ``n_steps + 1``.  Samples every ``sample_every`` steps into ``channels`` (rows) and
     ``pin_forces`` (rows x 2 discs x zp pins).  ``energy`` accumulates the steady-window
-    balance.  ``fe``: the discs' finite-element compliance tables, (2, 0, 0) for none.
+    balance.  ``fe``: the discs' finite-element compliance tables, (2, 0, 0) for none;
+    ``modal`` (2, m + HEADER, modes): the discs' modes and their state (``fe`` then the residual
+    tables; :mod:`rvsim.dynamics._fe_modes`), (2, m + HEADER, 0) or (2, 0, 0) for none.
     """
     dt = P[DT]
     Q = np.zeros(N_DOF)
@@ -764,11 +780,19 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     step = first_step
     while step < stop_step:
         t = step * dt
+        modal_kinetic = 0.0
         for j in range(2):
             previous_stiffness[j] = mesh_state[j, 0]
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe)
+            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe,
+            modal)
+        # the discs' modes: their energies, where the balance reads them
+        if modal.shape[2] > 0 and (step == n_steps or in_window != (t >= P[STEADY_START])):
+            for disc in range(2):
+                kinetic, strain = modal_energy(modal[disc])
+                pot += strain
+                modal_kinetic += kinetic
         if in_window:
             # work done on the meshes by the stiffness change between steps (parametric)
             for j in range(2):
@@ -793,13 +817,13 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             row += 1
         if step == n_steps:
             if in_window:
-                energy[E_KIN1] = kinetic_energy(P, v)
+                energy[E_KIN1] = kinetic_energy(P, v) + modal_kinetic
                 energy[E_POT1] = pot
             step += 1
             break
         if not in_window and t >= P[STEADY_START]:
             in_window = True
-            energy[E_KIN0] = kinetic_energy(P, v)
+            energy[E_KIN0] = kinetic_energy(P, v) + modal_kinetic
             energy[E_POT0] = pot
         if in_window:
             # power flows over this step, velocities taken at the start of the step
@@ -822,6 +846,11 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             v[d + 2] += h_disc * Q[d + 2]
         for i in range(N_DOF):
             q[i] += dt * v[i]
+        if modal.shape[2] > 0:
+            for disc in range(2):
+                power = advance_modes(modal[disc], dt, P[MODE_ZETA])
+                if in_window:
+                    energy[E_DISSIPATED] += power * dt
         step += 1
     counters[COUNT_ROW] = row
     counters[COUNT_IN_WINDOW] = 1 if in_window else 0

@@ -179,6 +179,17 @@ FE_CRANK_XY2   = 148
 FE_CRANK_YY2   = 149
 
 
+# ---- disc modes: 160-169 (rvsim.dynamics._fe_modes; the modes travel in the ``modal`` array)
+FE_MODES       = 160       # flexibility.fe_modes: modes of each disc the kernel integrates
+MODE_ZETA      = 161       # their modal damping ratio (contact.damping_ratio)
+
+
+# ---- finite-element pins in their grooves: 170-179 (rvsim.fe.pin) --------------------------
+PIN_FE_STEP    = 170       # psi step of the pin table [rad]; 0: no finite-element pin
+PIN_FE0        = 171       # c_pin(k step) [m/N], k = 0 .. PIN_FE_N - 1 (added to PIN_CB):
+                           # slots 171-179
+
+
 _P_INDEX = {name: value for name, value in dict(globals()).items()
             if name not in _BEFORE_P and name.isupper()}
 N_PARAMS = 180
@@ -188,6 +199,9 @@ _NAME_OF = {value: name for name, value in _P_INDEX.items()}
 #: name of every slot of P ("" for a slot not in use)
 PARAM_NAMES = tuple(_NAME_OF.get(i, "") for i in range(N_PARAMS))
 del _BEFORE_P, _P_INDEX, _NAME_OF
+#: values of the pin table in P (slots PIN_FE0 .. PIN_FE0 + PIN_FE_N - 1; a count, not a slot)
+PIN_FE_N = 9
+assert PIN_FE0 + PIN_FE_N <= 180, "the pin table overflows its block (170-179)"
 
 # ---- per-sample output channels (columns of the ``channels`` array) -------------------------
 CH_TIME        = 0

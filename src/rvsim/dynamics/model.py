@@ -234,11 +234,17 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     if r.flexibility.cycloid_disc and not fe_disc:
         body += tooth_compliance(2.0 * c.eccentricity, 2.0 * math.pi * root_radius / c.disc_teeth,
                                  c.disc_width, m.cycloid_disc)
-    if r.flexibility.pin:
+    fe_pin = r.flexibility.pin and r.flexibility.model == "fe"
+    if r.flexibility.pin and not fe_pin:
         body += pin_compliance(c.pin_radius, c.disc_width, pin_load, m.pin)
     P[L.PIN_CB] = body
+    if fe_pin:      # the finite-element pin in its groove, read at each contact's angle
+        _fe_pin_table(r, P)
     _bearing_constants(r, P)
     P[L.FE_DISC] = 1.0 if fe_disc else 0.0
+    # the dynamic engine's disc modes (rvsim.dynamics.simulate builds them; docs/model.md 17)
+    P[L.FE_MODES] = r.flexibility.fe_modes if fe_disc else 0
+    P[L.MODE_ZETA] = r.contact.damping_ratio
     if fe_crank_used(r):
         P[L.FE_CRANK_XX1:L.FE_CRANK_XX1 + 10] = _fe_crank_constants(r)
     _fe_plate_constants(r, P)      # finite-element carrier and flange (docs/model.md sec. 17)
@@ -308,6 +314,15 @@ def _fe_tables(r: Reducer) -> np.ndarray:
                              "friction yet (set contact.friction_coefficient = 0 or use "
                              "closed-form)")
     return disc_tables(r)
+
+
+def _fe_pin_table(r: Reducer, P: np.ndarray) -> None:
+    """The pin-in-groove table c_pin(psi) into P (rvsim.fe.pin; docs/model.md section 6)."""
+    from ..fe.pin import pin_table
+
+    table = pin_table(r)
+    P[L.PIN_FE_STEP] = float(table.psi[1] - table.psi[0])
+    P[L.PIN_FE0:L.PIN_FE0 + L.PIN_FE_N] = table.compliance
 
 
 def _fe_plate_constants(r: Reducer, P: np.ndarray) -> None:

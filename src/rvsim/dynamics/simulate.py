@@ -84,6 +84,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     duration = float(reducer.operating.duration if duration is None else duration)
     check_run_options(reducer, duration, time_step, sample_rate)
     model = build_model(reducer, time_step)
+    fe, modal = disc_modes(reducer, model, time_step)
     n_steps = int(round(duration / time_step))
     sample_every = max(1, int(round(1.0 / (sample_rate * time_step))))
     n_samples = n_steps // sample_every + 1
@@ -102,7 +103,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
             status, step = integrate(model.P, q, v, step, stop, n_steps, sample_every,
                                      model.pins, model.holes, model.crank_angles,
                                      model.mesh_phase, *state, channels, pin_forces, energy,
-                                     model.fe)
+                                     fe, modal)
             if bar is not None:
                 bar.update(min(step, n_steps) * time_step - bar.n)
             if status != L.STATUS_OK or step > n_steps:
@@ -127,6 +128,22 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     if status != L.STATUS_OK and raise_on_failure:
         raise SimulationError(result.status, message)
     return result
+
+
+def disc_modes(reducer: Reducer, model, time_step: float) -> tuple[np.ndarray, np.ndarray]:
+    """The finite-element discs as the dynamic kernel takes them: (tables, modal).  With
+    ``flexibility.fe_modes`` = n > 0, the residual tables and the n modes of each disc at rest
+    (:func:`rvsim.fe.modes.disc_modal_arrays`, :func:`rvsim.dynamics._fe_modes.modal_array`);
+    with 0, the condensed tables and no modes.  Closed-form bodies: ``model.fe`` (empty) and
+    no modes."""
+    if model.fe.shape[1] == 0:
+        return model.fe, np.zeros((2, 0, 0))
+    from ..fe.modes import disc_modal_arrays
+    from ._fe_modes import modal_array
+
+    tables, participation, omega = disc_modal_arrays(reducer, model.fe,
+                                                     int(model.P[L.FE_MODES]), time_step)
+    return tables, modal_array(participation, omega)
 
 
 def _progress_bar(duration: float):

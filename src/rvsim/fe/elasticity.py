@@ -1,8 +1,9 @@
-"""Plane-stress linear elasticity on quadratic triangles (scikit-fem) and static condensation
-onto boundary loads (docs/model.md "Finite-element bodies").
+"""Plane linear elasticity on quadratic triangles (scikit-fem) and static condensation onto
+boundary loads (docs/model.md "Finite-element bodies").
 
 The body is meshed with six-node (P2) triangles; its stiffness is that of a plate of
-``thickness`` in plane stress, Lame's first parameter lambda* = 2 lambda mu / (lambda + 2 mu).
+``thickness`` in plane stress, Lame's first parameter lambda* = 2 lambda mu / (lambda + 2 mu),
+or of a slice of a long body in plane strain (``plane_strain``: lambda itself).
 A *boundary load* is a unit resultant spread as a uniform traction over a set of straight
 boundary edges; the same vector read as a functional is the traction-weighted mean of the
 displacement over those edges.  The compliance between loads i and j is
@@ -20,19 +21,20 @@ __all__ = ["Factor", "PlaneStressBody", "edge_force", "edge_load"]
 
 class PlaneStressBody:
     """Stiffness of a plane-stress plate on a :class:`rvsim.fe.mesh.PlaneMesh`-like mesh
-    (``points`` (2, n), ``triangles`` (3, m)), material E [Pa], nu [-], thickness [m]."""
+    (``points`` (2, n), ``triangles`` (3, m)), material E [Pa], nu [-], thickness [m]; with
+    ``plane_strain`` a slice of that thickness of a long body held at zero axial strain."""
 
     def __init__(self, points: np.ndarray, triangles: np.ndarray, elastic_modulus: float,
-                 poisson_ratio: float, thickness: float):
+                 poisson_ratio: float, thickness: float, plane_strain: bool = False):
         from skfem import Basis, ElementTriP2, ElementVector, MeshTri, asm
         from skfem.models.elasticity import lame_parameters, linear_elasticity
 
         self.mesh = MeshTri(points, triangles)
         self.basis = Basis(self.mesh, ElementVector(ElementTriP2()))
         lam, mu = lame_parameters(elastic_modulus, poisson_ratio)
-        lam_plane_stress = 2.0 * lam * mu / (lam + 2.0 * mu)
+        lam_plane = lam if plane_strain else 2.0 * lam * mu / (lam + 2.0 * mu)
         self.thickness = thickness
-        self.stiffness = (thickness * asm(linear_elasticity(lam_plane_stress, mu),
+        self.stiffness = (thickness * asm(linear_elasticity(lam_plane, mu),
                                           self.basis)).tocsc()
         # facet index of each mesh edge (sorted node pair)
         facets = self.mesh.facets
@@ -145,18 +147,30 @@ def edge_load(body: PlaneStressBody, edges: list[tuple[int, int]], direction: st
                          shape=(body.n_dofs, 1))
 
 
-def edge_force(body: PlaneStressBody, edges: list[tuple[int, int]], direction: np.ndarray
-               ) -> np.ndarray:
+def edge_force(body: PlaneStressBody, edges: list[tuple[int, int]], direction: np.ndarray,
+               spans: list[tuple[float, float]] | None = None) -> np.ndarray:
     """Load vector (dense, n_dofs) of a unit force along ``direction`` (a unit vector) spread
     uniformly over boundary ``edges`` (vertex pairs): a bearing load on a hole's edge, whose
     functional is the mean displacement of the edge along ``direction``.  Consistent P2 load
-    as in :func:`edge_load`."""
+    as in :func:`edge_load`; ``spans`` (s0, s1) per edge load only that part of it (fractions
+    of the way from its first vertex to its second: the integrals of the quadratic shape
+    functions over [s0, s1])."""
     pts = body.mesh.p
-    lengths = [float(np.linalg.norm(pts[:, b] - pts[:, a])) for a, b in edges]
+    spans = [(0.0, 1.0)] * len(edges) if spans is None else spans
+    lengths = [float(np.linalg.norm(pts[:, b] - pts[:, a])) * (s1 - s0)
+               for (a, b), (s0, s1) in zip(edges, spans)]
     total = sum(lengths)
     load = np.zeros(body.n_dofs)
-    for (a, b), length in zip(edges, lengths):
+    for (a, b), length, (s0, s1) in zip(edges, lengths, spans):
         da, db, dm = body.edge_dofs(a, b)
-        for dofs, weight in ((da, 1.0 / 6.0), (db, 1.0 / 6.0), (dm, 2.0 / 3.0)):
+        weights = (_shape_integrals(s1) - _shape_integrals(s0)) / (s1 - s0)
+        for dofs, weight in zip((da, db, dm), weights):
             load[dofs] += weight * length / total * np.asarray(direction)
     return load
+
+
+def _shape_integrals(s: float) -> np.ndarray:
+    """Integrals over [0, s] of the P2 edge shape functions of the first vertex, the second
+    and the midside node (1/6, 1/6, 2/3 at s = 1)."""
+    return np.array([s - 1.5 * s * s + 2.0 * s ** 3 / 3.0, -0.5 * s * s + 2.0 * s ** 3 / 3.0,
+                     2.0 * s * s - 4.0 * s ** 3 / 3.0])

@@ -37,8 +37,9 @@ from ..parameters import Reducer
 from . import cache
 from .elasticity import PlaneStressBody, _dense
 
-__all__ = ["CraigBampton", "FreeInterface", "craig_bampton", "disc_craig_bampton",
-           "disc_frequencies", "free_interface", "spring_frequencies", "supported_modes"]
+__all__ = ["CraigBampton", "FreeInterface", "MAX_OMEGA_DT", "craig_bampton",
+           "disc_craig_bampton", "disc_free_interface", "disc_frequencies", "disc_modal_arrays",
+           "free_interface", "spring_frequencies", "supported_modes"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -198,10 +199,10 @@ def disc_frequencies(reducer: Reducer, count: int) -> np.ndarray:
     return supported_modes(body, reducer.materials.cycloid_disc.density, supported, count)[0]
 
 
-def disc_craig_bampton(reducer: Reducer, modes: int) -> tuple[CraigBampton, float, bool]:
-    """The Craig-Bampton model of disc 1 on its contact segments with ``modes`` fixed-interface
-    modes: (model, seconds to build, loaded from the cache).  Cached by the disc's geometry
-    hash, its density and ``modes``."""
+def _disc_reduction(reducer: Reducer, kind: str, modes: int, reduce
+                    ) -> tuple[dict, float, bool]:
+    """``reduce(body, density, loads, supported, modes)`` (a dict of arrays) of disc 1, cached
+    by the disc's geometry hash, its density and ``modes``: (arrays, seconds, from cache)."""
     from .disc import disc_geometry
 
     g = disc_geometry(reducer, 0)
@@ -209,12 +210,75 @@ def disc_craig_bampton(reducer: Reducer, modes: int) -> tuple[CraigBampton, floa
 
     def compute():
         _, body, supported, loads = _disc(reducer)
-        model = craig_bampton(body, density, loads, supported, modes)
+        return reduce(body, density, loads, supported, modes)
+
+    return cache.cached(kind, {**g, "density": density, "modes": modes}, compute)
+
+
+def disc_craig_bampton(reducer: Reducer, modes: int) -> tuple[CraigBampton, float, bool]:
+    """The Craig-Bampton model of disc 1 on its contact segments with ``modes`` fixed-interface
+    modes: (model, seconds to build, loaded from the cache).  Cached by the disc's geometry
+    hash, its density and ``modes``."""
+    def reduce(*args):
+        model = craig_bampton(*args)
         return {"stiffness": model.stiffness, "mass": model.mass,
                 "interfaces": np.array(model.interfaces),
                 "fixed_interface_hz": model.fixed_interface_hz, "compliance": model.compliance}
 
-    a, seconds, from_cache = cache.cached("cycloid-disc-craig-bampton",
-                                          {**g, "density": density, "modes": modes}, compute)
+    a, seconds, from_cache = _disc_reduction(reducer, "cycloid-disc-craig-bampton", modes,
+                                             reduce)
     return (CraigBampton(a["stiffness"], a["mass"], int(a["interfaces"]), modes,
                          a["fixed_interface_hz"], a["compliance"]), seconds, from_cache)
+
+
+def disc_free_interface(reducer: Reducer, modes: int) -> tuple[FreeInterface, float, bool]:
+    """The free-interface model of disc 1 (:func:`free_interface`, the form the dynamic kernel
+    integrates) with its lowest ``modes`` modes: (model, seconds to build, loaded from the
+    cache).  Cached by the disc's geometry hash, its density and ``modes``."""
+    a, seconds, from_cache = _disc_reduction(
+        reducer, "cycloid-disc-free-interface", modes,
+        lambda *args: dataclasses.asdict(free_interface(*args)))
+    return (FreeInterface(a["frequencies_hz"], a["participation"].reshape(-1, modes),
+                          a["residual"], a["compliance"]), seconds, from_cache)
+
+
+#: largest omega * dt of a disc mode that the dynamic kernel integrates (docs/decisions.md,
+#: "Disc modes in the dynamic kernel"): the semi-implicit Euler step is stable up to 2 and
+#: turns a mode of omega into one of (2 / dt) asin(omega dt / 2), 4.7 % fast at 1; the pin
+#: contacts raise the top frequency of the coupled system by 1.2-1.8x (measured at 1-3e9 N/m
+#: per pin), which 1 keeps below 2
+MAX_OMEGA_DT = 1.0
+
+
+def disc_modal_arrays(reducer: Reducer, tables: np.ndarray, modes: int, time_step: float
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Both discs with ``modes`` modes each, as the dynamic kernel integrates them, from their
+    condensed ``tables`` (2, m, m): (residual tables R (2, m, m) that replace the condensed ones
+    in the contacts, participation P (2, m, modes), circular frequencies Omega (modes,)
+    [rad/s]).  With 0 modes, R is ``tables`` itself.
+
+    A mode above omega dt = :data:`MAX_OMEGA_DT` raises ParameterError on
+    ``flexibility.fe_modes``.  Disc 2 is disc 1 turned half a turn: for an odd tooth count
+    its R and P are disc 1's shifted by (zc + 1) / 2 teeth of segments (as
+    :func:`rvsim.fe.disc.disc_tables`); an even count would need its own modes (refused)."""
+    from ..errors import ParameterError
+
+    m = tables.shape[1]
+    if modes == 0:
+        return tables, np.zeros((2, m, 0)), np.zeros(0)
+    zc = reducer.cycloid.disc_teeth
+    if zc % 2 == 0:
+        raise ParameterError("flexibility.fe_modes", "the disc modes need an odd tooth count "
+                             "(disc 2 is then disc 1 turned by whole teeth); use 0")
+    model = disc_free_interface(reducer, modes)[0]
+    omega = 2.0 * math.pi * model.frequencies_hz
+    admissible = int(np.sum(omega * time_step <= MAX_OMEGA_DT))
+    if admissible < modes:
+        raise ParameterError(
+            "flexibility.fe_modes", f"{modes} modes reach {model.frequencies_hz[-1] / 1e3:.3g}"
+            f" kHz, beyond what the time step {time_step:g} s integrates (omega dt <= "
+            f"{MAX_OMEGA_DT:g}): at most {admissible} at this step")
+    shift = (zc + 1) // 2 * reducer.flexibility.fe_segments_per_tooth
+    residual = np.stack([model.residual, np.roll(model.residual, shift, axis=(0, 1))])
+    participation = np.stack([model.participation, np.roll(model.participation, shift, axis=0)])
+    return residual, participation, omega

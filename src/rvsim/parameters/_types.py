@@ -195,12 +195,17 @@ class Flexibility:
     arm_bushing: bool = flag(False, "C: arm bushing flexible")
     model: str = choice("closed-form", ("closed-form", "fe"),
                         "how the flexible parts deform: closed-form series compliances, or "
-                        "the disc from finite elements (rvsim.fe; cached per geometry)")
+                        "the disc (A) and the pins in their grooves (B) from finite elements "
+                        "(rvsim.fe; cached per geometry)")
     fe_element_size: float = quantity(1.6 * _MM, "mm", "finite-element size along the disc "
                                       "profile and holes (the inside grows to 4x)",
                                       positive=True)
     fe_segments_per_tooth: int = count(8, "contact segments per disc tooth onto which the "
                                        "finite-element disc is condensed", minimum=2)
+    fe_modes: int = count(0, "modes of the finite-element disc (held at its crank holes) "
+                          "that the dynamic engine integrates; 0: massless condensed disc "
+                          "(the quasi-static engine is static: modes do not change it)",
+                          minimum=0)
     fe_carrier: bool = flag(True, "with model = fe: the carrier and the flange are "
                             "finite-element plates on which the crank support bushings bear "
                             "(RV reducer; no effect with closed-form)")
