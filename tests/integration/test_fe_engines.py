@@ -107,6 +107,26 @@ def test_bad_fe_carrier_value_is_one_line(cli):
     assert result.code == 2
     assert result.err == ("rvsim: error: parameter 'flexibility.fe_carrier': 'maybe' is not a "
                           "yes/no value (use true or false)\n")
+
+
+@pytest.mark.parametrize("setting, field, bounds", [
+    ("flexibility.fe_crank_element_size=30", "flexibility.fe_crank_element_size",
+     "between 1.25 and 10 mm"),
+    ("flexibility.fe_crank_element_size=1e-6", "flexibility.fe_crank_element_size",
+     "between 1.25 and 10 mm"),
+    ("flexibility.fe_element_size=0.01", "flexibility.fe_element_size",
+     "between 0.375 and 12 mm"),
+    ("flexibility.fe_element_size=50", "flexibility.fe_element_size",
+     "between 0.375 and 12 mm"),
+])
+def test_element_sizes_out_of_range_are_refused_before_meshing(cli, setting, field, bounds):
+    """A 30 mm crank mesh made scikit-fem raise, a 1 um one ran for hours: both one line."""
+    result = cli("ltca", "--set", "flexibility.model=fe", "--set", setting)
+    assert result.code == 2
+    assert result.err.startswith(f"rvsim: error: parameter '{field}': must lie {bounds}")
+    assert result.err.count("\n") == 1
+
+
 def test_the_fe_crank_refuses_needle_bearings(cli):
     result = cli("ltca", "--params", "RV-40E-bearings", "--set", "flexibility.model=fe")
     assert result.code == 2

@@ -24,12 +24,16 @@ from ..errors import ParameterError, RvsimError
 from ..parameters import Reducer
 from . import cache
 from .elasticity import PlaneStressBody, edge_load
-from .mesh import Circle, disc_outline, mesh_plane_region
+from .mesh import Circle, check_element_size, disc_outline, mesh_plane_region
 
 __all__ = ["DiscTable", "disc_body", "disc_geometry", "disc_table", "disc_tables", "FE_VERSION"]
 
 #: bump when the discretisation changes (part of every cache key)
 FE_VERSION = 1
+
+#: admissible element sizes of the disc and the plates, in eccentricities (RV-40E: 0.375 mm,
+#: about 750 000 dofs, to 12 mm, four elements over a tooth pitch)
+DISC_FINEST, DISC_COARSEST = 0.25, 8.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -42,6 +46,16 @@ class DiscTable:
     n_triangles: int
     seconds: float              # meshing + condensation time (0 when loaded from the cache)
     cached: bool
+
+
+def element_size(reducer: Reducer) -> float:
+    """``flexibility.fe_element_size`` [m] of the disc and the plates, checked against the
+    admissible range (:func:`rvsim.fe.mesh.check_element_size`)."""
+    size = reducer.flexibility.fe_element_size
+    check_element_size("flexibility.fe_element_size", size,
+                       "eccentricity (half the tooth height)", reducer.cycloid.eccentricity,
+                       DISC_FINEST, DISC_COARSEST)
+    return size
 
 
 def disc_geometry(reducer: Reducer, disc: int = 0) -> dict:
@@ -69,7 +83,7 @@ def disc_geometry(reducer: Reducer, disc: int = 0) -> dict:
     return {"rg": prof.generating_radius, "a": prof.eccentricity, "zp": prof.pin_count,
             "offset": prof.offset, "crank_holes": crank_holes, "pillars": pillars,
             "bore": c.disc_bore_radius, "E": m.elastic_modulus, "nu": m.poisson_ratio,
-            "width": c.disc_width, "size": f.fe_element_size,
+            "width": c.disc_width, "size": element_size(reducer),
             "segments": c.disc_teeth * f.fe_segments_per_tooth, "version": FE_VERSION}
 
 
