@@ -65,11 +65,17 @@ def test_bad_model_name_is_one_line(cli):
                           "of closed-form, fe\n")
 
 
-def test_friction_with_the_fe_disc_is_refused(cli):
-    result = cli("ltca", "--set", "A=1", "--set", "flexibility.model=fe", "--set",
-                 "contact.friction_coefficient=0.05", *COARSE)
-    assert result.code == 2
-    assert "flexibility.model" in result.err and "friction" in result.err
+def test_pin_friction_with_the_fe_disc(cli):
+    """Pin friction with the FE disc (refused before 2026-11-25; the physics is checked in
+    tests/verification/test_friction.py): both engines run it."""
+    friction = ("--set", "contact.friction_coefficient=0.05", "--set",
+                "flexibility.fe_carrier=false", *COARSE)
+    summary = _ltca(cli, "--set", "flexibility.model=fe", *friction)
+    assert summary["status"] == "ok"
+    result = cli("simulate", "--json", "--set", "A=1", "--set", "flexibility.model=fe",
+                 *friction, *SHORT)
+    assert result.code == 0, result.err
+    assert json.loads(result.out)["status"] == "ok"
 
 
 def test_the_fe_carrier_softens_every_command(cli):
