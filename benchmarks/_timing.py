@@ -36,3 +36,19 @@ def timed(function, repeat: int) -> tuple[float, float]:
     """Median wall time and median CPU time (s) of ``repeat`` calls of ``function()``."""
     walls, cpus = samples(function, repeat)
     return statistics.median(walls), statistics.median(cpus)
+
+
+def interleaved(functions: dict, repeat: int) -> dict:
+    """Median wall and CPU times (s) of each named function, called in turn ``repeat`` times
+    (round robin: a change of the machine's load falls on every case alike).  Returns
+    {name: (wall, cpu)}."""
+    walls = {name: [] for name in functions}
+    cpus = {name: [] for name in functions}
+    for _ in range(repeat):
+        for name, function in functions.items():
+            wall, cpu = time.perf_counter(), time.process_time()
+            function()
+            walls[name].append(time.perf_counter() - wall)
+            cpus[name].append(time.process_time() - cpu)
+    return {name: (statistics.median(walls[name]), statistics.median(cpus[name]))
+            for name in functions}

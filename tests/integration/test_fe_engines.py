@@ -65,11 +65,17 @@ def test_bad_model_name_is_one_line(cli):
                           "of closed-form, fe\n")
 
 
-def test_friction_with_the_fe_disc_is_refused(cli):
-    result = cli("ltca", "--set", "A=1", "--set", "flexibility.model=fe", "--set",
-                 "contact.friction_coefficient=0.05", *COARSE)
-    assert result.code == 2
-    assert "flexibility.model" in result.err and "friction" in result.err
+def test_pin_friction_with_the_fe_disc(cli):
+    """Pin friction with the FE disc (refused before 2026-11-25; the physics is checked in
+    tests/verification/test_friction.py): both engines run it."""
+    friction = ("--set", "contact.friction_coefficient=0.05", "--set",
+                "flexibility.fe_carrier=false", *COARSE)
+    summary = _ltca(cli, "--set", "flexibility.model=fe", *friction)
+    assert summary["status"] == "ok"
+    result = cli("simulate", "--json", "--set", "A=1", "--set", "flexibility.model=fe",
+                 *friction, *SHORT)
+    assert result.code == 0, result.err
+    assert json.loads(result.out)["status"] == "ok"
 
 
 def test_the_fe_carrier_softens_every_command(cli):
@@ -107,6 +113,26 @@ def test_bad_fe_carrier_value_is_one_line(cli):
     assert result.code == 2
     assert result.err == ("rvsim: error: parameter 'flexibility.fe_carrier': 'maybe' is not a "
                           "yes/no value (use true or false)\n")
+
+
+@pytest.mark.parametrize("setting, field, bounds", [
+    ("flexibility.fe_crank_element_size=30", "flexibility.fe_crank_element_size",
+     "between 1.25 and 10 mm"),
+    ("flexibility.fe_crank_element_size=1e-6", "flexibility.fe_crank_element_size",
+     "between 1.25 and 10 mm"),
+    ("flexibility.fe_element_size=0.01", "flexibility.fe_element_size",
+     "between 0.375 and 12 mm"),
+    ("flexibility.fe_element_size=50", "flexibility.fe_element_size",
+     "between 0.375 and 12 mm"),
+])
+def test_element_sizes_out_of_range_are_refused_before_meshing(cli, setting, field, bounds):
+    """A 30 mm crank mesh made scikit-fem raise, a 1 um one ran for hours: both one line."""
+    result = cli("ltca", "--set", "flexibility.model=fe", "--set", setting)
+    assert result.code == 2
+    assert result.err.startswith(f"rvsim: error: parameter '{field}': must lie {bounds}")
+    assert result.err.count("\n") == 1
+
+
 def test_the_fe_crank_refuses_needle_bearings(cli):
     result = cli("ltca", "--params", "RV-40E-bearings", "--set", "flexibility.model=fe")
     assert result.code == 2

@@ -193,24 +193,8 @@ def test_quasi_static_te_equals_dynamic_mean_with_fe_pins(disc, tolerance):
     """Low speed, constant load (as tests/verification/test_quasistatic.py), FE pins with the
     rigid disc (independent contacts; measured 3.0e-6) and with the coarse FE disc (coupled
     contacts, the dynamic engine's one-step lag; measured 1.8e-5)."""
-    from rvsim.dynamics import _layout as L
-    from rvsim.dynamics import simulate
-    from rvsim.quasistatic import solve_path
+    from tests.verification.test_quasistatic import engines_mean_te, low_speed
 
-    speed = 1750.0
-    steady = 0.8
-    reducer = _coarse({"B": 1, "A": disc, "flexibility.model": "fe"})
-    crank_period = 360.0 * reducer.ratio / (speed * reducer.cycloid.pin_count)
-    reducer = with_values(reducer, {
-        "operating.input_speed": math.radians(speed), "operating.speed_ramp_time": 0.2,
-        "operating.load_start": 0.2, "operating.load_ramp_end": 0.4,
-        "operating.steady_start": steady, "operating.duration": steady + 2.0 * crank_period,
-        "operating.load_inertia": 0.0})
-    dynamic = simulate(reducer)
-    assert dynamic.status == "ok"
-    window = dynamic.time >= steady - 1e-12
-    theta_in = dynamic.channel("theta_in")[window][::10]
-    path = solve_path(reducer, theta_in, np.full(len(theta_in), reducer.operating.load_torque))
-    assert path.status == "ok"
-    te = theta_in / reducer.ratio - path.q[:, L.CARRIER]
-    assert te.mean() == pytest.approx(dynamic.te[window].mean(), rel=tolerance)
+    static, dynamic = engines_mean_te(low_speed(_coarse({"B": 1, "A": disc,
+                                                         "flexibility.model": "fe"})))
+    assert static == pytest.approx(dynamic, rel=tolerance)

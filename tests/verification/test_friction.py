@@ -35,6 +35,11 @@ SHORT = {"operating.speed_ramp_time": 0.1, "operating.load_start": 0.1,
 QUICK = {"operating.speed_ramp_time": 0.2, "operating.load_start": 0.2,
          "operating.load_ramp_end": 0.4, "operating.steady_start": 0.6,
          "operating.duration": 1.0}
+#: the finite-element disc (coarse; crankshafts and plates rigid): pin friction on the
+#: coupled contacts (docs/model.md section 17)
+FE_DISC = {"A": 1, "flexibility.model": "fe", "flexibility.fe_element_size": 4.0,
+           "flexibility.fe_segments_per_tooth": 2, "flexibility.fe_crank": False,
+           "flexibility.fe_carrier": False}
 #: friction switched on everywhere with every coefficient zero
 ZERO_FRICTION = {"friction.pins_turn": True, "friction.oil_viscosity": 32.0,
                  "friction.arm_bearing_diameter": 30.0}
@@ -55,15 +60,19 @@ def test_zero_friction_quasistatic_is_the_frictionless_one():
     assert np.array_equal(a.te, b.te) and np.array_equal(a.pin_forces, b.pin_forces)
 
 
-def test_energy_balance_with_friction():
-    result = simulate(with_values(RV40E, {**QUICK, **TYPICAL_FRICTION}))
+@pytest.mark.parametrize("body", [{}, FE_DISC], ids=["closed-form", "fe-disc"])
+def test_energy_balance_with_friction(body):
+    result = simulate(with_values(RV40E, {**QUICK, **TYPICAL_FRICTION, **body}))
     e = result.energy
-    assert e["dissipated"] > 0.09 * e["input_work"]                  # measured 9.7 %
-    assert abs(e["relative_residual"]) < 1e-4                         # measured 1.5e-5
+    # measured 2026-11-25: 10.2 % and 10.4 % of the input work dissipated, residuals -6.9e-6
+    # and -3.2e-5 (the FE disc's neighbours' forces lag one step)
+    assert e["dissipated"] > 0.09 * e["input_work"]
+    assert abs(e["relative_residual"]) < 2e-4
 
 
-def test_hysteresis_loop_area_is_the_friction_work():
-    reducer = with_values(RV40E, TYPICAL_FRICTION)
+@pytest.mark.parametrize("body", [{}, FE_DISC], ids=["closed-form", "fe-disc"])
+def test_hysteresis_loop_area_is_the_friction_work(body):
+    reducer = with_values(RV40E, {**TYPICAL_FRICTION, **body})
     torque, branch = sweep_torques(reducer.rating.rated_torque, 50)
     path = solve_path(reducer, np.zeros(len(torque)), -torque,
                       carrier_rate=TEST_OUTPUT_SPEED * branch)
@@ -74,7 +83,8 @@ def test_hysteresis_loop_area_is_the_friction_work():
     f = path.friction_forces[cycle]
     work = -np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(path.q[cycle], axis=0))
     assert area > 0.0
-    assert area == pytest.approx(work, rel=4e-3)   # measured 2.3e-3 (3.8e-4 with the Palmgren bushings)
+    # measured 2.3e-3 (3.8e-4 with the Palmgren bushings), FE disc 1.8e-3
+    assert area == pytest.approx(work, rel=4e-3)
     # loading needs more torque than unloading: the loading branch lags
     up = np.interp(300.0, torque[100:151], angle[50:101])
     down = np.interp(300.0, torque[150:201][::-1], angle[100:151][::-1])

@@ -66,15 +66,22 @@ def test_rigid_bearings_follow_textbook_pin_loads():
         assert torques[0] == pytest.approx(torques[1], rel=2e-4)         # measured 4.1e-5
 
 
-def _low_speed(run):
+def low_speed(reducer):
+    """``reducer`` at a quarter of the paper's input speed, constant load (D off), no load
+    inertia, two crank periods of steady window from 0.8 s: the dynamic run whose mean TE the
+    quasi-static engine must give (:func:`engines_mean_te`)."""
     speed = 1750.0                                          # deg/s: a quarter of the paper's
-    crank_period = 360.0 * RV40E.ratio / (speed * RV40E.cycloid.pin_count)
+    crank_period = 360.0 * reducer.ratio / (speed * reducer.cycloid.pin_count)
     steady = 0.8
-    return with_values(RV40E, {
-        **paper_run_values(run), "D": False, "operating.input_speed": math.radians(speed),
+    return with_values(reducer, {
+        "D": False, "operating.input_speed": math.radians(speed),
         "operating.speed_ramp_time": 0.2, "operating.load_start": 0.2,
         "operating.load_ramp_end": 0.4, "operating.steady_start": steady,
         "operating.duration": steady + 2.0 * crank_period, "operating.load_inertia": 0.0})
+
+
+def _low_speed(run):
+    return low_speed(with_values(RV40E, paper_run_values(run)))
 
 
 def engines_mean_te(reducer):

@@ -75,6 +75,71 @@ def _eliminate(a, b, n):
 
 
 @numba.njit(cache=True)
+def _cholesky(a, n):
+    """Cholesky factor L (L L^T = a) of a symmetric positive definite ``a`` in place: its
+    lower triangle is read and overwritten (half the operations of :func:`_eliminate`).
+    Returns False at a pivot that is not positive."""
+    for j in range(n):
+        total = a[j, j]
+        for p in range(j):
+            total -= a[j, p] * a[j, p]
+        if not total > 0.0:
+            return False
+        pivot = math.sqrt(total)
+        a[j, j] = pivot
+        inv = 1.0 / pivot
+        for i in range(j + 1, n):
+            total = a[i, j]
+            for p in range(j):
+                total -= a[i, p] * a[j, p]
+            a[i, j] = total * inv
+    return True
+
+
+@numba.njit(cache=True)
+def _forward(a, b, n):
+    """b <- L^-1 b in place (b: n x m), L the factor :func:`_cholesky` left in ``a``."""
+    for r in range(b.shape[1]):
+        for i in range(n):
+            total = b[i, r]
+            for p in range(i):
+                total -= a[i, p] * b[p, r]
+            b[i, r] = total / a[i, i]
+
+
+@numba.njit(cache=True)
+def _cholesky_solve(a, b, n):
+    """Solve L L^T x = b in place (b: n x m), L the factor :func:`_cholesky` left in ``a``."""
+    _forward(a, b, n)
+    for r in range(b.shape[1]):
+        for i in range(n - 1, -1, -1):
+            total = b[i, r]
+            for p in range(i + 1, n):
+                total -= a[p, i] * b[p, r]
+            b[i, r] = total / a[i, i]
+
+
+@numba.njit(cache=True)
+def _factor_tangent(cm, k, n, active, a):
+    """The loaded contacts (k > 0) into ``active`` and the Cholesky factor of C_AA + D_A^-1
+    into ``a``: the matrix I + D C restricted to them, made symmetric (D = diag k, C = ``cm``;
+    a row of I + D C with k = 0 is that of the identity).  Its inverse is the loaded block of
+    the tangent S = dF/d(delta) = (I + D C)^-1 D, whose other rows are zero.  Returns their
+    number, or -1 where the factorisation fails."""
+    na = 0
+    for i in range(n):
+        if k[i] > 0.0:
+            active[na] = i
+            na += 1
+    for x in range(na):
+        i = active[x]
+        for y in range(x + 1):
+            a[x, y] = cm[i, active[y]]
+        a[x, x] += 1.0 / k[i]
+    return na if _cholesky(a, na) else -1
+
+
+@numba.njit(cache=True)
 def table_compliance(table, ui, uj, same):
     """C(ui, uj) [m/N] from the segment table: linear along the diagonal for a contact with
     itself (``same``), bilinear between segment centres otherwise."""
@@ -151,16 +216,22 @@ def _contact_forces(cm, delta, force, n, c, cb, f, k, e, g):
 
 
 @numba.njit(cache=True)
-def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
-    """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot`` and
-    own series compliances ``cb`` (n), Newton from ``guess``.  Fills ``force`` (n) and, if
-    ``stiffness`` is n x n, the tangent
-    S = dF/d(delta).  Returns (potential energy, Newton iterations, converged)."""
-    cm = np.empty((n, n))
+def _solve_coupled(table, delta, foot, guess, n, c, cb, force, cm, k, jac, scratch, index):
+    """Newton solve of :func:`coupled_forces` (the forces into ``force``), leaving the
+    interpolated compliance in ``cm``, the contacts' tangent stiffnesses at the solution in
+    ``k`` and the factor of :func:`_factor_tangent` at them in ``jac`` (n x n); ``scratch``
+    (>= 5 n floats) and ``index`` (>= 3 n integers) are work space.  Returns (potential
+    energy, Newton iterations, converged, number of loaded contacts (listed in
+    ``index[2 n:3 n]``) or -1 where the factorisation failed)."""
     m = table.shape[0]
-    lo = np.empty(n, dtype=np.int64)
-    hi = np.empty(n, dtype=np.int64)
-    frac = np.empty(n)
+    lo = index[:n]
+    hi = index[n:2 * n]
+    active = index[2 * n:3 * n]
+    frac = scratch[:n]
+    f = scratch[n:2 * n]
+    e = scratch[2 * n:3 * n]
+    gv = scratch[3 * n:4 * n]
+    rhs = scratch[4 * n:5 * n].reshape((n, 1))
     for i in range(n):
         lo[i], hi[i], frac[i] = _segment(foot[i], m)
     for i in range(n):
@@ -172,29 +243,36 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
                    + fa * ((1.0 - fb) * table[a1, b0] + fb * table[a1, b1]))
             cm[i, j] = cij
             cm[j, i] = cij
-    f = np.empty(n)
-    k = np.zeros(n)
-    e = np.zeros(n)
     for i in range(n):
         force[i] = max(guess[i], 0.0)
-    jac = np.empty((n, n))
-    g = np.empty(n)
-    want = stiffness.shape[0] == n
+        e[i] = 0.0
     converged = False
     iterations = 0
+    na = -1
     for iterations in range(1, MAX_NEWTON + 1):
-        largest, worst = _contact_forces(cm, delta, force, n, c, cb, f, k, e, g)
-        if worst <= 1e-10 * largest + 1e-12:
-            converged = True
+        largest, worst = _contact_forces(cm, delta, force, n, c, cb, f, k, e, gv)
+        # the factor at the new forces: the Newton step's matrix, or the tangent's at the
+        # solution
+        na = _factor_tangent(cm, k, n, active, jac)
+        if worst <= 1e-10 * largest + 1e-12 or na < 0:
+            converged = na >= 0
             break
-        for i in range(n):
+        # Newton step s: (I + D C) s = g.  Rows with k = 0 give s_i = g_i (the force drops
+        # to zero); the others (C_AA + D_A^-1) s_A = D_A^-1 g_A - C_AI g_I
+        for x in range(na):
+            rhs[x, 0] = gv[active[x]] / k[active[x]]
+        if na < n:
             for j in range(n):
-                jac[i, j] = k[i] * cm[i, j]
-            jac[i, i] += 1.0
-        step = g.copy()
-        _eliminate(jac, step.reshape((n, 1)), n)
+                if k[j] == 0.0 and gv[j] != 0.0:
+                    for x in range(na):
+                        rhs[x, 0] -= cm[active[x], j] * gv[j]
+        _cholesky_solve(jac, rhs, na)
         for i in range(n):
-            force[i] = max(force[i] - step[i], 0.0)
+            if k[i] == 0.0:
+                force[i] = 0.0
+        for x in range(na):
+            i = active[x]
+            force[i] = max(force[i] - rhs[x, 0], 0.0)
     if not converged:
         # Newton can cycle where pins open and close between iterations: Gauss-Seidel sweeps
         # (a contraction, k C summed over the neighbours < 1) then finish the solve
@@ -212,7 +290,8 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
                 converged = True
                 break
         iterations += sweep + 1
-        _contact_forces(cm, delta, force, n, c, cb, f, k, e, g)
+        _contact_forces(cm, delta, force, n, c, cb, f, k, e, gv)
+        na = _factor_tangent(cm, k, n, active, jac)
     energy = 0.0
     for i in range(n):
         force[i] = f[i]
@@ -220,20 +299,31 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
     for i in range(n):
         for j in range(n):
             energy += 0.5 * force[i] * cm[i, j] * force[j]
-    if want:
-        for i in range(n):
-            for j in range(n):
-                jac[i, j] = k[i] * cm[i, j]
-                stiffness[i, j] = 0.0
-            jac[i, i] += 1.0
-            stiffness[i, i] = k[i]
-        _eliminate(jac, stiffness, n)
-        # symmetric in exact arithmetic
-        for i in range(n):
-            for j in range(i + 1, n):
-                mean = 0.5 * (stiffness[i, j] + stiffness[j, i])
-                stiffness[i, j] = mean
-                stiffness[j, i] = mean
+    return energy, iterations, converged, na
+
+
+@numba.njit(cache=True)
+def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
+    """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot`` and
+    own series compliances ``cb`` (n), Newton from ``guess``.  Fills ``force`` (n) and, if
+    ``stiffness`` is n x n, the tangent S = dF/d(delta).  Returns (potential energy, Newton
+    iterations, converged)."""
+    cm = np.empty((n, n))
+    k = np.empty(n)
+    jac = np.empty((n, n))
+    index = np.empty(3 * n, dtype=np.int64)
+    energy, iterations, converged, na = _solve_coupled(
+        table, delta, foot, guess, n, c, cb, force, cm, k, jac, np.empty(5 * n), index)
+    if stiffness.shape[0] == n:
+        # S: (C_AA + D_A^-1)^-1 on the loaded contacts A, zero elsewhere
+        stiffness[:, :] = 0.0 if na >= 0 else np.nan
+        if na > 0:
+            inverse = np.eye(na)
+            _cholesky_solve(jac, inverse, na)
+            active = index[2 * n:2 * n + na]
+            for x in range(na):
+                for y in range(na):
+                    stiffness[active[x], active[y]] = 0.5 * (inverse[x, y] + inverse[y, x])
     return energy, iterations, converged
 
 
@@ -245,15 +335,30 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
     ``slots`` its index.  The
     damping of a pin is 2 zeta sqrt(k m) at its series stiffness k = 1 / (1/k_contact + C_ii).
     ``forces``/``elastic`` are the disc's rows.  With ``K`` wanted (the quasi-static engine)
-    the system is solved to convergence (:func:`coupled_forces`); without (the dynamic
-    engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).  ``modal``
-    (m + HEADER, modes) the disc's modes (:mod:`rvsim.dynamics._fe_modes`; ``table`` is then their
-    residual): each approach is less the modes' deflection at its foot, and the elastic
-    forces are added to the modal force.  Returns (energy, dissipated power, converged)."""
+    the system is solved to convergence (:func:`coupled_forces`) and K_dd gets G^T S G =
+    (L^-1 G_A)^T (L^-1 G_A), L the Cholesky factor of the tangent's loaded block; without
+    (the dynamic engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).
+    ``modal`` (m + HEADER, modes) the disc's modes (:mod:`rvsim.dynamics._fe_modes`; ``table``
+    is then their residual): each approach is less the modes' deflection at its foot, and the
+    elastic forces are added to the modal force.  Returns (energy, dissipated power,
+    converged)."""
     n = count
-    delta = work[:n, 0].copy()
-    foot = work[:n, 2].copy()
-    cb = work[:n, 6].copy()
+    want = K.shape[0] > 0
+    # one block of work space: delta, foot, own compliances, guess, forces, C_ii, k; with K
+    # 5 n of scratch, L^-1 G, the interpolated C and the factor L
+    space = np.empty(7 * n + (8 * n + 2 * n * n if want else 0))
+    delta = space[:n]
+    foot = space[n:2 * n]
+    cb = space[2 * n:3 * n]
+    guess = space[3 * n:4 * n]
+    fel = space[4 * n:5 * n]
+    cii = space[5 * n:6 * n]
+    k = space[6 * n:7 * n]
+    for a in range(n):
+        delta[a] = work[a, 0]
+        foot[a] = work[a, 2]
+        cb[a] = work[a, 6]
+        guess[a] = elastic[slots[a]]
     moving = modal.shape[1] > 0
     # per pin with modes: its segments (lower, upper), the upper's weight, the self-term
     at = np.empty((4, n if moving else 0))
@@ -263,19 +368,19 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
             deflection, at[3, a] = foot_modes(modal, i0, i1, frac)
             at[0, a], at[1, a], at[2, a] = i0, i1, frac
             delta[a] -= deflection
-    guess = np.empty(n)
-    for a in range(n):
-        guess[a] = elastic[slots[a]]
-    fel = np.empty(n)
-    cii = np.empty(n)
-    want = K.shape[0] > 0
+    index = np.empty(3 * n if want else 0, dtype=np.int64)
     if want:
-        s = np.empty((n, n))
-        energy, _, converged = coupled_forces(table, delta, foot, guess, n, c, cb, fel, s)
+        scratch = space[7 * n:12 * n]
+        sg = space[12 * n:15 * n].reshape((n, 3))
+        cm = space[15 * n:15 * n + n * n].reshape((n, n))
+        jac = space[15 * n + n * n:15 * n + 2 * n * n].reshape((n, n))
+        energy, _, converged, na = _solve_coupled(table, delta, foot, guess, n, c, cb, fel,
+                                                  cm, k, jac, scratch, index)
         for a in range(n):
-            cii[a] = table_compliance(table, foot[a], foot[a], True)
+            cii[a] = cm[a, a]
     else:
-        s = np.empty((0, 0))
+        sg = jac = space[:0].reshape((0, 0))
+        na = 0
         if moving:
             energy = lagged_forces(table, delta, foot, guess, n, c, cb, fel, cii, at[3])
         else:
@@ -286,14 +391,15 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
         i = slots[a]
         f = fel[a]
         fn = f
-        if f > 0.0 and zeta > 0.0:
+        rate = work[a, 1]
+        if f > 0.0 and zeta > 0.0 and rate != 0.0:
             # tangent stiffness of the contact's own law at f: 1 / (0.9 c f^-0.1 + cb)
             k_contact = 1.0 / (EXPONENT * c * f ** (EXPONENT - 1.0) + cb[a])
-            k = 1.0 / (1.0 / k_contact + cii[a])
-            fn = f + 2.0 * zeta * math.sqrt(k * mass) * work[a, 1]
+            k_series = 1.0 / (1.0 / k_contact + cii[a])
+            fn = f + 2.0 * zeta * math.sqrt(k_series * mass) * rate
             if fn < 0.0:
                 fn = 0.0
-            power += (fn - f) * work[a, 1]
+            power += (fn - f) * rate
         forces[i] = fn
         elastic[i] = f
         if moving:
@@ -302,17 +408,21 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
         Q[d + 1] += fn * work[a, 4]
         Q[d + 2] += fn * work[a, 5]
     if want:
-        # K_dd += G^T S G, G the rows (d gap / d(x, y, theta)) of the touching pins
-        sg = np.zeros((n, 3))
-        for a in range(n):
-            for b in range(n):
-                sab = s[a, b]
+        # K_dd += G^T S G = Y^T Y, Y = L^-1 G_A (G the rows d gap / d(x, y, theta))
+        if na < 0:
+            for p in range(3):
+                K[d + p, d + p] = np.nan
+        else:
+            active = index[2 * n:2 * n + na]
+            y = sg[:na]
+            for x in range(na):
                 for r in range(3):
-                    sg[a, r] += sab * work[b, 3 + r]
-        for p in range(3):
-            for r in range(3):
-                total = 0.0
-                for a in range(n):
-                    total += work[a, 3 + p] * sg[a, r]
-                K[d + p, d + r] += total
+                    y[x, r] = work[active[x], 3 + r]
+            _forward(jac, y, na)
+            for p in range(3):
+                for r in range(3):
+                    total = 0.0
+                    for x in range(na):
+                        total += y[x, p] * y[x, r]
+                    K[d + p, d + r] += total
     return energy, power, converged

@@ -222,7 +222,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     n = pins.shape[0]
     coupled = fe.shape[1] > 0
     slots = np.empty(n if coupled else 0, dtype=np.int64)
-    work = np.empty((n if coupled else 0, 7))
+    work = np.empty((n if coupled else 0, 12))
     count = 0
     if coupled:
         clear_modal_force(modal[disc])
@@ -260,6 +260,9 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
             work[count, 0], work[count, 1], work[count, 2] = delta, -gap_rate, ui
             work[count, 3], work[count, 4], work[count, 5] = gx, gy, lever
             work[count, 6] = cb
+            # for the friction after the coupled solve: pin centre, gap, normal
+            work[count, 7], work[count, 8], work[count, 9] = px, py, gap
+            work[count, 10], work[count, 11] = nx, ny
             count += 1
             continue
         fn, e, pw, fel, k = contact(delta, -gap_rate, P[PIN_C], cb, P[ZETA],
@@ -274,18 +277,12 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         if want:
             add_rank_one(K, (d, d + 1, d + 2), (gx, gy, lever), k)
         if P[MU] > 0.0:
-            # Coulomb friction, P[MU] the effective coefficient (fixed pins sliding on the
-            # disc, or pins turning in their grooves: rvsim.friction, docs/model.md sec. 15);
-            # contact point on the disc (disc axes, from its centre) and sliding speed there
-            cx = px - (P[PIN_RADIUS] - gap) * nx
-            cy = py - (P[PIN_RADIUS] - gap) * ny
-            tix, tiy = -ny, nx
-            slide = (lvx - w * cy) * tix + (lvy + w * cx) * tiy
-            ft = -P[MU] * fn * math.tanh(slide / P[V_FRIC])
-            fx += ft * (cos_t * tix - sin_t * tiy)
-            fy += ft * (sin_t * tix + cos_t * tiy)
-            torque += ft * (cx * tiy - cy * tix)
-            power -= ft * slide
+            fx_t, fy_t, torque_t, loss = pin_friction(P, fn, px, py, gap, nx, ny, lvx, lvy, w,
+                                                      cos_t, sin_t)
+            fx += fx_t
+            fy += fy_t
+            torque += torque_t
+            power += loss
         Q[d] += fx
         Q[d + 1] += fy
         Q[d + 2] += torque
@@ -295,7 +292,36 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
                                  modal[disc])
         energy += e
         power += pw
+        if P[MU] > 0.0:
+            # friction at the coupled solve's normal forces (the table is normal-normal: the
+            # tangential forces do not deflect the neighbours' approaches)
+            for a in range(count):
+                fx_t, fy_t, torque_t, loss = pin_friction(
+                    P, forces[disc, slots[a]], work[a, 7], work[a, 8], work[a, 9],
+                    work[a, 10], work[a, 11], lvx, lvy, w, cos_t, sin_t)
+                Q[d] += fx_t
+                Q[d + 1] += fy_t
+                Q[d + 2] += torque_t
+                power += loss
     return energy, power, worst
+
+
+@numba.njit(cache=True, inline="always")
+def pin_friction(P, fn, px, py, gap, nx, ny, lvx, lvy, w, cos_t, sin_t):
+    """Coulomb friction of a pin contact with normal force ``fn``, P[MU] the effective
+    coefficient (fixed pins sliding on the disc, or pins turning in their grooves:
+    rvsim.friction, docs/model.md section 15), regularised over P[V_FRIC]: the force (x, y)
+    and torque on the disc and the dissipated power.  (px, py) the pin centre from the disc
+    centre and (nx, ny) the contact normal, in disc axes; (lvx, lvy) the housing's velocity
+    seen from the disc centre and w the disc's angular velocity."""
+    # contact point on the disc (disc axes, from its centre) and sliding speed there
+    cx = px - (P[PIN_RADIUS] - gap) * nx
+    cy = py - (P[PIN_RADIUS] - gap) * ny
+    tix, tiy = -ny, nx
+    slide = (lvx - w * cy) * tix + (lvy + w * cx) * tiy
+    ft = -P[MU] * fn * math.tanh(slide / P[V_FRIC])
+    return (ft * (cos_t * tix - sin_t * tiy), ft * (sin_t * tix + cos_t * tiy),
+            ft * (cx * tiy - cy * tix), -ft * slide)
 
 
 @numba.njit(cache=True)

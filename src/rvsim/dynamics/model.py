@@ -306,13 +306,8 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
 
 def _fe_tables(r: Reducer) -> np.ndarray:
     """The finite-element disc tables (rvsim.fe: meshed and condensed once per geometry)."""
-    from ..errors import ParameterError
     from ..fe.disc import disc_tables
 
-    if r.contact.friction_coefficient > 0.0:
-        raise ParameterError("flexibility.model", "the finite-element disc does not take pin "
-                             "friction yet (set contact.friction_coefficient = 0 or use "
-                             "closed-form)")
     return disc_tables(r)
 
 

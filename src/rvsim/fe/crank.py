@@ -37,7 +37,7 @@ from ..errors import RvsimError
 from ..parameters import Reducer
 from . import cache
 from .elasticity import Factor
-from .mesh import drop_unused_nodes, gmsh_elements, gmsh_model
+from .mesh import check_element_size, drop_unused_nodes, gmsh_elements, gmsh_model
 
 __all__ = ["CRANK_ELEMENT_SIZE", "crank_geometry", "crank_table", "shaft_compliance"]
 
@@ -48,6 +48,10 @@ CRANK_FE_VERSION = 1
 #: default element size of the crank [m]: 3-D P2 tetrahedra cost far more than the disc's
 #: triangles (RV-40E: 30 500 dofs, 16 s CPU at 3 mm; 80 000 dofs, 95 s at 2 mm)
 CRANK_ELEMENT_SIZE = 3e-3
+
+#: admissible crank element sizes, in journal radii (RV-40E: 1.25-10 mm; 1.25 mm is about
+#: 400 000 dofs, 10 mm two elements across the journal)
+CRANK_FINEST, CRANK_COARSEST = 0.125, 1.0
 
 
 def crank_geometry(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE) -> dict:
@@ -220,5 +224,7 @@ def crank_table(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE
                 ) -> cache.CondensedTable:
     """The crank's compliance table with elements of ``size`` [m] (from the cache when
     there)."""
+    check_element_size("flexibility.fe_crank_element_size", size, "journal radius",
+                       reducer.crank.journal_radius, CRANK_FINEST, CRANK_COARSEST)
     g = crank_geometry(reducer, size)
     return cache.condensed_table("crankshaft", g, lambda: shaft_compliance(g))
