@@ -471,16 +471,16 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
 
 
 @numba.njit(cache=True)
-def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
+def arm_pair(P, q, v, Q, K, crank, holes, elastic):
     """Crank ``crank``'s two eccentrics in their discs' holes with the finite-element crank
     between them (docs/model.md section 17; :mod:`rvsim.dynamics._fe_crank`): the two arm
     bushings solved together, to convergence with ``K`` wanted (the quasi-static engine), one
     Gauss-Seidel sweep per step otherwise (the dynamic engine).  Each bushing is damped at its
     tangent stiffness in series with the crank (the diagonal of dS/dr along its force).
-    ``out[disc]`` receives the resultant forces; returns (energy, dissipated power)."""
+    Returns (energy, dissipated power, resultant force on disc 0, on disc 1)."""
     b = CRANK0 + CRANK_STRIDE * crank
     # one work array per call (views of it: no allocation per quantity, this runs every step)
-    work = np.empty((2, 16))
+    work = np.empty((2, 17))
     r, rate, guess, force = work[:, 0:2], work[:, 2:4], work[:, 4:6], work[:, 6:8]
     geo = work[:, 8:16]              # wl, wu, ecc, cos phi, sin phi, hx, hy, series stiffness
     for disc in range(2):
@@ -501,20 +501,21 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
     dsdr = mats[:, 4:8]
     energy = pair_forces(arm_law(P), A, r, guess, force, dsdr, series, want)
     power = 0.0
+    resultant = work[:, 16]                  # force on each disc, damping included
     for disc in range(2):
         sx, sy = force[disc, 0], force[disc, 1]
         elastic[crank, FE_CRANK_SLOT0 + 2 * disc] = sx
         elastic[crank, FE_CRANK_SLOT0 + 2 * disc + 1] = sy
         f = math.sqrt(sx * sx + sy * sy)
         elastic[crank, disc] = f
-        out[disc] = f
+        resultant[disc] = f
         if f == 0.0:
             continue
         nx, ny = sx / f, sy / f
         fn, pw = damped(f, series[disc], nx * rate[disc, 0] + ny * rate[disc, 1], P[ZETA],
                         P[M_NODE])
         power += pw
-        out[disc] = fn
+        resultant[disc] = fn
         apply_arm_force(Q, q, crank, disc, geo[disc, 0], geo[disc, 1], geo[disc, 2],
                         geo[disc, 3], geo[disc, 4], geo[disc, 5], geo[disc, 6], fn * nx,
                         fn * ny)
@@ -522,7 +523,7 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic, out):
     Q[b + 4] += compliance_torque(A, force)
     if want:
         arm_pair_stiffness(K, q, crank, geo, dsdr, force, P[ARM_CAGE_IN])
-    return energy, power
+    return energy, power, resultant[0], resultant[1]
 
 
 @numba.njit(cache=True, inline="always")
@@ -693,16 +694,16 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         power += pw
         if pen > worst:
             worst = pen
-    pair = np.empty(2)
+    coupled = P[FE_CRANK_XX1] > 0.0     # finite-element crank (RV reducers only)
     for j in range(int(P[CRANK_COUNT])):
-        coupled = P[FE_CRANK_XX1] > 0.0 and n_discs == 2 and not single
-        if coupled:     # finite-element crank: both bushings together
-            e, pw = arm_pair(P, q, v, Q, K, j, holes, arm_elastic, pair)
+        pair0 = pair1 = 0.0
+        if coupled:     # both bushings together
+            e, pw, pair0, pair1 = arm_pair(P, q, v, Q, K, j, holes, arm_elastic)
             energy += e
             power += pw
         for disc in range(n_discs):
             if coupled:
-                force = pair[disc]
+                force = pair0 if disc == 0 else pair1
                 channel[CH_ARM_F00 + 2 * j + disc] = force
                 if P[FRICTION_ON] == 1.0:
                     power += arm_bearing_friction(P, v, Q, j, disc, force)
