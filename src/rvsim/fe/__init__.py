@@ -4,11 +4,11 @@ hash.
 
 ``flexibility.model = fe`` uses :func:`rvsim.fe.disc.disc_tables` for the cycloid discs and
 (``flexibility.fe_carrier``) :func:`rvsim.fe.carrier.carrier_table` for the carrier and the
-flange and (switch B) :func:`rvsim.fe.pin.pin_table` for the pins in their housing grooves
-(docs/model.md section 17).  :mod:`rvsim.fe.modes` (the disc's modes and
-Craig-Bampton model) and :mod:`rvsim.fe.crank` (the crankshaft in 3-D) are computed and
-verified but not used by the engines yet.  The submodules
-import gmsh and scikit-fem only when a mesh is built.
+flange, (switch B) :func:`rvsim.fe.pin.pin_table` for the pins in their housing grooves
+and (``flexibility.fe_crank``) :func:`rvsim.fe.crank.crank_table` for the crankshafts in 3-D;
+the dynamic engine takes the disc's modes from :mod:`rvsim.fe.modes` (``flexibility.fe_modes``;
+its Craig-Bampton model is built and verified beside them) (docs/model.md section 17).  The
+submodules import gmsh and scikit-fem only when a mesh is built.
 """
 
 from __future__ import annotations

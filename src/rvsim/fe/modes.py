@@ -238,7 +238,7 @@ def disc_free_interface(reducer: Reducer, modes: int) -> tuple[FreeInterface, fl
     a, seconds, from_cache = _disc_reduction(
         reducer, "cycloid-disc-free-interface", modes,
         lambda *args: dataclasses.asdict(free_interface(*args)))
-    return (FreeInterface(a["frequencies_hz"], a["participation"].reshape(-1, modes),
+    return (FreeInterface(a["frequencies_hz"], a["participation"],
                           a["residual"], a["compliance"]), seconds, from_cache)
 
 
