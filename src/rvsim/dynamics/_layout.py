@@ -190,9 +190,12 @@ PIN_FE0        = 171       # c_pin(k step) [m/N], k = 0 .. PIN_FE_N - 1 (added t
                            # slots 171-179
 
 
+# ---- integration scheme (issue 14): 180-189 -----------------------------------------------
+
+
 _P_INDEX = {name: value for name, value in dict(globals()).items()
             if name not in _BEFORE_P and name.isupper()}
-N_PARAMS = 180
+N_PARAMS = 190
 assert len(set(_P_INDEX.values())) == len(_P_INDEX), "two constants share one slot of P"
 assert all(0 <= value < N_PARAMS for value in _P_INDEX.values()), "raise N_PARAMS"
 _NAME_OF = {value: name for name, value in _P_INDEX.items()}
