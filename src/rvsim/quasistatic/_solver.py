@@ -36,6 +36,7 @@ from ..dynamics._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 from ..dynamics._fe_carrier import COLUMNS as PLATE_COLUMNS  # noqa: E402
+from ..dynamics._fe_holes import COLUMNS as HOLE_COLUMNS  # noqa: E402
 from ..dynamics._kernel import forces_at  # noqa: E402
 from ..dynamics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
                                 DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
@@ -521,7 +522,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     pin_force = np.zeros((2, zp))
     pin_elastic = np.zeros((2, zp))
     n_out = int(P[OUT_COUNT])
-    arm_elastic = np.zeros((2, OUT_SLOT0 + n_out + PLATE_COLUMNS))
+    arm_elastic = np.zeros((2, OUT_SLOT0 + n_out + HOLE_COLUMNS + PLATE_COLUMNS))
     mesh_state = np.zeros((2, 4))
     channel = np.zeros(N_CHANNELS)
     Q = np.zeros(N_DOF)
