@@ -390,19 +390,22 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess):
 
 
 @numba.njit(cache=True)
-def arm_station(P, holes, crank, disc, elastic):
+def arm_station(P, holes, crank, disc, elastic=None):
     """Station weights (wl, wu) of disc ``disc``'s eccentric on crank ``crank`` and the centre
     of its hole in the disc's axes (with the per-disc hole offsets of per-part errors, and the
     hole's elastic displacement when the FE disc's holes are load points: ``elastic`` the
-    kernel's arm state, dynamics._fe_holes)."""
+    kernel's arm state, dynamics._fe_holes; omitted: the rigid hole)."""
     wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
     wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
     hole_x, hole_y = holes[crank, 0], holes[crank, 1]
     if holes.shape[1] > 2:
         hole_x += holes[crank, 2 + 2 * disc]
         hole_y += holes[crank, 3 + 2 * disc]
-    dx, dy = hole_shift(P, elastic, crank, disc)
-    return wl, wu, hole_x + dx, hole_y + dy
+    if elastic is not None:
+        dx, dy = hole_shift(P, elastic, crank, disc)
+        hole_x += dx
+        hole_y += dy
+    return wl, wu, hole_x, hole_y
 
 
 @numba.njit(cache=True)
@@ -652,6 +655,20 @@ HOLE_SWEEPS = 200
 
 
 @numba.njit(cache=True)
+def _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic):
+    """The arm bushings alone (scratch ``Qs``, ``Ks``) with the holes' stretch as stored."""
+    coupled = P[FE_CRANK_XX1] > 0.0
+    begin_arms(P, arm_elastic)
+    for j in range(int(P[CRANK_COUNT])):
+        if coupled:
+            arm_pair(P, q, v, Qs, Ks, j, holes, arm_elastic)
+            continue
+        for disc in range(int(P[DISC_COUNT])):
+            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc, arm_elastic)
+            arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic)
+
+
+@numba.njit(cache=True)
 def settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force, pin_elastic,
                  arm_elastic, fe, modes):
     """Quasi-static engine, FE disc with its crank holes as load points
@@ -662,7 +679,6 @@ def settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force,
     scratch arrays.  Returns the number of sweeps (-1: not converged)."""
     Qs = np.zeros(N_DOF)
     Ks = np.zeros((N_DOF, N_DOF))
-    coupled = P[FE_CRANK_XX1] > 0.0
     # per disc: Q read by this sweep's pins, and the previous sweep's change (secant)
     given = np.empty(2)
     before = np.zeros(2)
@@ -675,14 +691,7 @@ def settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force,
         for disc in range(int(P[DISC_COUNT])):
             pin_contacts(P, q, v, Qs, Ks, disc, pins, pin_angle, u, next_eval, step,
                          pin_force, pin_elastic, fe, modes, arm_elastic)
-        begin_arms(P, arm_elastic)
-        for j in range(int(P[CRANK_COUNT])):
-            if coupled:
-                arm_pair(P, q, v, Qs, Ks, j, holes, arm_elastic)
-                continue
-            for disc in range(int(P[DISC_COUNT])):
-                wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc, arm_elastic)
-                arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic)
+        _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic)
         largest = 0.0
         for j in range(2):
             largest = max(largest, abs(arm_elastic[j, 0]), abs(arm_elastic[j, 1]))
@@ -699,20 +708,6 @@ def settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force,
                     set_hole_load(arm_elastic, disc, given[disc] + change / (1.0 - rho))
             before[disc] = change
     return -1
-
-
-@numba.njit(cache=True)
-def _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic):
-    """The arm bushings alone (scratch ``Qs``, ``Ks``) with the holes' stretch as stored."""
-    coupled = P[FE_CRANK_XX1] > 0.0
-    begin_arms(P, arm_elastic)
-    for j in range(int(P[CRANK_COUNT])):
-        if coupled:
-            arm_pair(P, q, v, Qs, Ks, j, holes, arm_elastic)
-            continue
-        for disc in range(int(P[DISC_COUNT])):
-            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc, arm_elastic)
-            arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic)
 
 
 @numba.njit(cache=True)
