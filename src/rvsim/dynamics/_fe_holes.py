@@ -59,7 +59,7 @@ def _col(elastic, k):
     return elastic.shape[1] - PLATE_COLUMNS - COLUMNS + k
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def hole_column(table, u):
     """c_sp at foot ``u`` [m/N]: the table's last column, linear between segment centres."""
     m = table.shape[0]
@@ -67,7 +67,7 @@ def hole_column(table, u):
     return (1.0 - frac) * table[i0, m] + frac * table[i1, m]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def pin_hole_approach(P, table, elastic, disc, u):
     """The normal displacement of the disc at a pin's foot ``u`` under the holes' Q (reduces
     the pin's approach); 0 with the holes held."""
@@ -76,7 +76,7 @@ def pin_hole_approach(P, table, elastic, disc, u):
     return elastic[disc, _col(elastic, Q_PINS)] * hole_column(table, u)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def pin_hole_stretch(P, table, elastic, disc, work, slots, count, pin_elastic):
     """After the coupled pin solve of disc ``disc``: the stretch s from the pins' elastic forces
     (``pin_elastic[slots[a]]`` at feet ``work[a, 2]``) and Q, stored for the arm bushings;
@@ -92,7 +92,7 @@ def pin_hole_stretch(P, table, elastic, disc, work, slots, count, pin_elastic):
     return load * s - 0.5 * css * load * load
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def hole_shift(P, elastic, crank, disc):
     """Elastic displacement (disc axes) of crank ``crank``'s hole in disc ``disc``: -+s/2 e."""
     if not holes_on(P):
@@ -101,7 +101,7 @@ def hole_shift(P, elastic, crank, disc):
     return half * P[FE_HOLE_EX], half * P[FE_HOLE_EY]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def add_hole_load(P, q, elastic, crank, disc, sx, sy):
     """Add the arm bushing's elastic force (sx, sy) on its hole (housing axes) to Q."""
     if not holes_on(P):
@@ -144,7 +144,7 @@ def hole_sum(elastic, disc):
     return elastic[disc, _col(elastic, Q_SUM)]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def begin_arms(P, elastic):
     """Before the arm bushings: Q summed afresh."""
     if holes_on(P):
@@ -152,7 +152,7 @@ def begin_arms(P, elastic):
             elastic[disc, _col(elastic, Q_SUM)] = 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def end_arms(P, elastic):
     """After the arm bushings: their Q becomes the pins' for the next evaluation; returns the
     largest change of Q [N] (0 with the holes held)."""

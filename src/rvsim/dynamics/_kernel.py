@@ -676,7 +676,8 @@ def settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force,
     until the holes' load Q changes by less than :data:`HOLE_RTOL` of the largest arm-bushing
     force, so that the evaluation that
     follows (one more sweep) has the coupled solution's forces and energy.  The forces go to
-    scratch arrays.  Returns the number of sweeps (-1: not converged)."""
+    scratch arrays.  Called by the quasi-static engine before :func:`forces_at` (kept out of
+    the dynamic kernel's step), :func:`hole_stiffness` after it.  Returns the number of sweeps (-1: not converged)."""
     Qs = np.zeros(N_DOF)
     Ks = np.zeros((N_DOF, N_DOF))
     # per disc: Q read by this sweep's pins, and the previous sweep's change (secant)
@@ -828,9 +829,6 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     n_discs = int(P[DISC_COUNT])
     worst = 0.0
     ring = single and P[RING_OUTPUT] == 1.0
-    if holes_on(P) and K.shape[0] > 0:     # quasi-static: the crank holes' coupling solved
-        settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force,
-                     pin_elastic, arm_elastic, fe, modes)
     for disc in range(n_discs):
         if ring:  # the pins turn with the output: contacts found in the ring's axes
             qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
@@ -893,9 +891,6 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
                 energy += e
                 power += pw
     Q[CARRIER] -= torque_load
-    if holes_on(P) and K.shape[0] > 0:     # quasi-static: the holes' coupling in K
-        hole_stiffness(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force,
-                       pin_elastic, arm_elastic, fe, modes, K)
     return energy, power, torque_in, worst
 
 
