@@ -17,7 +17,8 @@ previous evaluation (:data:`Q_PINS`) and give s; the arm bushings then see their
 by +-s/2 e and sum the new Q (:data:`Q_SUM`); :func:`end_arms` hands it to the next
 evaluation.  The dynamic engine takes one sweep per step (Q lags one step); the quasi-static
 engine repeats the sweep at fixed coordinates until Q stops changing (:func:`rvsim.dynamics.
-_kernel.settle_holes`), so its forces and energy are those of the coupled solution.
+_kernel.settle_holes`), so its forces and energy are those of the coupled solution, and adds
+the coupling to its stiffness (:func:`rvsim.dynamics._kernel.hole_stiffness`).
 
 State: per disc (row ``disc`` of the kernel's ``arm_elastic``) :data:`COLUMNS` columns just
 before the carrier's (:data:`rvsim.dynamics._fe_carrier.COLUMNS`, the array's last ones).
