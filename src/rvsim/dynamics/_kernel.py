@@ -629,6 +629,58 @@ def kinetic_energy(P, v):
     return energy
 
 
+@numba.njit(cache=True)
+def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs):
+    """The cranks' arm bushings (or the FE crank's pairs) and support bushings (or the FE
+    plates), with their friction: adds to ``Q`` (and ``K``) and the force channels; returns
+    (potential energy, dissipated power).  One call from :func:`forces_at` (a separate
+    function: the calls of the bearing elements from the inlined step loop cost more than
+    their arithmetic, measured in docs/benchmarks.md, issue 14)."""
+    energy = 0.0
+    power = 0.0
+    coupled = P[FE_CRANK_XX1] > 0.0     # finite-element crank (RV reducers only)
+    for j in range(int(P[CRANK_COUNT])):
+        pair0 = pair1 = 0.0
+        if coupled:     # both bushings together
+            e, pw, pair0, pair1 = arm_pair(P, q, v, Q, K, j, holes, arm_elastic)
+            energy += e
+            power += pw
+        for disc in range(n_discs):
+            if coupled:
+                force = pair0 if disc == 0 else pair1
+                channel[CH_ARM_F00 + 2 * j + disc] = force
+                if P[FRICTION_ON] == 1.0:
+                    power += arm_bearing_friction(P, v, Q, j, disc, force)
+                continue
+            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc)
+            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
+                                       arm_elastic)
+            channel[CH_ARM_F00 + 2 * j + disc] = force
+            energy += e
+            power += pw
+            if P[FRICTION_ON] == 1.0:
+                power += arm_bearing_friction(P, v, Q, j, disc, force)
+        for upper in range(2 if P[FE_PLATE_XX1] == 0.0 else 0):
+            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j],
+                                           arm_elastic)
+            channel[CH_SUP_FL0 + 2 * j + upper] = force
+            energy += e
+            power += pw
+            if P[FRICTION_ON] == 1.0:
+                power += support_bearing_friction(P, v, Q, j, force)
+    if P[FE_PLATE_XX1] != 0.0:    # finite-element carrier and flange (dynamics._fe_carrier)
+        for upper in range(2):
+            e, pw = plate_supports(P, q, v, Q, K, upper == 1, crank_angles, arm_elastic,
+                                   channel)
+            energy += e
+            power += pw
+            for j in range(2):
+                if P[FRICTION_ON] == 1.0:
+                    power += support_bearing_friction(P, v, Q, j,
+                                                      channel[CH_SUP_FL0 + 2 * j + upper])
+    return energy, power
+
+
 @numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
@@ -694,46 +746,9 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         power += pw
         if pen > worst:
             worst = pen
-    coupled = P[FE_CRANK_XX1] > 0.0     # finite-element crank (RV reducers only)
-    for j in range(int(P[CRANK_COUNT])):
-        pair0 = pair1 = 0.0
-        if coupled:     # both bushings together
-            e, pw, pair0, pair1 = arm_pair(P, q, v, Q, K, j, holes, arm_elastic)
-            energy += e
-            power += pw
-        for disc in range(n_discs):
-            if coupled:
-                force = pair0 if disc == 0 else pair1
-                channel[CH_ARM_F00 + 2 * j + disc] = force
-                if P[FRICTION_ON] == 1.0:
-                    power += arm_bearing_friction(P, v, Q, j, disc, force)
-                continue
-            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc)
-            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
-                                       arm_elastic)
-            channel[CH_ARM_F00 + 2 * j + disc] = force
-            energy += e
-            power += pw
-            if P[FRICTION_ON] == 1.0:
-                power += arm_bearing_friction(P, v, Q, j, disc, force)
-        for upper in range(2 if P[FE_PLATE_XX1] == 0.0 else 0):
-            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j],
-                                           arm_elastic)
-            channel[CH_SUP_FL0 + 2 * j + upper] = force
-            energy += e
-            power += pw
-            if P[FRICTION_ON] == 1.0:
-                power += support_bearing_friction(P, v, Q, j, force)
-    if P[FE_PLATE_XX1] != 0.0:    # finite-element carrier and flange (dynamics._fe_carrier)
-        for upper in range(2):
-            e, pw = plate_supports(P, q, v, Q, K, upper == 1, crank_angles, arm_elastic,
-                                   channel)
-            energy += e
-            power += pw
-            for j in range(2):
-                if P[FRICTION_ON] == 1.0:
-                    power += support_bearing_friction(P, v, Q, j,
-                                                      channel[CH_SUP_FL0 + 2 * j + upper])
+    e, pw = crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs)
+    energy += e
+    power += pw
     if single:
         for disc in range(n_discs):
             for m in range(int(P[OUT_COUNT])):
