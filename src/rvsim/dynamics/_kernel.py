@@ -228,9 +228,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         clear_modal_force(modal[disc])
     for i in range(n):
         if step < next_eval[disc, i]:
-            forces[disc, i] = 0.0
-            elastic[disc, i] = 0.0
-            continue
+            continue        # open: its force and elastic force were zeroed when it was skipped
         qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, runout_x, runout_y)
         nominal = pin_angle[i] - angle
         gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp,
