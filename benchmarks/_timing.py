@@ -1,6 +1,7 @@
 """Timing shared by the benchmark scripts (run as ``python benchmarks/bench_*.py``)."""
 
 import os
+import platform
 import statistics
 import tempfile
 import time
@@ -52,3 +53,17 @@ def interleaved(functions: dict, repeat: int) -> dict:
             cpus[name].append(time.process_time() - cpu)
     return {name: (statistics.median(walls[name]), statistics.median(cpus[name]))
             for name in functions}
+
+
+def machine() -> str:
+    """The machine a figure was measured on: architecture, processor, cores, Python."""
+    processor = platform.processor()
+    return (f"{platform.machine()}{' ' + processor if processor else ''}, {os.cpu_count()} cpu, "
+            f"Python {platform.python_version()}")
+
+
+def once(function):
+    """(value, wall time, CPU time) of one call of ``function()`` (times in s, this process)."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    value = function()
+    return value, time.perf_counter() - wall, time.process_time() - cpu

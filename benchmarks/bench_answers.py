@@ -17,6 +17,10 @@ import argparse
 import json
 import time
 
+from _timing import one_thread
+
+one_thread()
+
 
 def _runs(text: str) -> list[int]:
     out: list[int] = []

@@ -16,9 +16,10 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import platform
 import statistics
 import time
+
+from _timing import machine
 
 
 def main() -> None:
@@ -46,8 +47,7 @@ def main() -> None:
     median = {name: statistics.median(w) for name, w in walls.items()}
     median_cpu = {name: statistics.median(c) for name, c in cpus.items()}
     report = {
-        "machine": f"{platform.machine()} {platform.processor() or ''} "
-                   f"{os.cpu_count()} cpu, Python {platform.python_version()}".strip(),
+        "machine": machine(),
         "date": time.strftime("%Y-%m-%d"),
         "paper_run": args.run,
         "median_wall_s": {name: round(v, 3) for name, v in median.items()},

@@ -26,10 +26,9 @@ one_thread("rvsim-bench-fe-")
 import argparse  # noqa: E402
 import os  # noqa: E402
 import json  # noqa: E402
-import platform  # noqa: E402
 import time  # noqa: E402
 
-from _timing import SHORT, interleaved, timed  # noqa: E402
+from _timing import SHORT, interleaved, machine, timed  # noqa: E402
 
 
 def main() -> None:
@@ -73,8 +72,8 @@ def main() -> None:
     for r in (rigid, tooth, fe, fe_crank, fe_carrier, fe_all):  # compile and warm
         ltca(r, torque=torque, positions=8)
     out = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
-           "machine": f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
-                      f"load average {os.getloadavg()[0]:.1f}",
+           "machine": machine(),
+           "load_average": round(os.getloadavg()[0], 1),
            "disc_mesh_and_condense_s": first_build,
            "disc_mesh_and_condense_cpu_s": first_build_cpu, "disc_from_cache_s": from_cache,
            "disc_dofs": table.n_dofs, "disc_triangles": table.n_triangles,

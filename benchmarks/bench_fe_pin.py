@@ -14,13 +14,12 @@ from __future__ import annotations
 
 import os
 
-from _timing import SHORT, one_thread
+from _timing import SHORT, machine, once, one_thread
 
 one_thread("rvsim-bench-fe-pin-")
 
 import argparse  # noqa: E402
 import json  # noqa: E402
-import platform  # noqa: E402
 import time  # noqa: E402
 
 
@@ -40,16 +39,12 @@ def main() -> None:
     # the crank and the plates stay rigid: the pins and the disc are what is compared
     rigid_rest = {"flexibility.fe_crank": False, "flexibility.fe_carrier": False}
     fe = with_values(RV40E, {"B": 1, "flexibility.model": "fe", **rigid_rest})
-    wall, cpu = time.perf_counter(), time.process_time()
-    table = fe_pin.pin_table(fe)
+    table, wall, cpu = once(lambda: fe_pin.pin_table(fe))
     out = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
-           "machine": f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
-                      f"load average {os.getloadavg()[0]:.1f}",
-           "table_build_wall_s": time.perf_counter() - wall,
-           "table_build_cpu_s": time.process_time() - cpu}
-    wall = time.perf_counter()
-    fe_pin.pin_table(fe)
-    out["table_from_cache_s"] = time.perf_counter() - wall
+           "machine": machine(),
+           "load_average": round(os.getloadavg()[0], 1),
+           "table_build_wall_s": wall, "table_build_cpu_s": cpu,
+           "table_from_cache_s": once(lambda: fe_pin.pin_table(fe))[1]}
     model = fe_pin.PinModel(fe_pin.pin_geometry(fe))
     out.update({"pin_dofs": table.n_dofs, "pin_triangles": table.n_triangles,
                 "boundary_edges": model.n_edges,
@@ -89,9 +84,8 @@ def main() -> None:
             fe_pin.pin_table = real if pins == "fe" else (lambda reducer: constant)
             r = with_values(RV40E, values)
             simulate(with_values(r, SHORT))                 # compile and warm
-            wall, cpu = time.perf_counter(), time.process_time()
-            result = simulate(r)
-            dyn[name] = {"cpu_s": time.process_time() - cpu, "wall_s": time.perf_counter() - wall,
+            result, wall, cpu = once(lambda: simulate(r))
+            dyn[name] = {"cpu_s": cpu, "wall_s": wall,
                          "te_mean_arcmin": result.metrics["te_mean_arcmin"],
                          "status": result.status}
         out["dynamic_4s_fe_disc"] = dyn

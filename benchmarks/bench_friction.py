@@ -18,10 +18,9 @@ one_thread()
 
 import argparse  # noqa: E402
 import json  # noqa: E402
-import platform  # noqa: E402
 import time  # noqa: E402
 
-from _timing import timed  # noqa: E402
+from _timing import machine, timed  # noqa: E402
 
 
 def main() -> None:
@@ -35,8 +34,7 @@ def main() -> None:
 
     reducer = with_values(RV40E, TYPICAL_FRICTION)
     report = {
-        "machine": f"{platform.machine()} {platform.processor() or ''} "
-                   f"{os.cpu_count()} cpu, Python {platform.python_version()}".strip(),
+        "machine": machine(),
         "date": time.strftime("%Y-%m-%d %H:%M"),
         "load_average_1min_before": round(os.getloadavg()[0], 2),
         "repeat": args.repeat,

@@ -19,12 +19,11 @@ one_thread()
 
 import argparse  # noqa: E402
 import json  # noqa: E402
-import platform  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 
-from _timing import timed  # noqa: E402
+from _timing import machine, timed  # noqa: E402
 
 FIRST_CALL = """
 import time
@@ -52,8 +51,7 @@ def main() -> None:
 
     rated = RV40E.rating.rated_torque
     report = {
-        "machine": f"{platform.machine()} {platform.processor() or ''} "
-                   f"{os.cpu_count()} cpu, Python {platform.python_version()}".strip(),
+        "machine": machine(),
         "date": time.strftime("%Y-%m-%d"),
         "repeat": args.repeat,
         "first_call_new_process_warm_cache_s": round(first[1], 3),

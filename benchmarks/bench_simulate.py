@@ -18,9 +18,10 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import platform
 import statistics
 import time
+
+from _timing import machine
 
 
 def main() -> None:
@@ -48,8 +49,7 @@ def main() -> None:
     wall = statistics.median(walls)
     pins = 2 * reducer.cycloid.pin_count
     report = {
-        "machine": f"{platform.machine()} {platform.processor() or ''} "
-                   f"{os.cpu_count()} cpu, Python {platform.python_version()}".strip(),
+        "machine": machine(),
         "date": time.strftime("%Y-%m-%d"),
         "paper_run": args.run,
         "first_call_s_including_import_and_jit": round(first_call, 2),

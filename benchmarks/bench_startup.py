@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import platform
 import shutil
 import statistics
 import subprocess
 import sys
 import time
+
+from _timing import machine
 
 
 def _rvsim() -> list[str]:
@@ -64,8 +64,7 @@ def main() -> None:
         "median_s": round(statistics.median(overheads), 3),
         "min_s": round(min(overheads), 3), "max_s": round(max(overheads), 3)}
     print(json.dumps({
-        "machine": f"{platform.machine()} {os.cpu_count()} cpu, Python "
-                   f"{platform.python_version()}",
+        "machine": machine(),
         "date": time.strftime("%Y-%m-%d"), "repeat": args.repeat, "figures": figures,
     }, indent=2))
 

@@ -18,10 +18,11 @@ import argparse
 import dataclasses
 import json
 import os
-import platform
 import statistics
 import tempfile
 import time
+
+from _timing import machine
 
 SHORT_SCHEDULE = (("operating.duration", 0.05), ("operating.speed_ramp_time", 0.01),
                   ("operating.load_start", 0.01), ("operating.load_ramp_end", 0.02),
@@ -57,8 +58,7 @@ def main() -> None:
             # runner's cost is measured then
             assert args.short or (results["status"] == "ok").all()
     print(json.dumps({
-        "machine": f"{platform.machine()} {os.cpu_count()} cpu, Python "
-                   f"{platform.python_version()}",
+        "machine": machine(),
         "date": time.strftime("%Y-%m-%d"),
         "runs_per_study": 36,
         "schedule": "short (0.05 s)" if args.short else "paper (4 s)",

@@ -23,14 +23,13 @@ import argparse
 import dataclasses
 import json
 import os
-import platform
 import sqlite3
 import statistics
 import tempfile
 import threading
 import time
 
-from _timing import one_thread
+from _timing import machine, one_thread
 
 one_thread()
 
@@ -221,8 +220,7 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=None, help="workers of --memory")
     args = parser.parse_args()
     _warm()
-    info = {"machine": f"{platform.machine()}, {os.cpu_count()} cores, Python "
-                       f"{platform.python_version()}",
+    info = {"machine": machine(),
             "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
     if args.local:
         info["local_0.5s_l36"] = local_scaling([int(x) for x in args.local.split(",")],

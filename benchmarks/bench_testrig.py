@@ -20,13 +20,12 @@ one_thread()
 
 import argparse  # noqa: E402
 import json  # noqa: E402
-import platform  # noqa: E402
 import statistics  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from _timing import samples  # noqa: E402
+from _timing import machine, samples  # noqa: E402
 
 
 def _median(function, repeat):
@@ -70,9 +69,7 @@ def main() -> None:
             point_summary(PointResult({}, [analyse_recording(recording, {}, RV40E)]), RV40E)
 
         figures["analysis_only"] = _median(analysis_only, args.repeat)
-    figures.update(machine=f"{platform.machine()} {platform.processor() or ''}".strip(),
-                   cpus=os.cpu_count(), python=platform.python_version(),
-                   date=time.strftime("%Y-%m-%d %H:%M"),
+    figures.update(machine=machine(), date=time.strftime("%Y-%m-%d %H:%M"),
                    load=os.getloadavg()[0])
     print(json.dumps(figures, indent=2))
 

@@ -20,10 +20,11 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import platform
 import tempfile
 import threading
 import time
+
+from _timing import machine
 
 
 def _local(samples: int, workers: int | None, seconds: float | None,
@@ -103,8 +104,7 @@ def main() -> None:
     parser.add_argument("--dask", default=None, help="comma-separated worker counts")
     parser.add_argument("--positions", type=int, default=None)
     args = parser.parse_args()
-    info = {"machine": f"{platform.machine()}, {os.cpu_count()} cores, Python "
-                       f"{platform.python_version()}",
+    info = {"machine": machine(),
             "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
             "load_average_at_start": os.getloadavg()}
     if args.dask:
