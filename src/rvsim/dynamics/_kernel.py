@@ -616,15 +616,9 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
 @numba.njit(cache=True)
 def kinetic_energy(P, v):
     energy = 0.5 * P[J_CARRIER] * v[CARRIER] ** 2
-    # crank node mass matrix: the inverse of [[LL, LU], [LU, UU]]
-    det = P[MINV_LL] * P[MINV_UU] - P[MINV_LU] ** 2
-    m_ll, m_lu, m_uu = P[MINV_UU] / det, -P[MINV_LU] / det, P[MINV_LL] / det
     for j in range(2):
         b = CRANK0 + CRANK_STRIDE * j
-        for axis in range(2):
-            v_low, v_up = v[b + axis], v[b + 2 + axis]
-            energy += 0.5 * (m_ll * v_low * v_low + 2.0 * m_lu * v_low * v_up
-                             + m_uu * v_up * v_up)
+        energy += node_kinetic(P, v, j)        # the support nodes (dynamics._stiff_nodes)
         energy += 0.5 * P[J_CRANK] * v[b + 4] ** 2
     for disc in range(2):
         d = DISC0 + DISC_STRIDE * disc
