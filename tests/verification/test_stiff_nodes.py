@@ -1,26 +1,28 @@
-"""The crank nodes' stability guard of the explicit integrator (issue 14; rvsim.dynamics._stiff_nodes,
-docs/model.md section 9).
+"""The crank nodes' stability guard of the explicit integrator (issue 14;
+rvsim.dynamics._stiff_nodes, docs/model.md section 9).
 
 * the largest eigenvalue of the node block and omega dt agree with numpy's;
 * at the default step the guard is off, and switched on it never acts: the run is the plain
   scheme's, bit for bit;
-* at 1e-5 s, where the plain scheme diverges (paper runs 1-3), the guarded run finishes, its
+* at 1e-5 s, where the plain scheme diverges (here and in paper runs 1-3), the guarded run finishes, its
   energy balances, and its answers agree with the 5e-6 s run (figures measured on the 36 runs
   of the paper's L36 in docs/benchmarks.md);
 * with the guard acting throughout the steady window (a low limit) the balance stays exact:
   the scaled nodes' kinetic energy and the work of changing the scaling are counted.
 """
 
+import sys
+
 import numpy as np
 import pytest
 
-import rvsim.dynamics.simulate  # noqa: F401  (the module, not the function)
+import rvsim.dynamics.simulate  # noqa: F401  (loads the module; the name is the function)
 from rvsim.dynamics import _layout as L
 from rvsim.dynamics import simulate
 from rvsim.dynamics._stiff_nodes import largest_eigenvalue, node_omega_dt
 from rvsim.parameters import RV40E, paper_run_values, with_values
 
-_SIM = __import__("sys").modules["rvsim.dynamics.simulate"]
+_SIM = sys.modules["rvsim.dynamics.simulate"]
 
 QUICK = {"operating.speed_ramp_time": 0.2, "operating.load_start": 0.2,
          "operating.load_ramp_end": 0.4, "operating.steady_start": 0.6,
