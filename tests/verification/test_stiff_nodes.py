@@ -103,6 +103,12 @@ def test_guard_stabilises_1e_5(run_2_quick, monkeypatch):
     # peak-to-peak TE +0.82 %, the largest pin force -0.17 % (this shortened schedule; the
     # paper's 36 runs: docs/benchmarks.md)
     assert P[L.NODE_CHECKS] > 0 and P[L.NODE_PEAK] > 1.6
+    # what the guard did is in the run's summary (rvsim simulate --json, the study's rows)
+    summary = guarded.summary()
+    assert summary["guard_scaled_checks"] == P[L.NODE_CHECKS] > 0
+    assert summary["guard_scaled_checks_steady"] == P[L.NODE_CHECKS_STEADY]
+    assert summary["guard_peak_omega_dt"] == P[L.NODE_PEAK]
+    assert "guard_scaled_checks" not in reference.summary()       # guard off at 5e-6 s
     assert abs(guarded.energy["relative_residual"]) < 3e-5
     a, b = guarded.metrics, reference.metrics
     assert a["te_mean_arcmin"] == pytest.approx(b["te_mean_arcmin"], rel=3e-6)
