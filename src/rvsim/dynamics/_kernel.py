@@ -30,6 +30,9 @@ from ._fe_carrier import COLUMNS as PLATE_COLUMNS, bore_centre, plate_supports
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
 from ._layout import (ECC_ERR0, ECC_PHASE0, MODE_ZETA)
+from ._layout import (NODE_ALERT, NODE_ALPHA0, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_OMEGA_DT,
+                      NODE_PEAK, NODE_REFRESH)
+from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
                       ARM_J2, ARM_KIND, ARM_ROLLERS, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
                       SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, BACKLASH, BASE_PITCH, CARRIER,
@@ -611,15 +614,9 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
 @numba.njit(cache=True)
 def kinetic_energy(P, v):
     energy = 0.5 * P[J_CARRIER] * v[CARRIER] ** 2
-    # crank node mass matrix: the inverse of [[LL, LU], [LU, UU]]
-    det = P[MINV_LL] * P[MINV_UU] - P[MINV_LU] ** 2
-    m_ll, m_lu, m_uu = P[MINV_UU] / det, -P[MINV_LU] / det, P[MINV_LL] / det
     for j in range(2):
         b = CRANK0 + CRANK_STRIDE * j
-        for axis in range(2):
-            v_low, v_up = v[b + axis], v[b + 2 + axis]
-            energy += 0.5 * (m_ll * v_low * v_low + 2.0 * m_lu * v_low * v_up
-                             + m_uu * v_up * v_up)
+        energy += node_kinetic(P, v, j)        # the support nodes (dynamics._stiff_nodes)
         energy += 0.5 * P[J_CRANK] * v[b + 4] ** 2
     for disc in range(2):
         d = DISC0 + DISC_STRIDE * disc
@@ -772,6 +769,17 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
+@numba.njit(cache=True)
+def scaled_kinetic(P, v):
+    """Kinetic energy of the node mass the stability guard added (alpha_j M_n per crank;
+    dynamics._stiff_nodes)."""
+    energy = 0.0
+    for j in range(2):
+        if P[NODE_ALPHA0 + j] > 0.0:
+            energy += P[NODE_ALPHA0 + j] * node_kinetic(P, v, j)
+    return energy
+
+
 #: slots of the integer ``counters`` array carried between calls of :func:`integrate`
 COUNT_ROW, COUNT_IN_WINDOW = 0, 1
 
@@ -808,6 +816,15 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     dt = P[DT]
     Q = np.zeros(N_DOF)
     K = np.zeros((0, 0))
+    # stability guard of the crank nodes (dynamics._stiff_nodes): the stiffness assembled
+    # every P[NODE_REFRESH] steps, a crank's node mass scaled by 1 + alpha where needed
+    guard = P[NODE_OMEGA_DT] > 0.0
+    K_node = np.zeros((N_DOF, N_DOF) if guard else (0, 0))
+    refresh = max(1, int(P[NODE_REFRESH]))
+    if first_step == 0:
+        for i in (NODE_ALPHA0, NODE_ALPHA0 + 1, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_PEAK,
+                  NODE_ALERT):
+            P[i] = 0.0
     mesh_hold = np.zeros((2, 2))
     previous_stiffness = np.zeros(2)
     row = counters[COUNT_ROW]
@@ -823,10 +840,31 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
         modal_kinetic = 0.0
         for j in range(2):
             previous_stiffness[j] = mesh_state[j, 0]
+        check = guard and (step % refresh == 0 or P[NODE_ALERT] == 1.0)
+        if check:
+            K_node[:, :] = 0.0
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe,
-            modal)
+            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state,
+            K_node if check else K, mesh_hold, fe, modal)
+        if check:
+            P[NODE_ALERT] = 0.0
+            for j in range(2):
+                w = node_omega_dt(P, K_node, j, dt)
+                if w > ALERT * P[NODE_OMEGA_DT]:     # near or above the limit: every step
+                    P[NODE_ALERT] = 1.0
+                if w > P[NODE_PEAK]:
+                    P[NODE_PEAK] = w
+                alpha = 0.0
+                if w > P[NODE_OMEGA_DT]:
+                    alpha = (w / P[NODE_OMEGA_DT]) ** 2 - 1.0
+                    P[NODE_CHECKS] += 1.0
+                    if in_window:
+                        P[NODE_CHECKS_STEADY] += 1.0
+                if in_window and alpha != P[NODE_ALPHA0 + j]:
+                    # kinetic energy of the scaled nodes changed at fixed velocities
+                    energy[E_PARAMETRIC] += (alpha - P[NODE_ALPHA0 + j]) * node_kinetic(P, v, j)
+                P[NODE_ALPHA0 + j] = alpha
         # the discs' modes: their energies, where the balance reads them
         if modal.shape[2] > 0 and (step == n_steps or in_window != (t >= P[STEADY_START])):
             for disc in range(2):
@@ -857,13 +895,13 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             row += 1
         if step == n_steps:
             if in_window:
-                energy[E_KIN1] = kinetic_energy(P, v) + modal_kinetic
+                energy[E_KIN1] = kinetic_energy(P, v) + modal_kinetic + scaled_kinetic(P, v)
                 energy[E_POT1] = pot
             step += 1
             break
         if not in_window and t >= P[STEADY_START]:
             in_window = True
-            energy[E_KIN0] = kinetic_energy(P, v) + modal_kinetic
+            energy[E_KIN0] = kinetic_energy(P, v) + modal_kinetic + scaled_kinetic(P, v)
             energy[E_POT0] = pot
         if in_window:
             # power flows over this step, velocities taken at the start of the step
@@ -874,8 +912,12 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
         v[CARRIER] += h_carrier * Q[CARRIER]
         for j in range(2):
             b = CRANK0 + CRANK_STRIDE * j
+            scale = P[NODE_ALPHA0 + j]
             for axis in range(2):
                 f_low, f_up = Q[b + axis], Q[b + 2 + axis]
+                if scale > 0.0:      # the guard's scaled node mass (1 + alpha) M_n
+                    f_low /= 1.0 + scale
+                    f_up /= 1.0 + scale
                 v[b + axis] += h_ll * f_low + h_lu * f_up
                 v[b + 2 + axis] += h_lu * f_low + h_uu * f_up
             v[b + 4] += h_crank * Q[b + 4]
