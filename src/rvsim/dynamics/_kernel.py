@@ -33,6 +33,9 @@ from ._fe_holes import hole_stretch, hole_sum, set_hole_load, set_hole_stretch
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
 from ._layout import (ECC_ERR0, ECC_PHASE0, FE_HOLE_CSS0, FE_HOLE_CSS1, MODE_ZETA)
+from ._layout import (NODE_ALERT, NODE_ALPHA0, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_OMEGA_DT,
+                      NODE_PEAK, NODE_REFRESH)
+from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
                       ARM_J2, ARM_KIND, ARM_ROLLERS, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
                       SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, BACKLASH, BASE_PITCH, CARRIER,
@@ -96,7 +99,7 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
     Q[b + 3] += wu * fy
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank):
     """Sun-planet mesh j: returns (normal force, input torque, energy, dissipated power,
     stiffness, deflection, number of tooth pairs at the roll position, loaded flank).
@@ -232,9 +235,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         clear_modal_force(modal[disc])
     for i in range(n):
         if step < next_eval[disc, i]:
-            forces[disc, i] = 0.0
-            elastic[disc, i] = 0.0
-            continue
+            continue        # open: its force and elastic force were zeroed when it was skipped
         qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, runout_x, runout_y)
         nominal = pin_angle[i] - angle
         gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp,
@@ -333,7 +334,7 @@ def pin_friction(P, fn, px, py, gap, nx, ny, lvx, lvy, w, cos_t, sin_t):
             ft * (cx * tiy - cy * tix), -ft * slide)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx, sy, cx, cy,
                   w_in):
     """Stiffness matrix -dQ/dq of an arm element whose elastic force S (on the disc hole;
@@ -356,7 +357,7 @@ def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx,
     K[d + 2, d + 2] += sx * lx + sy * ly
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, sx, sy, cx, cy, w_in):
     """Stiffness matrix of a support element (node coordinates from b, crank rotation at
     ``phi``, bore centre (bx, by) on the carrier), as :func:`arm_stiffness`."""
@@ -445,7 +446,7 @@ def apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy
     Q[d + 2] -= -fx * (hy - q[d + 1]) + fy * (hx - q[d])
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
     contact, :func:`~rvsim.dynamics._bearings.conforming_force`) or a needle roller bearing
@@ -581,7 +582,7 @@ def arm_pair_stiffness(K, q, crank, geo, dsdr, force, w_in):
                     K[row, col] += gx[a] * ax + gy[a] * ay
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
     """Crank ``crank``'s lower or upper support node in its carrier / flange bore: the paper's
     bushing (conforming contact) or a tapered roller bearing (P[SUP_KIND]).
@@ -630,15 +631,9 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
 @numba.njit(cache=True)
 def kinetic_energy(P, v):
     energy = 0.5 * P[J_CARRIER] * v[CARRIER] ** 2
-    # crank node mass matrix: the inverse of [[LL, LU], [LU, UU]]
-    det = P[MINV_LL] * P[MINV_UU] - P[MINV_LU] ** 2
-    m_ll, m_lu, m_uu = P[MINV_UU] / det, -P[MINV_LU] / det, P[MINV_LL] / det
     for j in range(2):
         b = CRANK0 + CRANK_STRIDE * j
-        for axis in range(2):
-            v_low, v_up = v[b + axis], v[b + 2 + axis]
-            energy += 0.5 * (m_ll * v_low * v_low + 2.0 * m_lu * v_low * v_up
-                             + m_uu * v_up * v_up)
+        energy += node_kinetic(P, v, j)        # the support nodes (dynamics._stiff_nodes)
         energy += 0.5 * P[J_CRANK] * v[b + 4] ** 2
     for disc in range(2):
         d = DISC0 + DISC_STRIDE * disc
@@ -777,6 +772,60 @@ def hole_stiffness(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_forc
             K[i, j] += 0.5 * (extra[i, j] + extra[j, i])
 
 
+@numba.njit(cache=True)
+def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs):
+    """The cranks' arm bushings (or the FE crank's pairs) and support bushings (or the FE
+    plates), with their friction: adds to ``Q`` (and ``K``) and the force channels; returns
+    (potential energy, dissipated power).  One call from :func:`forces_at` (a separate
+    function: the calls of the bearing elements from the inlined step loop cost more than
+    their arithmetic, measured in docs/benchmarks.md, issue 14)."""
+    energy = 0.0
+    power = 0.0
+    coupled = P[FE_CRANK_XX1] > 0.0     # finite-element crank (RV reducers only)
+    begin_arms(P, arm_elastic)          # the FE disc's crank holes (dynamics._fe_holes)
+    for j in range(int(P[CRANK_COUNT])):
+        pair0 = pair1 = 0.0
+        if coupled:     # both bushings together
+            e, pw, pair0, pair1 = arm_pair(P, q, v, Q, K, j, holes, arm_elastic)
+            energy += e
+            power += pw
+        for disc in range(n_discs):
+            if coupled:
+                force = pair0 if disc == 0 else pair1
+                channel[CH_ARM_F00 + 2 * j + disc] = force
+                if P[FRICTION_ON] == 1.0:
+                    power += arm_bearing_friction(P, v, Q, j, disc, force)
+                continue
+            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc, arm_elastic)
+            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
+                                       arm_elastic)
+            channel[CH_ARM_F00 + 2 * j + disc] = force
+            energy += e
+            power += pw
+            if P[FRICTION_ON] == 1.0:
+                power += arm_bearing_friction(P, v, Q, j, disc, force)
+        for upper in range(2 if P[FE_PLATE_XX1] == 0.0 else 0):
+            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j],
+                                           arm_elastic)
+            channel[CH_SUP_FL0 + 2 * j + upper] = force
+            energy += e
+            power += pw
+            if P[FRICTION_ON] == 1.0:
+                power += support_bearing_friction(P, v, Q, j, force)
+    end_arms(P, arm_elastic)
+    if P[FE_PLATE_XX1] != 0.0:    # finite-element carrier and flange (dynamics._fe_carrier)
+        for upper in range(2):
+            e, pw = plate_supports(P, q, v, Q, K, upper == 1, crank_angles, arm_elastic,
+                                   channel)
+            energy += e
+            power += pw
+            for j in range(2):
+                if P[FRICTION_ON] == 1.0:
+                    power += support_bearing_friction(P, v, Q, j,
+                                                      channel[CH_SUP_FL0 + 2 * j + upper])
+    return energy, power
+
+
 @numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
@@ -842,48 +891,9 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         power += pw
         if pen > worst:
             worst = pen
-    coupled = P[FE_CRANK_XX1] > 0.0     # finite-element crank (RV reducers only)
-    begin_arms(P, arm_elastic)          # the FE disc's crank holes (dynamics._fe_holes)
-    for j in range(int(P[CRANK_COUNT])):
-        pair0 = pair1 = 0.0
-        if coupled:     # both bushings together
-            e, pw, pair0, pair1 = arm_pair(P, q, v, Q, K, j, holes, arm_elastic)
-            energy += e
-            power += pw
-        for disc in range(n_discs):
-            if coupled:
-                force = pair0 if disc == 0 else pair1
-                channel[CH_ARM_F00 + 2 * j + disc] = force
-                if P[FRICTION_ON] == 1.0:
-                    power += arm_bearing_friction(P, v, Q, j, disc, force)
-                continue
-            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc, arm_elastic)
-            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
-                                       arm_elastic)
-            channel[CH_ARM_F00 + 2 * j + disc] = force
-            energy += e
-            power += pw
-            if P[FRICTION_ON] == 1.0:
-                power += arm_bearing_friction(P, v, Q, j, disc, force)
-        for upper in range(2 if P[FE_PLATE_XX1] == 0.0 else 0):
-            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j],
-                                           arm_elastic)
-            channel[CH_SUP_FL0 + 2 * j + upper] = force
-            energy += e
-            power += pw
-            if P[FRICTION_ON] == 1.0:
-                power += support_bearing_friction(P, v, Q, j, force)
-    end_arms(P, arm_elastic)
-    if P[FE_PLATE_XX1] != 0.0:    # finite-element carrier and flange (dynamics._fe_carrier)
-        for upper in range(2):
-            e, pw = plate_supports(P, q, v, Q, K, upper == 1, crank_angles, arm_elastic,
-                                   channel)
-            energy += e
-            power += pw
-            for j in range(2):
-                if P[FRICTION_ON] == 1.0:
-                    power += support_bearing_friction(P, v, Q, j,
-                                                      channel[CH_SUP_FL0 + 2 * j + upper])
+    e, pw = crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs)
+    energy += e
+    power += pw
     if single:
         for disc in range(n_discs):
             for m in range(int(P[OUT_COUNT])):
@@ -907,6 +917,17 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
         mesh_state, mesh_hold, fe, modal)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
+
+
+@numba.njit(cache=True)
+def scaled_kinetic(P, v):
+    """Kinetic energy of the node mass the stability guard added (alpha_j M_n per crank;
+    dynamics._stiff_nodes)."""
+    energy = 0.0
+    for j in range(2):
+        if P[NODE_ALPHA0 + j] > 0.0:
+            energy += P[NODE_ALPHA0 + j] * node_kinetic(P, v, j)
+    return energy
 
 
 #: slots of the integer ``counters`` array carried between calls of :func:`integrate`
@@ -946,6 +967,15 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     dt = P[DT]
     Q = np.zeros(N_DOF)
     K = np.zeros((0, 0))
+    # stability guard of the crank nodes (dynamics._stiff_nodes): the stiffness assembled
+    # every P[NODE_REFRESH] steps, a crank's node mass scaled by 1 + alpha where needed
+    guard = P[NODE_OMEGA_DT] > 0.0
+    K_node = np.zeros((N_DOF, N_DOF) if guard else (0, 0))
+    refresh = max(1, int(P[NODE_REFRESH]))
+    if first_step == 0:
+        for i in (NODE_ALPHA0, NODE_ALPHA0 + 1, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_PEAK,
+                  NODE_ALERT):
+            P[i] = 0.0
     mesh_hold = np.zeros((2, 2))
     previous_stiffness = np.zeros(2)
     row = counters[COUNT_ROW]
@@ -961,10 +991,31 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
         modal_kinetic = 0.0
         for j in range(2):
             previous_stiffness[j] = mesh_state[j, 0]
+        check = guard and (step % refresh == 0 or P[NODE_ALERT] == 1.0)
+        if check:
+            K_node[:, :] = 0.0
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe,
-            modal)
+            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state,
+            K_node if check else K, mesh_hold, fe, modal)
+        if check:
+            P[NODE_ALERT] = 0.0
+            for j in range(2):
+                w = node_omega_dt(P, K_node, j, dt)
+                if w > ALERT * P[NODE_OMEGA_DT]:     # near or above the limit: every step
+                    P[NODE_ALERT] = 1.0
+                if w > P[NODE_PEAK]:
+                    P[NODE_PEAK] = w
+                alpha = 0.0
+                if w > P[NODE_OMEGA_DT]:
+                    alpha = (w / P[NODE_OMEGA_DT]) ** 2 - 1.0
+                    P[NODE_CHECKS] += 1.0
+                    if in_window:
+                        P[NODE_CHECKS_STEADY] += 1.0
+                if in_window and alpha != P[NODE_ALPHA0 + j]:
+                    # kinetic energy of the scaled nodes changed at fixed velocities
+                    energy[E_PARAMETRIC] += (alpha - P[NODE_ALPHA0 + j]) * node_kinetic(P, v, j)
+                P[NODE_ALPHA0 + j] = alpha
         # the discs' modes: their energies, where the balance reads them
         if modal.shape[2] > 0 and (step == n_steps or in_window != (t >= P[STEADY_START])):
             for disc in range(2):
@@ -995,13 +1046,13 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             row += 1
         if step == n_steps:
             if in_window:
-                energy[E_KIN1] = kinetic_energy(P, v) + modal_kinetic
+                energy[E_KIN1] = kinetic_energy(P, v) + modal_kinetic + scaled_kinetic(P, v)
                 energy[E_POT1] = pot
             step += 1
             break
         if not in_window and t >= P[STEADY_START]:
             in_window = True
-            energy[E_KIN0] = kinetic_energy(P, v) + modal_kinetic
+            energy[E_KIN0] = kinetic_energy(P, v) + modal_kinetic + scaled_kinetic(P, v)
             energy[E_POT0] = pot
         if in_window:
             # power flows over this step, velocities taken at the start of the step
@@ -1012,8 +1063,12 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
         v[CARRIER] += h_carrier * Q[CARRIER]
         for j in range(2):
             b = CRANK0 + CRANK_STRIDE * j
+            scale = P[NODE_ALPHA0 + j]
             for axis in range(2):
                 f_low, f_up = Q[b + axis], Q[b + 2 + axis]
+                if scale > 0.0:      # the guard's scaled node mass (1 + alpha) M_n
+                    f_low /= 1.0 + scale
+                    f_up /= 1.0 + scale
                 v[b + axis] += h_ll * f_low + h_lu * f_up
                 v[b + 2 + axis] += h_lu * f_low + h_uu * f_up
             v[b + 4] += h_crank * Q[b + 4]

@@ -21,6 +21,16 @@ from .compliance import palmgren_coefficient, pin_compliance, ring_compliance, t
 
 __all__ = ["KernelModel", "build_model", "MassProperties", "mass_properties"]
 
+#: stability guard of the crank nodes (dynamics._stiff_nodes, docs/model.md section 9): the
+#: largest omega dt of a crank's node modes before its node mass is scaled (below the undamped
+#: limit 2 of the scheme with the margin measured in docs/benchmarks.md: 1.8 let paper run 2
+#: diverge at 1e-5 s), and the steps between two checks
+OMEGA_DT_LIMIT = 1.6
+REFRESH_STEPS = 8
+#: the guard runs for steps above this [s] only: at and below it the node modes stay at
+#: omega dt <= 1.3 (0.58-1.07 measured at 5e-6 s), and its checks cost about 3 % of the run
+GUARD_FROM_STEP = 6e-6
+
 
 @dataclasses.dataclass(frozen=True)
 class MassProperties:
@@ -266,6 +276,9 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.W_D2_L], P[L.W_D2_U] = _station_weights(r, k.disc2_z)
     P[L.W_G_L], P[L.W_G_U] = _station_weights(r, k.gear_z)
     P[L.PEN_LIMIT] = 0.2e-3
+    # stability guard of the crank nodes (dynamics._stiff_nodes; docs/model.md section 9)
+    P[L.NODE_OMEGA_DT] = OMEGA_DT_LIMIT if time_step > GUARD_FROM_STEP else 0.0
+    P[L.NODE_REFRESH] = REFRESH_STEPS
 
     pins = pin_table(r)       # pin centres, and per-pin / per-tooth errors when there are any
     size, phase = eccentric_errors(r)

@@ -85,6 +85,11 @@ class Result:
     wall_s: float
     energy: dict[str, float]
     reducer_name: str = "RV-40E"
+    guard: dict[str, float] = dataclasses.field(default_factory=dict)
+    """what the crank nodes' stability guard did (steps above 6e-6 s only; docs/model.md
+    section 9): ``guard_scaled_checks`` (whole run) and ``guard_scaled_checks_steady`` (steady
+    window) count the checks where it scaled a crank's node mass, ``guard_peak_omega_dt`` is
+    the largest omega dt of the node modes it found; empty when the guard was off"""
 
     def channel(self, name: str) -> np.ndarray:
         return self.channels[:, L.CHANNEL_NAMES.index(name)]
@@ -135,7 +140,7 @@ class Result:
         """The JSON object ``rvsim simulate --json`` prints."""
         return {**self.metrics, "sim_time_s": float(self.time[-1]) if len(self.time) else 0.0,
                 "steps": self.steps, "wall_s": self.wall_s, "status": self.status,
-                "reducer": self.reducer_name}
+                "reducer": self.reducer_name, **self.guard}
 
     def spectrum(self, pin_count: int = 40):
         """Steady-window TE spectrum: DataFrame of ``order`` (crank rotation relative to the

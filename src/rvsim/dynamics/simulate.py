@@ -118,7 +118,8 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
                     pin_forces=pin_forces[:rows], ratio=reducer.ratio,
                     steady_start=reducer.operating.steady_start,
                     status=L.STATUS_TEXT[status], steps=int(steps), wall_s=wall,
-                    energy=_energy_balance(energy), reducer_name=reducer.name)
+                    energy=_energy_balance(energy), reducer_name=reducer.name,
+                    guard=_guard_report(model.P))
     if status != L.STATUS_OK:
         message = (f"simulation stopped at t = {steps * time_step:.4f} s: "
                    f"{result.status.replace('_', ' ')}")
@@ -182,6 +183,16 @@ def _check_finished_run(result: Result) -> tuple[int, str]:
             f"ratio {result.ratio:.4g} (limit {100 * SPEED_RATIO_LIMIT:g} %): the drive does "
             "not transmit the motion")
     return L.STATUS_OK, ""
+
+
+def _guard_report(P: np.ndarray) -> dict[str, float]:
+    """What the crank nodes' stability guard did in the run just integrated (empty when it was
+    off: steps up to model.GUARD_FROM_STEP)."""
+    if P[L.NODE_OMEGA_DT] <= 0.0:
+        return {}
+    return {"guard_scaled_checks": int(P[L.NODE_CHECKS]),
+            "guard_scaled_checks_steady": int(P[L.NODE_CHECKS_STEADY]),
+            "guard_peak_omega_dt": float(P[L.NODE_PEAK])}
 
 
 def _energy_balance(e: np.ndarray) -> dict[str, float]:

@@ -1,0 +1,122 @@
+"""Stability guard of the crank nodes for the explicit integrator (issue 14; docs/model.md 9).
+
+The step of the semi-implicit Euler scheme is limited by the crank nodes on their bushings:
+the largest eigenvalue omega^2 of M_n^-1 K_n, M_n the 4 x 4 mass matrix of one crank's two
+support nodes (x_l, y_l, x_u, y_u) and K_n the tangent stiffness of the elements on them (the
+two supports, the two arm bushings, the mesh), rises with the conforming bushings' load, and
+the scheme is unstable once omega dt exceeds 2 (less with damping).  In a run the largest
+values come in the unloaded start and the load step, where the play is thrown through
+(docs/benchmarks.md, issue 14), not in the steady window.
+
+The guard: every P[NODE_REFRESH] steps the kernel assembles the stiffness matrix (the one the
+quasi-static engine uses, ``forces_at`` with a 17 x 17 K) and, for each crank,
+omega dt = sqrt(lambda_max) dt.  Where it exceeds P[NODE_OMEGA_DT] the crank's node mass
+matrix is scaled by (1 + alpha), alpha = (omega dt / limit)^2 - 1, until the next refresh:
+the node mode then runs at omega dt = limit (checks every step while some crank is above
+ALERT x the limit), and the scheme stays symplectic Euler of a
+system with that inertia.  Where the limit is not exceeded (alpha = 0) nothing changes, bit
+for bit.  The energy balance stays exact for the scaled system: its kinetic energy
+1/2 (1 + alpha) v^T M_n v is counted, and the change of alpha at fixed velocities is counted
+as parametric work, like the meshes' stiffness change.
+
+P[NODE_ALPHA0 + j] carries crank j's alpha from one call of ``integrate`` to the next.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ._layout import CRANK0, CRANK_STRIDE, MINV_LL, MINV_LU, MINV_UU
+
+#: above ALERT x the limit the next check comes at the next step, not P[NODE_REFRESH] steps
+#: later: a bushing's stiffness can double within a few steps when the play is thrown
+#: through (paper run 29 diverged at 1e-5 s with checks every 8 steps only)
+ALERT = 0.9
+#: Jacobi sweeps for the 4 x 4 symmetric eigenproblem (converged to rounding in 4-6)
+_SWEEPS = 8
+
+
+@numba.njit(cache=True)
+def node_mass(P):
+    """(m_ll, m_lu, m_uu): one axis of a crank's node mass matrix (the inverse of P's
+    MINV block)."""
+    det = P[MINV_LL] * P[MINV_UU] - P[MINV_LU] ** 2
+    return P[MINV_UU] / det, -P[MINV_LU] / det, P[MINV_LL] / det
+
+
+@numba.njit(cache=True)
+def largest_eigenvalue(C):
+    """Largest eigenvalue of the symmetric 4 x 4 matrix C (cyclic Jacobi; C is overwritten)."""
+    n = 4
+    for _ in range(_SWEEPS):
+        off = 0.0
+        for p in range(n):
+            for r in range(p + 1, n):
+                off += C[p, r] * C[p, r]
+        scale = 0.0
+        for p in range(n):
+            scale += C[p, p] * C[p, p]
+        if off <= 1e-30 * scale:
+            break
+        for p in range(n - 1):
+            for r in range(p + 1, n):
+                if C[p, r] == 0.0:
+                    continue
+                theta = (C[r, r] - C[p, p]) / (2.0 * C[p, r])
+                t = (1.0 if theta >= 0.0 else -1.0) / (abs(theta) + math.sqrt(theta * theta + 1.0))
+                c = 1.0 / math.sqrt(t * t + 1.0)
+                s = t * c
+                for k in range(n):          # columns p, r
+                    ckp, ckr = C[k, p], C[k, r]
+                    C[k, p] = c * ckp - s * ckr
+                    C[k, r] = s * ckp + c * ckr
+                for k in range(n):          # rows p, r
+                    cpk, crk = C[p, k], C[r, k]
+                    C[p, k] = c * cpk - s * crk
+                    C[r, k] = s * cpk + c * crk
+    best = C[0, 0]
+    for p in range(1, n):
+        if C[p, p] > best:
+            best = C[p, p]
+    return best
+
+
+@numba.njit(cache=True)
+def node_omega_dt(P, K, crank, dt):
+    """omega dt of crank ``crank``'s stiffest node mode: sqrt(lambda_max(M_n^-1 K_n)) dt, K_n
+    the symmetric part of K's node block."""
+    m_ll, m_lu, m_uu = node_mass(P)
+    # M_n = L L^T per axis (lower, upper), L = [[a, 0], [b, c]]; C = L^-1 K_n L^-T
+    a = math.sqrt(m_ll)
+    b = m_lu / a
+    c = math.sqrt(m_uu - b * b)
+    # L^-1 = [[1 / a, 0], [-b / (a c), 1 / c]] for both axes; coordinates (x_l, y_l, x_u, y_u)
+    Li = np.zeros((4, 4))
+    for axis in range(2):
+        Li[axis, axis] = 1.0 / a
+        Li[2 + axis, axis] = -b / (a * c)
+        Li[2 + axis, 2 + axis] = 1.0 / c
+    base = CRANK0 + CRANK_STRIDE * crank
+    Ks = np.empty((4, 4))
+    for r in range(4):
+        for s in range(4):
+            Ks[r, s] = 0.5 * (K[base + r, base + s] + K[base + s, base + r])
+    C = Li @ Ks @ Li.T
+    lam = largest_eigenvalue(C)
+    return math.sqrt(lam) * dt if lam > 0.0 else 0.0
+
+
+@numba.njit(cache=True)
+def node_kinetic(P, v, crank):
+    """1/2 v_n^T M_n v_n of crank ``crank``'s nodes (unscaled)."""
+    m_ll, m_lu, m_uu = node_mass(P)
+    base = CRANK0 + CRANK_STRIDE * crank
+    energy = 0.0
+    for axis in range(2):
+        v_low, v_up = v[base + axis], v[base + 2 + axis]
+        energy += 0.5 * (m_ll * v_low * v_low + 2.0 * m_lu * v_low * v_up
+                         + m_uu * v_up * v_up)
+    return energy
