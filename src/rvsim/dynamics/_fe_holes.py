@@ -9,7 +9,9 @@ Q = e . (S_1 - S_0) / 2, S_k the arm bushing's elastic force on hole k, and
     s = sum_j c_sp(u_j) F_j + c_ss Q,      the pins' normal displacement  += c_sp(u_i) Q,
 
 F_j the pins' elastic forces at feet u_j, c_sp the last column of each disc's table (read
-linearly between segment centres like the table's diagonal), c_ss in P.  The body's strain
+linearly between segment centres like the table's diagonal,
+:func:`rvsim.dynamics._fe_contacts.stretch_column`), c_ss in P; the coupled pins' solve
+(:func:`rvsim.dynamics._fe_contacts.apply_coupled`) takes Q and gives s.  The body's strain
 energy gains Q sum_j c_sp F_j + c_ss Q^2 / 2 = Q s - c_ss Q^2 / 2.
 
 One Gauss-Seidel sweep per force evaluation: the pins of a disc are solved with the Q of the
@@ -35,13 +37,11 @@ from ._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 from ._fe_carrier import COLUMNS as PLATE_COLUMNS  # noqa: E402
-from ._fe_contacts import _segment  # noqa: E402
 from ._layout import (DISC0, DISC_STRIDE, FE_HOLE_CSS0, FE_HOLE_CSS1, FE_HOLE_EX,  # noqa: E402
                       FE_HOLE_EY, FE_HOLES)
 
-__all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "hole_column", "hole_shift",
-           "add_hole_load", "hole_load", "set_hole_load", "hole_stretch", "set_hole_stretch", "hole_sum", "begin_arms", "end_arms", "pin_hole_approach", "pin_hole_stretch",
-           "holes_on"]
+__all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "hole_row", "hole_css", "hole_shift",
+           "add_hole_load", "hole_load", "set_hole_load", "hole_stretch", "set_hole_stretch", "hole_sum", "begin_arms", "end_arms", "holes_on"]
 
 #: columns per disc row: Q read by the pins, Q summed by the arm bushings, the stretch s
 COLUMNS = 3
@@ -61,36 +61,20 @@ def _col(elastic, k):
 
 
 @numba.njit(cache=True, inline="always")
-def hole_column(table, u):
-    """c_sp at foot ``u`` [m/N]: the table's last column, linear between segment centres."""
-    m = table.shape[0]
-    i0, i1, frac = _segment(u, m)
-    return (1.0 - frac) * table[i0, m] + frac * table[i1, m]
+def hole_row(P, elastic, disc):
+    """The crank-hole state of disc ``disc`` (Q read, Q summed, stretch) as a view for the
+    coupled pins (:func:`rvsim.dynamics._fe_contacts.apply_coupled`); empty with the holes
+    held."""
+    if not holes_on(P):
+        return elastic[disc, 0:0]
+    c = _col(elastic, Q_PINS)
+    return elastic[disc, c:c + COLUMNS]
 
 
 @numba.njit(cache=True, inline="always")
-def pin_hole_approach(P, table, elastic, disc, u):
-    """The normal displacement of the disc at a pin's foot ``u`` under the holes' Q (reduces
-    the pin's approach); 0 with the holes held."""
-    if not holes_on(P):
-        return 0.0
-    return elastic[disc, _col(elastic, Q_PINS)] * hole_column(table, u)
-
-
-@numba.njit(cache=True, inline="always")
-def pin_hole_stretch(P, table, elastic, disc, work, slots, count, pin_elastic):
-    """After the coupled pin solve of disc ``disc``: the stretch s from the pins' elastic forces
-    (``pin_elastic[slots[a]]`` at feet ``work[a, 2]``) and Q, stored for the arm bushings;
-    returns the strain energy the holes add (Q s - c_ss Q^2 / 2)."""
-    if not holes_on(P):
-        return 0.0
-    load = elastic[disc, _col(elastic, Q_PINS)]
-    css = P[FE_HOLE_CSS0] if disc == 0 else P[FE_HOLE_CSS1]
-    s = css * load
-    for a in range(count):
-        s += hole_column(table, work[a, 2]) * pin_elastic[slots[a]]
-    elastic[disc, _col(elastic, STRETCH)] = s
-    return load * s - 0.5 * css * load * load
+def hole_css(P, disc):
+    """c_ss of disc ``disc`` [m/N]."""
+    return P[FE_HOLE_CSS0] if disc == 0 else P[FE_HOLE_CSS1]
 
 
 @numba.njit(cache=True, inline="always")

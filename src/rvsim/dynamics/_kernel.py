@@ -28,7 +28,7 @@ from ._pin_compliance import pin_series_compliance
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
 from ._fe_carrier import COLUMNS as PLATE_COLUMNS, bore_centre, plate_supports
 from ._fe_holes import COLUMNS as HOLE_COLUMNS, add_hole_load, begin_arms, end_arms
-from ._fe_holes import hole_load, hole_shift, holes_on, pin_hole_approach, pin_hole_stretch
+from ._fe_holes import hole_css, hole_load, hole_row, hole_shift, holes_on
 from ._fe_holes import hole_stretch, hole_sum, set_hole_load, set_hole_stretch
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
@@ -262,9 +262,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         cb = pin_series_compliance(P, nx, ny, nominal)   # the pin's (and tooth's) own
         if coupled:
             slots[count] = i
-            # the crank holes' load moves the profile too (dynamics._fe_holes)
-            work[count, 0] = delta - pin_hole_approach(P, fe[disc], arm_elastic, disc, ui)
-            work[count, 1], work[count, 2] = -gap_rate, ui
+            work[count, 0], work[count, 1], work[count, 2] = delta, -gap_rate, ui
             work[count, 3], work[count, 4], work[count, 5] = gx, gy, lever
             work[count, 6] = cb
             # for the friction after the coupled solve: pin centre, gap, normal
@@ -296,7 +294,8 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     if count > 0:
         e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[ZETA],
                                  P[M_DISC], forces[disc], elastic[disc], Q, K, d,
-                                 modal[disc])
+                                 modal[disc], hole_row(P, arm_elastic, disc),
+                                 hole_css(P, disc))
         energy += e
         power += pw
         if P[MU] > 0.0:
@@ -310,9 +309,6 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
                 Q[d + 1] += fy_t
                 Q[d + 2] += torque_t
                 power += loss
-    if coupled:     # the stretch of the crank holes (dynamics._fe_holes)
-        energy += pin_hole_stretch(P, fe[disc], arm_elastic, disc, work, slots, count,
-                                   elastic[disc])
     return energy, power, worst
 
 
@@ -391,18 +387,26 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess):
 
 
 @numba.njit(cache=True)
-def arm_station(P, holes, crank, disc, elastic=None):
+def arm_station(P, holes, crank, disc):
     """Station weights (wl, wu) of disc ``disc``'s eccentric on crank ``crank`` and the centre
     of its hole in the disc's axes (with the per-disc hole offsets of per-part errors, and the
-    hole's elastic displacement when the FE disc's holes are load points: ``elastic`` the
-    kernel's arm state, dynamics._fe_holes; omitted: the rigid hole)."""
+    hole's elastic displacement when the FE disc's holes are load points: added by the
+    callers, :func:`rvsim.dynamics._fe_holes.hole_shift`)."""
     wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
     wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
     hole_x, hole_y = holes[crank, 0], holes[crank, 1]
     if holes.shape[1] > 2:
         hole_x += holes[crank, 2 + 2 * disc]
         hole_y += holes[crank, 3 + 2 * disc]
-    if elastic is not None:
+    return wl, wu, hole_x, hole_y
+
+
+@numba.njit(cache=True, inline="always")
+def hole_station(P, holes, crank, disc, elastic):
+    """:func:`arm_station` with the hole's elastic displacement when the FE disc's holes are
+    load points (``elastic`` the kernel's arm state; dynamics._fe_holes)."""
+    wl, wu, hole_x, hole_y = arm_station(P, holes, crank, disc)
+    if holes_on(P):
         dx, dy = hole_shift(P, elastic, crank, disc)
         hole_x += dx
         hole_y += dy
@@ -501,7 +505,7 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic):
     r, rate, guess, force = work[:, 0:2], work[:, 2:4], work[:, 4:6], work[:, 6:8]
     geo = work[:, 8:16]              # wl, wu, ecc, cos phi, sin phi, hx, hy, series stiffness
     for disc in range(2):
-        wl, wu, hole_x, hole_y = arm_station(P, holes, crank, disc, elastic)
+        wl, wu, hole_x, hole_y = hole_station(P, holes, crank, disc, elastic)
         rx, ry, rvx, rvy, _, ecc, cos_p, sin_p, hx, hy = arm_geometry(
             P, q, v, crank, disc, hole_x, hole_y, wl, wu)
         r[disc, 0], r[disc, 1], rate[disc, 0], rate[disc, 1] = rx, ry, rvx, rvy
@@ -659,7 +663,7 @@ def _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic):
             arm_pair(P, q, v, Qs, Ks, j, holes, arm_elastic)
             continue
         for disc in range(int(P[DISC_COUNT])):
-            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc, arm_elastic)
+            wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
             arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic)
 
 
@@ -796,7 +800,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
                 if P[FRICTION_ON] == 1.0:
                     power += arm_bearing_friction(P, v, Q, j, disc, force)
                 continue
-            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc, arm_elastic)
+            wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
             force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
                                        arm_elastic)
             channel[CH_ARM_F00 + 2 * j + disc] = force
