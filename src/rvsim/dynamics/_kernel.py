@@ -184,7 +184,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 
 @numba.njit(cache=True)
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
-                 fe, modal, arm_elastic):
+                 fe, modal, arm_elastic=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
@@ -206,7 +206,9 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     independent contacts.  ``modal`` (2, m + HEADER, modes): the discs' modes
     (:mod:`rvsim.dynamics._fe_modes`; ``fe`` then holds their residual tables), whose modal
     force this evaluation fills.  ``arm_elastic``: the kernel's arm state, whose crank-hole
-    columns carry the holes' load Q and stretch (:mod:`rvsim.dynamics._fe_holes`).
+    columns carry the holes' load Q and stretch (:mod:`rvsim.dynamics._fe_holes`); passed
+    only with the holes as load points (an array argument costs the step its reference
+    counting: measured 4-6 % of the closed-form run).
     """
     d = DISC0 + DISC_STRIDE * disc
     ox, oy, th = q[d], q[d + 1], q[d + 2]
@@ -292,10 +294,15 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         Q[d + 1] += fy
         Q[d + 2] += torque
     if count > 0:
+        if arm_elastic is None:
+            hole = Q[0:0]
+            css = 0.0
+        else:
+            hole = hole_row(P, arm_elastic, disc)
+            css = hole_css(P, disc)
         e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[ZETA],
                                  P[M_DISC], forces[disc], elastic[disc], Q, K, d,
-                                 modal[disc], hole_row(P, arm_elastic, disc),
-                                 hole_css(P, disc))
+                                 modal[disc], hole, css)
         energy += e
         power += pw
         if P[MU] > 0.0:
@@ -886,11 +893,14 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         if ring:  # the pins turn with the output: contacts found in the ring's axes
             qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
             e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
-                                      step, pin_force, pin_elastic, fe, modes, arm_elastic)
+                                      step, pin_force, pin_elastic, fe, modes)
             ring_forces(q, qr, Qr, Kr, Q, K, disc)
-        else:
+        elif holes_on(P):     # the FE disc's crank holes as load points (_fe_holes)
             e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
                                       pin_force, pin_elastic, fe, modes, arm_elastic)
+        else:
+            e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
+                                      pin_force, pin_elastic, fe, modes)
         energy += e
         power += pw
         if pen > worst:
