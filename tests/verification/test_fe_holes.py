@@ -11,6 +11,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from rvsim.dynamics import _layout as L
+from rvsim.dynamics._fe_holes import COLUMNS as HOLE_COLUMNS
 from rvsim.errors import ParameterError
 from rvsim.parameters import RV40E, with_values
 
@@ -140,7 +141,7 @@ def test_quasi_static_stiffness_is_the_derivative_of_the_forces():
     zp = m.pins.shape[0]
     angle = 2 * np.pi * np.arange(zp) / zp
     state = [np.zeros((2, zp)), np.zeros((2, zp), dtype=np.int64), np.zeros((2, zp)),
-             np.zeros((2, zp)), np.zeros((2, L.OUT_SLOT0 + 3 + 4))]
+             np.zeros((2, zp)), np.zeros((2, L.OUT_SLOT0 + HOLE_COLUMNS + 4))]
 
     def evaluate(x):
         Q, K = np.zeros(17), np.zeros((17, 17))
@@ -194,8 +195,8 @@ def test_sweep_contraction_and_the_modes_refused():
     angle = 2 * np.pi * np.arange(zp) / zp
     u, ne = np.zeros((2, zp)), np.zeros((2, zp), dtype=np.int64)
     pf, pe = np.zeros((2, zp)), np.zeros((2, zp))
-    arm = np.zeros((2, L.OUT_SLOT0 + 3 + 4))
-    col = arm.shape[1] - 7
+    arm = np.zeros((2, L.OUT_SLOT0 + HOLE_COLUMNS + 4))
+    col = arm.shape[1] - HOLE_COLUMNS - 4
     history = []
     for _ in range(8):
         Q, K = np.zeros(17), np.zeros((17, 17))
@@ -203,7 +204,11 @@ def test_sweep_contraction_and_the_modes_refused():
         for d in range(2):
             Kn.pin_contacts(m.P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne, 1, pf, pe,
                             m.fe, np.zeros((2, 0, 0)), arm)
-        Kn._hole_arms(m.P, q, np.zeros(17), Q, K, m.holes, arm)
+        Kn.begin_arms(m.P, arm)
+        for j in range(2):
+            for d in range(2):
+                wl, wu, hx, hy = Kn.hole_station(m.P, m.holes, j, d, arm)
+                Kn.arm_bushing(m.P, q, np.zeros(17), Q, K, j, d, hx, hy, wl, wu, arm)
         Kn.end_arms(m.P, arm)
         history.append(arm[:, col].copy())
     steps = np.diff(np.array(history), axis=0)

@@ -337,6 +337,29 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
 
 
 @numba.njit(cache=True)
+def _hole_derivatives(table, work, active, jac, y, na, css, scratch, hole):
+    """The crank holes' load Q seen from the solved pins (:mod:`rvsim.dynamics._fe_holes`;
+    quasi-static engine): into ``hole[3]`` ds/dQ = c_ss - c_A^T S_AA c_A and the pins'
+    generalised forces on the disc (``hole[4:7]``) d(x, y, theta)/dQ = -G_A^T S_AA c_A, S_AA = (C_AA +
+    D_A^-1)^-1 = L^-T L^-1 the tangent of the loaded pins A (factor L in ``jac``), c_A their
+    stretch column (the approaches fall by c_sp Q), ``y`` = L^-1 G_A (na x 3) already formed:
+    one forward substitution for t = L^-1 c_A."""
+    t = scratch[:na].reshape((na, 1))
+    for x in range(na):
+        t[x, 0] = stretch_column(table, work[active[x], 2])
+    _forward(jac, t, na)
+    ds = css
+    for x in range(na):
+        ds -= t[x, 0] * t[x, 0]
+    hole[3] = ds
+    for p in range(3):
+        total = 0.0
+        for x in range(na):
+            total += y[x, p] * t[x, 0]
+        hole[4 + p] = -total
+
+
+@numba.njit(cache=True)
 def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, d, modal,
                   hole, css):
     """Solve the ``count`` touching pins of a disc together and add their forces to ``Q`` (and
@@ -351,10 +374,12 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
     ``modal`` (m + HEADER, modes) the disc's modes (:mod:`rvsim.dynamics._fe_modes`; ``table``
     is then their residual): each approach is less the modes' deflection at its foot, and the
     elastic forces are added to the modal force.  Returns (energy, dissipated power,
-    converged).  ``hole`` (3, or empty: the holes held): the disc's crank-hole state of
-    :mod:`rvsim.dynamics._fe_holes` (Q read, Q summed, stretch): each approach is less
+    converged).  ``hole`` (7, or empty: the holes held): the disc's crank-hole state of
+    :mod:`rvsim.dynamics._fe_holes` (Q read, Q summed, stretch, ds/dQ, d(Q_x, Q_y, Q_theta)/dQ):
+    each approach is less
     c_sp(u) Q (``table``'s last column, :func:`stretch_column`), the stretch
-    s = sum c_sp F + ``css`` Q is stored and the energy gains Q s - css Q^2 / 2."""
+    s = sum c_sp F + ``css`` Q is stored and the energy gains Q s - css Q^2 / 2; with ``K``
+    wanted, the solve's response to Q is stored too (:func:`_hole_derivatives`)."""
     n = count
     want = K.shape[0] > 0
     # one block of work space: delta, foot, own compliances, guess, forces, C_ii, k; with K
@@ -427,6 +452,8 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
         if na < 0:
             for p in range(3):
                 K[d + p, d + p] = np.nan
+            if hole.shape[0] > 0:
+                hole[3:7] = np.nan
         else:
             active = index[2 * n:2 * n + na]
             y = sg[:na]
@@ -440,6 +467,8 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
                     for x in range(na):
                         total += y[x, p] * y[x, r]
                     K[d + p, d + r] += total
+            if hole.shape[0] > 0:
+                _hole_derivatives(table, work, active, jac, y, na, css, scratch, hole)
     if hole.shape[0] > 0:           # the holes' stretch and its strain energy (_fe_holes)
         s = css * hole[0]
         for a in range(n):

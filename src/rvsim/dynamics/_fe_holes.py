@@ -38,14 +38,20 @@ invalidate_stale_cache(__file__)
 
 from ._fe_carrier import COLUMNS as PLATE_COLUMNS  # noqa: E402
 from ._layout import (DISC0, DISC_STRIDE, FE_HOLE_CSS0, FE_HOLE_CSS1, FE_HOLE_EX,  # noqa: E402
-                      FE_HOLE_EY, FE_HOLES)
+                      FE_HOLE_EY, FE_HOLES, N_DOF)
 
-__all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "hole_row", "hole_css", "hole_shift",
+__all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED", "PREDICT", "hole_row", "hole_css", "hole_shift",
            "add_hole_load", "hole_load", "set_hole_load", "hole_stretch", "set_hole_stretch", "hole_sum", "begin_arms", "end_arms", "holes_on"]
 
-#: columns per disc row: Q read by the pins, Q summed by the arm bushings, the stretch s
-COLUMNS = 3
-Q_PINS, Q_SUM, STRETCH = 0, 1, 2
+#: columns per disc row: Q read by the pins, Q summed by the arm bushings, the stretch s; for
+#: the quasi-static engine (:mod:`rvsim.dynamics._hole_coupling`) also ds/dQ of the pins' solve
+#: and d(generalised forces of the pins on the disc x, y, theta)/dQ (written at these offsets
+#: by :func:`rvsim.dynamics._fe_contacts.apply_coupled`), whether the last evaluation solved
+#: the coupling tight (1.0) or loosely (0.0), then the predictor of the next evaluation's Q:
+#: Q + PREDICT + sum_i dQ/dq_i q_i (PREDICT = -dQ/dq . q at the last solution; the N_DOF
+#: columns of dQ/dq from PREDICT + 1)
+COLUMNS = 9 + N_DOF
+Q_PINS, Q_SUM, STRETCH, DS_DQ, DF_DQ, SETTLED, PREDICT = 0, 1, 2, 3, 4, 7, 8
 
 
 @numba.njit(cache=True, inline="always")

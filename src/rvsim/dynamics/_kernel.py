@@ -28,11 +28,10 @@ from ._pin_compliance import pin_series_compliance
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
 from ._fe_carrier import COLUMNS as PLATE_COLUMNS, bore_centre, plate_supports
 from ._fe_holes import COLUMNS as HOLE_COLUMNS, add_hole_load, begin_arms, end_arms
-from ._fe_holes import hole_css, hole_load, hole_row, hole_shift, holes_on
-from ._fe_holes import hole_stretch, hole_sum, set_hole_load, set_hole_stretch
+from ._fe_holes import hole_css, hole_row, hole_shift, holes_on
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
-from ._layout import (ECC_ERR0, ECC_PHASE0, FE_HOLE_CSS0, FE_HOLE_CSS1, MODE_ZETA)
+from ._layout import (ECC_ERR0, ECC_PHASE0, MODE_ZETA)
 from ._layout import (NODE_ALERT, NODE_ALPHA0, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_OMEGA_DT,
                       NODE_PEAK, NODE_REFRESH)
 from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt
@@ -650,137 +649,6 @@ def kinetic_energy(P, v):
         d = DISC0 + DISC_STRIDE * disc
         energy += 0.5 * P[M_DISC] * (v[d] ** 2 + v[d + 1] ** 2) + 0.5 * P[J_DISC] * v[d + 2] ** 2
     return energy
-
-
-#: the quasi-static engine's crank-hole sweeps: converged when Q changes by less than this
-#: fraction of the largest arm-bushing force (the pins' and bushings' own solves are converged
-#: to 1e-10 relative, so a tighter test would chase their round-off)
-HOLE_RTOL = 1e-9
-#: most sweeps per evaluation (measured: a few from the previous evaluation's Q)
-HOLE_SWEEPS = 200
-
-
-@numba.njit(cache=True)
-def _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic):
-    """The arm bushings alone (scratch ``Qs``, ``Ks``) with the holes' stretch as stored."""
-    coupled = P[FE_CRANK_XX1] > 0.0
-    begin_arms(P, arm_elastic)
-    for j in range(int(P[CRANK_COUNT])):
-        if coupled:
-            arm_pair(P, q, v, Qs, Ks, j, holes, arm_elastic)
-            continue
-        for disc in range(int(P[DISC_COUNT])):
-            wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
-            arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic)
-
-
-@numba.njit(cache=True)
-def settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force, pin_elastic,
-                 arm_elastic, fe, modes):
-    """Quasi-static engine, FE disc with its crank holes as load points
-    (:mod:`rvsim.dynamics._fe_holes`): repeat the pins-then-arm-bushings sweep at fixed ``q``
-    until the holes' load Q changes by less than :data:`HOLE_RTOL` of the largest arm-bushing
-    force, so that the evaluation that
-    follows (one more sweep) has the coupled solution's forces and energy.  The forces go to
-    scratch arrays.  Called by the quasi-static engine before :func:`forces_at` (kept out of
-    the dynamic kernel's step), :func:`hole_stiffness` after it.  Returns the number of sweeps (-1: not converged)."""
-    Qs = np.zeros(N_DOF)
-    Ks = np.zeros((N_DOF, N_DOF))
-    # per disc: Q read by this sweep's pins, and the previous sweep's change (secant)
-    given = np.empty(2)
-    before = np.zeros(2)
-    for sweep in range(HOLE_SWEEPS + 1):
-        next_eval[:, :] = 0     # every pin at every sweep (the quasi-static engine's rule)
-        if sweep == HOLE_SWEEPS:
-            return -1
-        for disc in range(2):
-            given[disc] = hole_load(arm_elastic, disc)
-        for disc in range(int(P[DISC_COUNT])):
-            pin_contacts(P, q, v, Qs, Ks, disc, pins, pin_angle, u, next_eval, step,
-                         pin_force, pin_elastic, fe, modes, arm_elastic)
-        _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic)
-        largest = 0.0
-        for j in range(2):
-            largest = max(largest, abs(arm_elastic[j, 0]), abs(arm_elastic[j, 1]))
-        if end_arms(P, arm_elastic) <= HOLE_RTOL * largest + 1e-12:
-            next_eval[:, :] = 0
-            return sweep + 1
-        # the sweep is a contraction of factor rho ~ -0.3 in each disc's Q: the secant
-        # through the last two changes extrapolates to the fixed point
-        for disc in range(2):
-            change = hole_load(arm_elastic, disc) - given[disc]
-            if before[disc] != 0.0:
-                rho = change / before[disc]
-                if abs(rho) < 0.9:
-                    set_hole_load(arm_elastic, disc, given[disc] + change / (1.0 - rho))
-            before[disc] = change
-    return -1
-
-
-@numba.njit(cache=True)
-def hole_stiffness(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force,
-                   pin_elastic, arm_elastic, fe, modes, K):
-    """Add to ``K`` (assembled with each disc's Q held for its pins and each stretch s held for
-    the arm bushings) what the holes' coupling changes (:mod:`rvsim.dynamics._fe_holes`):
-
-        K += -(df_p/dQ) dQ/dq - (df_a/ds) ds/dq,
-        dQ/dq = (I - D B)^-1 (C + D A),   ds/dq = A + B dQ/dq,
-
-    with A = ds/dq (pins, Q held) = (df_p/dQ)^T, C = dQ/dq (arms, s held) = (df_a/ds)^T (both
-    pairs are mixed second derivatives of the potential energy), B = ds/dQ (pins), D = dQ/ds
-    (arms).  df_p/dQ, B, df_a/ds and D by central differences in the four interface variables
-    (the pins and bushings solved again; their state restored after)."""
-    saved_force, saved_elastic = pin_force.copy(), pin_elastic.copy()
-    saved_u, saved_arm = u.copy(), arm_elastic.copy()
-    Qs = np.zeros(N_DOF)
-    Ks = np.zeros((N_DOF, N_DOF))
-    a = np.zeros((N_DOF, 2))       # df_pins / dQ_d
-    c = np.zeros((N_DOF, 2))       # df_arms / ds_d
-    b = np.zeros((2, 2))           # ds / dQ (pins; diagonal)
-    d = np.zeros((2, 2))           # dQ / ds (arms)
-    largest = 1.0
-    for j in range(2):
-        largest = max(largest, abs(arm_elastic[j, 0]), abs(arm_elastic[j, 1]))
-    for disc in range(2):
-        load = hole_load(arm_elastic, disc)
-        eps = 1e-5 * largest
-        for sign in (1.0, -1.0):
-            for i in range(N_DOF):
-                Qs[i] = 0.0
-            set_hole_load(arm_elastic, disc, load + sign * eps)
-            next_eval[:, :] = 0
-            pin_contacts(P, q, v, Qs, Ks, disc, pins, pin_angle, u, next_eval, step,
-                         pin_force, pin_elastic, fe, modes, arm_elastic)
-            for i in range(N_DOF):
-                a[i, disc] += sign * Qs[i] / (2.0 * eps)
-            b[disc, disc] += sign * hole_stretch(arm_elastic, disc) / (2.0 * eps)
-            pin_force[:, :] = saved_force
-            pin_elastic[:, :] = saved_elastic
-            u[:, :] = saved_u
-            arm_elastic[:, :] = saved_arm
-    for disc in range(2):
-        stretch = hole_stretch(arm_elastic, disc)
-        eps = 1e-5 * largest * max(P[FE_HOLE_CSS0], P[FE_HOLE_CSS1], 1e-11)
-        for sign in (1.0, -1.0):
-            for i in range(N_DOF):
-                Qs[i] = 0.0
-            set_hole_stretch(arm_elastic, disc, stretch + sign * eps)
-            _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic)
-            for i in range(N_DOF):
-                c[i, disc] += sign * Qs[i] / (2.0 * eps)
-            for other in range(2):
-                d[other, disc] += sign * hole_sum(arm_elastic, other) / (2.0 * eps)
-            arm_elastic[:, :] = saved_arm
-    next_eval[:, :] = 0
-    # dQ/dq = (I - D B)^-1 (C + D A), A = a^T, C = c^T
-    m = np.eye(2) - d @ b
-    rhs = c.T + d @ a.T
-    dq_dq = np.linalg.solve(m, rhs)
-    ds_dq = a.T + b @ dq_dq
-    extra = -(a @ dq_dq + c @ ds_dq)
-    for i in range(N_DOF):
-        for j in range(N_DOF):
-            K[i, j] += 0.5 * (extra[i, j] + extra[j, i])
 
 
 @numba.njit(cache=True)

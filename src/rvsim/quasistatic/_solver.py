@@ -37,7 +37,11 @@ invalidate_stale_cache(__file__)
 
 from ..dynamics._fe_carrier import COLUMNS as PLATE_COLUMNS  # noqa: E402
 from ..dynamics._fe_holes import COLUMNS as HOLE_COLUMNS  # noqa: E402
-from ..dynamics._kernel import forces_at, hole_stiffness, settle_holes  # noqa: E402
+from ..dynamics._hole_coupling import (HOLE_PASSES, add_coupling_stiffness,  # noqa: E402
+                                       arm_response, correct_forces, forget_prediction,
+                                       hole_settled, newton_step, newton_update, prepare,
+                                       settled)
+from ..dynamics._kernel import forces_at  # noqa: E402
 from ..dynamics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
                                 DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
                                 FE_DISC, FE_HOLES, PEN_LIMIT, PIN_RADIUS, RING_OUTPUT, STAGES,
@@ -72,19 +76,41 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
     (Pi, the size of its terms, input torque, max pin penetration).  ``f_ext`` is a constant
     generalised force added to Q (the friction forces held during one search), its potential
     -f_ext . q added to Pi."""
-    K[:, :] = 0.0
-    next_eval[:, :] = 0
-    modes = np.zeros((2, 0, 0))
-    if P[FE_HOLES] != 0.0:    # the FE disc's crank holes: their coupling solved first
-        settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, 1, pin_force,
-                     pin_elastic, arm_elastic, fe, modes)
-    energy, _, torque_in, worst = forces_at(
-        P, q, v, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
-        next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
-        mesh_hold, fe)
-    if P[FE_HOLES] != 0.0:    # and their coupling in the stiffness
-        hole_stiffness(P, q, v, pins, pin_angle, holes, u, next_eval, 1, pin_force,
-                       pin_elastic, arm_elastic, fe, modes, K)
+    coupled = P[FE_HOLES] != 0.0    # the FE disc's crank holes as load points
+    two = 2 if coupled else 0
+    given, r, step = np.empty(two), np.empty(two), np.zeros(two)
+    c, d = np.empty((N_DOF if coupled else 0, 2)), np.empty((two, 2))
+    newton = coupled
+    before = np.inf
+    # one force evaluation; with the holes, Newton passes on their load Q (dynamics.
+    # _hole_coupling) until it is solved tight, or loosely with the forces corrected
+    for attempt in range(HOLE_PASSES if coupled else 1):
+        K[:, :] = 0.0
+        next_eval[:, :] = 0
+        if coupled:
+            prepare(P, q, arm_elastic, given, attempt == 0)
+        energy, _, torque_in, worst = forces_at(
+            P, q, v, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
+            u, next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
+            mesh_hold, fe)
+        if not coupled:
+            break
+        tight, loose = settled(P, arm_elastic, given, r, Q)
+        arm_response(P, q, holes, arm_elastic, c, d)
+        # a Newton step that did not halve |r| (contacts switching): plain sweeps from here
+        # (Q = Q_sum, a contraction)
+        size = max(abs(r[0]), abs(r[1]))
+        newton = newton and size <= 0.5 * before
+        before = size
+        if newton:
+            newton_step(P, arm_elastic, r, d, step)
+            newton_update(P, arm_elastic, given, step)
+        if tight or (loose and newton):
+            break
+    if coupled:
+        add_coupling_stiffness(P, q, arm_elastic, c, d, K)
+        if newton:
+            correct_forces(P, arm_elastic, c, step, Q)
     work = torque * q[CARRIER]
     held = 0.0
     for i in range(N_DOF):
@@ -141,6 +167,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
     u_keep, force_keep, elastic_keep = np.empty_like(u), np.empty_like(u), np.empty_like(u)
     arm_keep, channel_keep = np.empty_like(arm_elastic), np.empty_like(channel)
     mesh_keep = np.empty_like(mesh_state)
+    polish = 0
     for iteration in range(max_iter + 1):
         norm = 0.0
         for i in range(n):
@@ -149,6 +176,15 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 norm = abs(r[i])
         if not (math.isfinite(norm) and math.isfinite(pi)):
             return STATUS_NONFINITE, iteration, torque_in
+        if norm <= tol and not hole_settled(P, arm_elastic) and polish < 5:
+            # the FE disc's crank holes solved loosely so far: again at q, from the Newton
+            # update of their loads (dynamics._hole_coupling)
+            polish += 1
+            pi, size, torque_in, worst = _evaluate(
+                P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
+                next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
+                mesh_hold, f_ext, fe)
+            continue
         if norm <= tol:
             if worst > P[PEN_LIMIT]:
                 return STATUS_PENETRATION, iteration, torque_in
@@ -544,6 +580,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
         if k > 0:
             if theta_in[k] != theta_in[k - 1]:
                 shift = _predict(P, q, theta_in[k - 1], theta_in[k], holes)
+                forget_prediction(P, arm_elastic)
                 if P[STAGES] != 1.0:
                     _carry_feet(u, shift)
             elif torque[k] != torque[k - 1]:
