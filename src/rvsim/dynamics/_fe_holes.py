@@ -18,9 +18,9 @@ One Gauss-Seidel sweep per force evaluation: the pins of a disc are solved with 
 previous evaluation (:data:`Q_PINS`) and give s; the arm bushings then see their holes shifted
 by +-s/2 e and sum the new Q (:data:`Q_SUM`); :func:`end_arms` hands it to the next
 evaluation.  The dynamic engine takes one sweep per step (Q lags one step); the quasi-static
-engine repeats the sweep at fixed coordinates until Q stops changing (:func:`rvsim.dynamics.
-_kernel.settle_holes`), so its forces and energy are those of the coupled solution, and adds
-the coupling to its stiffness (:func:`rvsim.dynamics._kernel.hole_stiffness`).
+engine solves the coupling at fixed coordinates by Newton with its exact derivatives and adds
+it to its stiffness (:mod:`rvsim.quasistatic._solver`), so its forces and energy are those
+of the coupled solution.
 
 State: per disc (row ``disc`` of the kernel's ``arm_elastic``) :data:`COLUMNS` columns just
 before the carrier's (:data:`rvsim.dynamics._fe_carrier.COLUMNS`, the array's last ones).
@@ -44,7 +44,7 @@ __all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED",
            "add_hole_load", "hole_load", "set_hole_load", "hole_stretch", "set_hole_stretch", "hole_sum", "begin_arms", "end_arms", "holes_on"]
 
 #: columns per disc row: Q read by the pins, Q summed by the arm bushings, the stretch s; for
-#: the quasi-static engine (:mod:`rvsim.dynamics._hole_coupling`) also ds/dQ of the pins' solve
+#: the quasi-static engine (:mod:`rvsim.quasistatic._solver`) also ds/dQ of the pins' solve
 #: and d(generalised forces of the pins on the disc x, y, theta)/dQ (written at these offsets
 #: by :func:`rvsim.dynamics._fe_contacts.apply_coupled`), whether the last evaluation solved
 #: the coupling tight (1.0) or loosely (0.0), then the predictor of the next evaluation's Q:
