@@ -181,7 +181,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 
 @numba.njit(cache=True)
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
-                 fe, modal):
+                 fe, modal, slots=None, work=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
@@ -202,16 +202,55 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     are then solved together (:func:`rvsim.dynamics._fe_contacts.apply_coupled`).  (2, 0, 0):
     independent contacts.  ``modal`` (2, m + HEADER, modes): the discs' modes
     (:mod:`rvsim.dynamics._fe_modes`; ``fe`` then holds their residual tables), whose modal
-    force this evaluation fills.
+    force this evaluation fills.  ``slots`` (n,) and ``work`` (n, 12) are the coupled solve's
+    work arrays (0-length without ``fe``; omitted: allocated here).  The loop over the pins,
+    :func:`pin_loop`, allocates nothing and counts no references; the coupled solve,
+    :func:`coupled_pins`, does.
     """
+    coupled = fe.shape[1] > 0
+    if slots is None:
+        n = pins.shape[0]
+        pin_slots = np.empty(n if coupled else 0, dtype=np.int64)
+        pin_work = np.empty((n if coupled else 0, 12))
+    else:
+        pin_slots, pin_work = slots, work
+    if coupled:
+        clear_modal_force(modal[disc])
+    energy, power, worst, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
+                                           step, forces, elastic, coupled, pin_slots,
+                                           pin_work)
+    if count > 0:
+        e, pw = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], pin_slots, pin_work,
+                             count, forces, elastic)
+        energy += e
+        power += pw
+    return energy, power, worst
+
+
+@numba.njit(cache=True, inline="always")
+def _disc_frame(P, q, v, disc):
+    """Disc ``disc``'s profile angle: (cos, sin) and the housing velocity seen from the disc
+    centre in disc axes (rotation part excluded), and its angular velocity."""
     d = DISC0 + DISC_STRIDE * disc
-    ox, oy, th = q[d], q[d + 1], q[d + 2]
     vx, vy, w = v[d], v[d + 1], v[d + 2]
-    zp = P[ZP]
-    angle = th - disc * math.pi / P[ZC] + P[PROFILE_ROT]
+    angle = q[d + 2] - disc * math.pi / P[ZC] + P[PROFILE_ROT]
     cos_t, sin_t = math.cos(angle), math.sin(angle)
+    return angle, cos_t, sin_t, cos_t * vx + sin_t * vy, -sin_t * vx + cos_t * vy, w
+
+
+@numba.njit(cache=True, _nrt=False)
+def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
+             coupled, slots, work):
+    """The pin loop of :func:`pin_contacts` (compiled without reference counting: it
+    allocates nothing): the independent contacts' forces added to ``Q``; with ``coupled``, the
+    touching pins written to ``slots`` / ``work`` for :func:`coupled_pins`.  Returns (energy,
+    dissipated power, max penetration, number of coupled contacts)."""
+    d = DISC0 + DISC_STRIDE * disc
+    ox, oy = q[d], q[d + 1]
+    vx, vy = v[d], v[d + 1]
+    zp = P[ZP]
     # housing velocity seen from the disc centre, in disc axes (rotation part added per pin)
-    lvx, lvy = cos_t * vx + sin_t * vy, -sin_t * vx + cos_t * vy
+    angle, cos_t, sin_t, lvx, lvy, w = _disc_frame(P, q, v, disc)
     rg, a = P[RG], P[A_GEN]
     clearance = P[PROFILE_OFFSET] - P[PIN_RADIUS]
     runout_x = P[RUNOUT_X0] if disc == 0 else P[RUNOUT_X1]
@@ -223,12 +262,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     worst = 0.0
     want = K.shape[0] > 0
     n = pins.shape[0]
-    coupled = fe.shape[1] > 0
-    slots = np.empty(n if coupled else 0, dtype=np.int64)
-    work = np.empty((n if coupled else 0, 12))
     count = 0
-    if coupled:
-        clear_modal_force(modal[disc])
     for i in range(n):
         if step < next_eval[disc, i]:
             continue        # open: its force and elastic force were zeroed when it was skipped
@@ -287,24 +321,30 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         Q[d] += fx
         Q[d + 1] += fy
         Q[d + 2] += torque
-    if count > 0:
-        e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[ZETA],
-                                 P[M_DISC], forces[disc], elastic[disc], Q, K, d,
-                                 modal[disc])
-        energy += e
-        power += pw
-        if P[MU] > 0.0:
-            # friction at the coupled solve's normal forces (the table is normal-normal: the
-            # tangential forces do not deflect the neighbours' approaches)
-            for a in range(count):
-                fx_t, fy_t, torque_t, loss = pin_friction(
-                    P, forces[disc, slots[a]], work[a, 7], work[a, 8], work[a, 9],
-                    work[a, 10], work[a, 11], lvx, lvy, w, cos_t, sin_t)
-                Q[d] += fx_t
-                Q[d + 1] += fy_t
-                Q[d + 2] += torque_t
-                power += loss
-    return energy, power, worst
+    return energy, power, worst, count
+
+
+@numba.njit(cache=True)
+def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, elastic):
+    """The touching pins of disc ``disc`` that :func:`pin_loop` collected, solved together with
+    the disc's finite-element ``table`` (:func:`rvsim.dynamics._fe_contacts.apply_coupled`),
+    and their friction.  Returns (energy, dissipated power)."""
+    d = DISC0 + DISC_STRIDE * disc
+    _, cos_t, sin_t, lvx, lvy, w = _disc_frame(P, q, v, disc)
+    energy, power, _ = apply_coupled(table, slots, work, count, P[PIN_C], P[ZETA],
+                                     P[M_DISC], forces[disc], elastic[disc], Q, K, d, modal)
+    if P[MU] > 0.0:
+        # friction at the coupled solve's normal forces (the table is normal-normal: the
+        # tangential forces do not deflect the neighbours' approaches)
+        for a in range(count):
+            fx_t, fy_t, torque_t, loss = pin_friction(
+                P, forces[disc, slots[a]], work[a, 7], work[a, 8], work[a, 9],
+                work[a, 10], work[a, 11], lvx, lvy, w, cos_t, sin_t)
+            Q[d] += fx_t
+            Q[d + 1] += fy_t
+            Q[d + 2] += torque_t
+            power += loss
+    return energy, power
 
 
 @numba.njit(cache=True, inline="always")
@@ -679,7 +719,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
 @numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-              channel, mesh_state, mesh_hold, fe, modal=None):
+              channel, mesh_state, mesh_hold, fe, modal=None, pin_slots=None, pin_work=None):
     """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
     ``torque_load``: the one evaluation of the force elements that both engines use.
 
@@ -691,12 +731,19 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     With P[FRICTION_ON], the mesh and bearing friction (dynamics._friction) act after their
     elements with the normal forces those return.  Returns (potential energy, dissipated
     power, input torque, max pin penetration).  ``modal``: the discs' modes (dynamic engine,
-    :mod:`rvsim.dynamics._fe_modes`; omitted: none).
+    :mod:`rvsim.dynamics._fe_modes`; omitted: none).  ``pin_slots``, ``pin_work``: the pin
+    contacts' work arrays (:func:`pin_contacts`; omitted: allocated per call).
     """
     if modal is None:
         modes = np.zeros((2, 0, 0))
     else:
         modes = modal
+    coupled = fe.shape[1] > 0
+    if pin_slots is None:
+        slots = np.empty(pins.shape[0] if coupled else 0, dtype=np.int64)
+        work = np.empty((pins.shape[0] if coupled else 0, 12))
+    else:
+        slots, work = pin_slots, pin_work
     for i in range(N_DOF):
         Q[i] = 0.0
     energy = 0.0
@@ -732,11 +779,18 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         if ring:  # the pins turn with the output: contacts found in the ring's axes
             qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
             e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
-                                      step, pin_force, pin_elastic, fe, modes)
+                                      step, pin_force, pin_elastic, fe, modes, slots, work)
             ring_forces(q, qr, Qr, Kr, Q, K, disc)
-        else:
-            e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
-                                      pin_force, pin_elastic, fe, modes)
+        else:   # pin_contacts' parts, called here (no reference counting in the pin loop)
+            if coupled:
+                clear_modal_force(modes[disc])
+            e, pw, pen, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
+                                         step, pin_force, pin_elastic, coupled, slots, work)
+            if count > 0:
+                e_fe, pw_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modes[disc], slots,
+                                           work, count, pin_force, pin_elastic)
+                e += e_fe
+                pw += pw_fe
         energy += e
         power += pw
         if pen > worst:
@@ -756,7 +810,8 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
 
 @numba.njit(cache=True, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe, modal):
+           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe, modal,
+           pin_slots, pin_work):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
     the run's schedule). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration, input angle, input speed)."""
@@ -765,7 +820,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     energy, power, torque_in, worst = forces_at(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-        mesh_state, mesh_hold, fe, modal)
+        mesh_state, mesh_hold, fe, modal, pin_slots, pin_work)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
@@ -827,6 +882,10 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             P[i] = 0.0
     mesh_hold = np.zeros((2, 2))
     previous_stiffness = np.zeros(2)
+    # the pin contacts' work arrays (coupled finite-element discs only), once per call
+    coupled = fe.shape[1] > 0
+    pin_slots = np.empty(pins.shape[0] if coupled else 0, dtype=np.int64)
+    pin_work = np.empty((pins.shape[0] if coupled else 0, 12))
     row = counters[COUNT_ROW]
     in_window = counters[COUNT_IN_WINDOW] == 1
     # inverse inertias, and the step's impulse per unit force on each coordinate
@@ -846,7 +905,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
             pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state,
-            K_node if check else K, mesh_hold, fe, modal)
+            K_node if check else K, mesh_hold, fe, modal, pin_slots, pin_work)
         if check:
             P[NODE_ALERT] = 0.0
             for j in range(2):
