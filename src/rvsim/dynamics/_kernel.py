@@ -26,7 +26,7 @@ from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._pin_compliance import pin_series_compliance
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
-from ._fe_carrier import COLUMNS as PLATE_COLUMNS, bore_centre, plate_supports
+from ._fe_carrier import bore_centre, plate_supports
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
 from ._layout import (ECC_ERR0, ECC_PHASE0, MODE_ZETA)
@@ -842,13 +842,13 @@ COUNT_ROW, COUNT_IN_WINDOW = 0, 1
 def new_state(n_pins, n_channels, n_output_pins=0):
     """Work arrays that :func:`integrate` carries from one call to the next (all zero at t = 0):
     (pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic, mesh_state, channel,
-    counters).  ``arm_elastic`` has a column per output pin after the two arm and the two
-    support columns (_layout.OUT_SLOT0), and the support forces on finite-element plates in
-    its last columns (dynamics._fe_carrier)."""
+    counters).  ``arm_elastic`` has the columns of _layout (the arm and support bushings',
+    the finite-element crank's and plates' force vectors) and a column per output pin from
+    _layout.OUT_SLOT0."""
     pin_angle = 2.0 * np.pi * np.arange(n_pins) / n_pins
     return (pin_angle, np.zeros((2, n_pins)), np.zeros((2, n_pins), dtype=np.int64),
             np.zeros((2, n_pins)), np.zeros((2, n_pins)),
-            np.zeros((2, OUT_SLOT0 + n_output_pins + PLATE_COLUMNS)), np.zeros((2, 2)),
+            np.zeros((2, OUT_SLOT0 + n_output_pins)), np.zeros((2, 2)),
             np.zeros(n_channels), np.zeros(2, dtype=np.int64))
 
 
