@@ -7,7 +7,8 @@ Targets: meshing and condensing the RV-40E disc <= 10 s once per geometry (then 
 cache); a 360-position quasi-static TE curve with FE bodies <= 3 x the rigid-body one; a 4 s
 dynamic run with them <= 2 x the rigid-disc run.  Cases: ``fe`` the FE disc alone,
 ``fe_crank`` with the FE cranks, ``fe_carrier`` with the FE carrier and flange, ``fe_all``
-all three (the default with model = fe).  Prints medians (wall and CPU time), the machine and
+all three (the default with model = fe), ``fe_holes`` all three with the disc's crank holes as
+load points (``flexibility.fe_disc_holes``).  Prints medians (wall and CPU time), the machine and
 the date as JSON.  BLAS threads are limited to one; the cache is a fresh
 temporary folder.
 
@@ -52,6 +53,8 @@ def main() -> None:
     fe_crank = with_values(fe, {"flexibility.fe_crank": True})
     fe_carrier = with_values(fe, {"flexibility.fe_carrier": True})
     fe_all = with_values(RV40E, {"A": 1, "flexibility.model": "fe"})
+    # the disc's crank holes as load points (flexibility.fe_disc_holes; off by default)
+    fe_holes = with_values(fe_all, {"flexibility.fe_disc_holes": True})
     start, cpu = time.perf_counter(), time.process_time()
     table = disc_table(fe)
     first_build = time.perf_counter() - start
@@ -69,7 +72,7 @@ def main() -> None:
         out_bodies[f"{name}_cpu_s"] = time.process_time() - cpu
     torque = RV40E.rating.rated_torque
     crank_table(fe_crank)                   # (timed above, now from the cache)
-    for r in (rigid, tooth, fe, fe_crank, fe_carrier, fe_all):  # compile and warm
+    for r in (rigid, tooth, fe, fe_crank, fe_carrier, fe_all, fe_holes):  # compile and warm
         ltca(r, torque=torque, positions=8)
     out = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
            "machine": machine(),
@@ -79,8 +82,8 @@ def main() -> None:
            "disc_dofs": table.n_dofs, "disc_triangles": table.n_triangles,
            "segments": table.segments, **out_bodies}
     cases = (("rigid", rigid), ("tooth", tooth), ("fe", fe), ("fe_crank", fe_crank),
-             ("fe_carrier", fe_carrier), ("fe_all", fe_all))
-    fe_cases = ("fe", "fe_crank", "fe_carrier", "fe_all")
+             ("fe_carrier", fe_carrier), ("fe_all", fe_all), ("fe_holes", fe_holes))
+    fe_cases = ("fe", "fe_crank", "fe_carrier", "fe_all", "fe_holes")
     times = interleaved({name: (lambda r=r: ltca(r, torque=torque)) for name, r in cases},
                         args.repeat)
     for name, _ in cases:

@@ -8,6 +8,10 @@ through the holes (across includes the disc turning about hole 1, a rigid motion
 disc coordinates already have; along is the stretch of the web between the holes, the one
 elastic mode four hole coordinates have beyond the disc's three rigid ones).
 
+Since 2026-11-25 the engines can condense the holes too (``flexibility.fe_disc_holes``,
+rvsim.fe.disc_holes): its stretch c_ss, both hole edges free, is 8.31e-10 m/N against this
+estimate's 7.9e-10 (tests/verification/test_fe_holes.py compares the two on a coarse mesh).
+
 Usage:  python docs/validation_data/fe_disc_hole_stretch.py
 """
 

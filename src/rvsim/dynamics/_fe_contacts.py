@@ -31,7 +31,7 @@ invalidate_stale_cache(__file__)
 from ._contact_law import EXPONENT, spring_force  # noqa: E402
 from ._fe_modes import add_modal_force, foot_modes  # noqa: E402
 
-__all__ = ["table_compliance", "coupled_forces", "lagged_forces", "apply_coupled",
+__all__ = ["table_compliance", "stretch_column", "coupled_forces", "lagged_forces", "apply_coupled",
            "MAX_NEWTON"]
 
 #: Newton iterations of the coupled contacts (2-4 needed from the previous forces)
@@ -137,6 +137,15 @@ def _factor_tangent(cm, k, n, active, a):
             a[x, y] = cm[i, active[y]]
         a[x, x] += 1.0 / k[i]
     return na if _cholesky(a, na) else -1
+
+
+@numba.njit(cache=True, inline="always")
+def stretch_column(table, u):
+    """c_sp at foot ``u`` [m/N]: the last column of a table with the crank holes' stretch
+    (:mod:`rvsim.dynamics._fe_holes`), linear between segment centres."""
+    m = table.shape[0]
+    i0, i1, frac = _segment(u, m)
+    return (1.0 - frac) * table[i0, m] + frac * table[i1, m]
 
 
 @numba.njit(cache=True)
@@ -328,7 +337,8 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
 
 
 @numba.njit(cache=True)
-def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, d, modal):
+def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, d, modal,
+                  hole, css):
     """Solve the ``count`` touching pins of a disc together and add their forces to ``Q`` (and
     their stiffness to a 17 x 17 ``K``); ``work`` rows hold each pin's (approach, approach
     rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta, own series compliance) and
@@ -341,7 +351,10 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
     ``modal`` (m + HEADER, modes) the disc's modes (:mod:`rvsim.dynamics._fe_modes`; ``table``
     is then their residual): each approach is less the modes' deflection at its foot, and the
     elastic forces are added to the modal force.  Returns (energy, dissipated power,
-    converged)."""
+    converged).  ``hole`` (3, or empty: the holes held): the disc's crank-hole state of
+    :mod:`rvsim.dynamics._fe_holes` (Q read, Q summed, stretch): each approach is less
+    c_sp(u) Q (``table``'s last column, :func:`stretch_column`), the stretch
+    s = sum c_sp F + ``css`` Q is stored and the energy gains Q s - css Q^2 / 2."""
     n = count
     want = K.shape[0] > 0
     # one block of work space: delta, foot, own compliances, guess, forces, C_ii, k; with K
@@ -356,6 +369,8 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
     k = space[6 * n:7 * n]
     for a in range(n):
         delta[a] = work[a, 0]
+        if hole.shape[0] > 0:       # the crank holes' load moves the profile (_fe_holes)
+            delta[a] -= hole[0] * stretch_column(table, work[a, 2])
         foot[a] = work[a, 2]
         cb[a] = work[a, 6]
         guess[a] = elastic[slots[a]]
@@ -425,4 +440,10 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
                     for x in range(na):
                         total += y[x, p] * y[x, r]
                     K[d + p, d + r] += total
+    if hole.shape[0] > 0:           # the holes' stretch and its strain energy (_fe_holes)
+        s = css * hole[0]
+        for a in range(n):
+            s += stretch_column(table, work[a, 2]) * fel[a]
+        hole[2] = s
+        energy += hole[0] * s - 0.5 * css * hole[0] * hole[0]
     return energy, power, converged

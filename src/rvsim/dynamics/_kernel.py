@@ -27,9 +27,12 @@ from ._fe_contacts import apply_coupled
 from ._pin_compliance import pin_series_compliance
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
 from ._fe_carrier import bore_centre, plate_supports
+from ._fe_holes import add_hole_load, begin_arms, end_arms
+from ._fe_holes import hole_css, hole_load, hole_row, hole_shift, holes_on
+from ._fe_holes import hole_stretch, hole_sum, set_hole_load, set_hole_stretch
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
-from ._layout import (ECC_ERR0, ECC_PHASE0, MODE_ZETA)
+from ._layout import (ECC_ERR0, ECC_PHASE0, FE_HOLE_CSS0, FE_HOLE_CSS1, MODE_ZETA)
 from ._layout import (NODE_ALERT, NODE_ALPHA0, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_OMEGA_DT,
                       NODE_PEAK, NODE_REFRESH)
 from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt
@@ -181,7 +184,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 
 @numba.njit(cache=True)
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
-                 fe, modal, slots=None, work=None):
+                 fe, modal, arm_elastic=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
@@ -202,26 +205,31 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     are then solved together (:func:`rvsim.dynamics._fe_contacts.apply_coupled`).  (2, 0, 0):
     independent contacts.  ``modal`` (2, m + HEADER, modes): the discs' modes
     (:mod:`rvsim.dynamics._fe_modes`; ``fe`` then holds their residual tables), whose modal
-    force this evaluation fills.  ``slots`` (n,) and ``work`` (n, 12) are the coupled solve's
-    work arrays (0-length without ``fe``; omitted: allocated here).  The loop over the pins,
+    force this evaluation fills.  ``arm_elastic``: the kernel's arm state, whose crank-hole
+    columns carry the holes' load Q and stretch (:mod:`rvsim.dynamics._fe_holes`); passed
+    only with the holes as load points (an array argument costs the step its reference
+    counting: measured 4-6 % of the closed-form run).  The loop over the pins,
     :func:`pin_loop`, allocates nothing and counts no references; the coupled solve,
-    :func:`coupled_pins`, does.
+    :func:`coupled_pins`, does.  (:func:`forces_at` calls the two itself.)
     """
     coupled = fe.shape[1] > 0
-    if slots is None:
-        n = pins.shape[0]
-        pin_slots = np.empty(n if coupled else 0, dtype=np.int64)
-        pin_work = np.empty((n if coupled else 0, 12))
-    else:
-        pin_slots, pin_work = slots, work
+    n = pins.shape[0]
+    pin_slots = np.empty(n if coupled else 0, dtype=np.int64)
+    pin_work = np.empty((n if coupled else 0, 12))
     if coupled:
         clear_modal_force(modal[disc])
     energy, power, worst, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
                                            step, forces, elastic, coupled, pin_slots,
                                            pin_work)
     if count > 0:
+        if arm_elastic is None:
+            hole = Q[0:0]
+            css = 0.0
+        else:
+            hole = hole_row(P, arm_elastic, disc)
+            css = hole_css(P, disc)
         e, pw = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], pin_slots, pin_work,
-                             count, forces, elastic)
+                             count, forces, elastic, hole, css)
         energy += e
         power += pw
     return energy, power, worst
@@ -325,14 +333,17 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, e
 
 
 @numba.njit(cache=True)
-def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, elastic):
+def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, elastic,
+                 hole, css):
     """The touching pins of disc ``disc`` that :func:`pin_loop` collected, solved together with
     the disc's finite-element ``table`` (:func:`rvsim.dynamics._fe_contacts.apply_coupled`),
-    and their friction.  Returns (energy, dissipated power)."""
+    and their friction; ``hole``, ``css``: the disc's crank-hole state (0-length, 0: none;
+    :mod:`rvsim.dynamics._fe_holes`).  Returns (energy, dissipated power)."""
     d = DISC0 + DISC_STRIDE * disc
     _, cos_t, sin_t, lvx, lvy, w = _disc_frame(P, q, v, disc)
     energy, power, _ = apply_coupled(table, slots, work, count, P[PIN_C], P[ZETA],
-                                     P[M_DISC], forces[disc], elastic[disc], Q, K, d, modal)
+                                     P[M_DISC], forces[disc], elastic[disc], Q, K, d, modal,
+                                     hole, css)
     if P[MU] > 0.0:
         # friction at the coupled solve's normal forces (the table is normal-normal: the
         # tangential forces do not deflect the neighbours' approaches)
@@ -424,13 +435,27 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess):
 @numba.njit(cache=True)
 def arm_station(P, holes, crank, disc):
     """Station weights (wl, wu) of disc ``disc``'s eccentric on crank ``crank`` and the centre
-    of its hole in the disc's axes (with the per-disc hole offsets of per-part errors)."""
+    of its hole in the disc's axes (with the per-disc hole offsets of per-part errors, and the
+    hole's elastic displacement when the FE disc's holes are load points: added by the
+    callers, :func:`rvsim.dynamics._fe_holes.hole_shift`)."""
     wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
     wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
     hole_x, hole_y = holes[crank, 0], holes[crank, 1]
     if holes.shape[1] > 2:
         hole_x += holes[crank, 2 + 2 * disc]
         hole_y += holes[crank, 3 + 2 * disc]
+    return wl, wu, hole_x, hole_y
+
+
+@numba.njit(cache=True, inline="always")
+def hole_station(P, holes, crank, disc, elastic):
+    """:func:`arm_station` with the hole's elastic displacement when the FE disc's holes are
+    load points (``elastic`` the kernel's arm state; dynamics._fe_holes)."""
+    wl, wu, hole_x, hole_y = arm_station(P, holes, crank, disc)
+    if holes_on(P):
+        dx, dy = hole_shift(P, elastic, crank, disc)
+        hole_x += dx
+        hole_y += dy
     return wl, wu, hole_x, hole_y
 
 
@@ -504,6 +529,7 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
             return 0.0, 0.0, 0.0
         dist = math.sqrt(rx * rx + ry * ry)
         ex_el, ey_el = f_el * rx / dist, f_el * ry / dist
+    add_hole_load(P, q, elastic, crank, disc, ex_el, ey_el)     # the holes' Q (_fe_holes)
     if K.shape[0] > 0:
         arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, hx - q[d], hy - q[d + 1], kxx, kxy,
                       kyy, ex_el, ey_el, cx, cy, w_in)
@@ -525,7 +551,7 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic):
     r, rate, guess, force = work[:, 0:2], work[:, 2:4], work[:, 4:6], work[:, 6:8]
     geo = work[:, 8:16]              # wl, wu, ecc, cos phi, sin phi, hx, hy, series stiffness
     for disc in range(2):
-        wl, wu, hole_x, hole_y = arm_station(P, holes, crank, disc)
+        wl, wu, hole_x, hole_y = hole_station(P, holes, crank, disc, elastic)
         rx, ry, rvx, rvy, _, ecc, cos_p, sin_p, hx, hy = arm_geometry(
             P, q, v, crank, disc, hole_x, hole_y, wl, wu)
         r[disc, 0], r[disc, 1], rate[disc, 0], rate[disc, 1] = rx, ry, rvx, rvy
@@ -547,6 +573,7 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic):
         sx, sy = force[disc, 0], force[disc, 1]
         elastic[crank, FE_CRANK_SLOT0 + 2 * disc] = sx
         elastic[crank, FE_CRANK_SLOT0 + 2 * disc + 1] = sy
+        add_hole_load(P, q, elastic, crank, disc, sx, sy)     # the holes' Q (_fe_holes)
         f = math.sqrt(sx * sx + sy * sy)
         elastic[crank, disc] = f
         resultant[disc] = f
@@ -664,6 +691,137 @@ def kinetic_energy(P, v):
     return energy
 
 
+#: the quasi-static engine's crank-hole sweeps: converged when Q changes by less than this
+#: fraction of the largest arm-bushing force (the pins' and bushings' own solves are converged
+#: to 1e-10 relative, so a tighter test would chase their round-off)
+HOLE_RTOL = 1e-9
+#: most sweeps per evaluation (measured: a few from the previous evaluation's Q)
+HOLE_SWEEPS = 200
+
+
+@numba.njit(cache=True)
+def _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic):
+    """The arm bushings alone (scratch ``Qs``, ``Ks``) with the holes' stretch as stored."""
+    coupled = P[FE_CRANK_XX1] > 0.0
+    begin_arms(P, arm_elastic)
+    for j in range(int(P[CRANK_COUNT])):
+        if coupled:
+            arm_pair(P, q, v, Qs, Ks, j, holes, arm_elastic)
+            continue
+        for disc in range(int(P[DISC_COUNT])):
+            wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
+            arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic)
+
+
+@numba.njit(cache=True)
+def settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force, pin_elastic,
+                 arm_elastic, fe, modes):
+    """Quasi-static engine, FE disc with its crank holes as load points
+    (:mod:`rvsim.dynamics._fe_holes`): repeat the pins-then-arm-bushings sweep at fixed ``q``
+    until the holes' load Q changes by less than :data:`HOLE_RTOL` of the largest arm-bushing
+    force, so that the evaluation that
+    follows (one more sweep) has the coupled solution's forces and energy.  The forces go to
+    scratch arrays.  Called by the quasi-static engine before :func:`forces_at` (kept out of
+    the dynamic kernel's step), :func:`hole_stiffness` after it.  Returns the number of sweeps (-1: not converged)."""
+    Qs = np.zeros(N_DOF)
+    Ks = np.zeros((N_DOF, N_DOF))
+    # per disc: Q read by this sweep's pins, and the previous sweep's change (secant)
+    given = np.empty(2)
+    before = np.zeros(2)
+    for sweep in range(HOLE_SWEEPS + 1):
+        next_eval[:, :] = 0     # every pin at every sweep (the quasi-static engine's rule)
+        if sweep == HOLE_SWEEPS:
+            return -1
+        for disc in range(2):
+            given[disc] = hole_load(arm_elastic, disc)
+        for disc in range(int(P[DISC_COUNT])):
+            pin_contacts(P, q, v, Qs, Ks, disc, pins, pin_angle, u, next_eval, step,
+                         pin_force, pin_elastic, fe, modes, arm_elastic)
+        _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic)
+        largest = 0.0
+        for j in range(2):
+            largest = max(largest, abs(arm_elastic[j, 0]), abs(arm_elastic[j, 1]))
+        if end_arms(P, arm_elastic) <= HOLE_RTOL * largest + 1e-12:
+            next_eval[:, :] = 0
+            return sweep + 1
+        # the sweep is a contraction of factor rho ~ -0.3 in each disc's Q: the secant
+        # through the last two changes extrapolates to the fixed point
+        for disc in range(2):
+            change = hole_load(arm_elastic, disc) - given[disc]
+            if before[disc] != 0.0:
+                rho = change / before[disc]
+                if abs(rho) < 0.9:
+                    set_hole_load(arm_elastic, disc, given[disc] + change / (1.0 - rho))
+            before[disc] = change
+    return -1
+
+
+@numba.njit(cache=True)
+def hole_stiffness(P, q, v, pins, pin_angle, holes, u, next_eval, step, pin_force,
+                   pin_elastic, arm_elastic, fe, modes, K):
+    """Add to ``K`` (assembled with each disc's Q held for its pins and each stretch s held for
+    the arm bushings) what the holes' coupling changes (:mod:`rvsim.dynamics._fe_holes`):
+
+        K += -(df_p/dQ) dQ/dq - (df_a/ds) ds/dq,
+        dQ/dq = (I - D B)^-1 (C + D A),   ds/dq = A + B dQ/dq,
+
+    with A = ds/dq (pins, Q held) = (df_p/dQ)^T, C = dQ/dq (arms, s held) = (df_a/ds)^T (both
+    pairs are mixed second derivatives of the potential energy), B = ds/dQ (pins), D = dQ/ds
+    (arms).  df_p/dQ, B, df_a/ds and D by central differences in the four interface variables
+    (the pins and bushings solved again; their state restored after)."""
+    saved_force, saved_elastic = pin_force.copy(), pin_elastic.copy()
+    saved_u, saved_arm = u.copy(), arm_elastic.copy()
+    Qs = np.zeros(N_DOF)
+    Ks = np.zeros((N_DOF, N_DOF))
+    a = np.zeros((N_DOF, 2))       # df_pins / dQ_d
+    c = np.zeros((N_DOF, 2))       # df_arms / ds_d
+    b = np.zeros((2, 2))           # ds / dQ (pins; diagonal)
+    d = np.zeros((2, 2))           # dQ / ds (arms)
+    largest = 1.0
+    for j in range(2):
+        largest = max(largest, abs(arm_elastic[j, 0]), abs(arm_elastic[j, 1]))
+    for disc in range(2):
+        load = hole_load(arm_elastic, disc)
+        eps = 1e-5 * largest
+        for sign in (1.0, -1.0):
+            for i in range(N_DOF):
+                Qs[i] = 0.0
+            set_hole_load(arm_elastic, disc, load + sign * eps)
+            next_eval[:, :] = 0
+            pin_contacts(P, q, v, Qs, Ks, disc, pins, pin_angle, u, next_eval, step,
+                         pin_force, pin_elastic, fe, modes, arm_elastic)
+            for i in range(N_DOF):
+                a[i, disc] += sign * Qs[i] / (2.0 * eps)
+            b[disc, disc] += sign * hole_stretch(arm_elastic, disc) / (2.0 * eps)
+            pin_force[:, :] = saved_force
+            pin_elastic[:, :] = saved_elastic
+            u[:, :] = saved_u
+            arm_elastic[:, :] = saved_arm
+    for disc in range(2):
+        stretch = hole_stretch(arm_elastic, disc)
+        eps = 1e-5 * largest * max(P[FE_HOLE_CSS0], P[FE_HOLE_CSS1], 1e-11)
+        for sign in (1.0, -1.0):
+            for i in range(N_DOF):
+                Qs[i] = 0.0
+            set_hole_stretch(arm_elastic, disc, stretch + sign * eps)
+            _hole_arms(P, q, v, Qs, Ks, holes, arm_elastic)
+            for i in range(N_DOF):
+                c[i, disc] += sign * Qs[i] / (2.0 * eps)
+            for other in range(2):
+                d[other, disc] += sign * hole_sum(arm_elastic, other) / (2.0 * eps)
+            arm_elastic[:, :] = saved_arm
+    next_eval[:, :] = 0
+    # dQ/dq = (I - D B)^-1 (C + D A), A = a^T, C = c^T
+    m = np.eye(2) - d @ b
+    rhs = c.T + d @ a.T
+    dq_dq = np.linalg.solve(m, rhs)
+    ds_dq = a.T + b @ dq_dq
+    extra = -(a @ dq_dq + c @ ds_dq)
+    for i in range(N_DOF):
+        for j in range(N_DOF):
+            K[i, j] += 0.5 * (extra[i, j] + extra[j, i])
+
+
 @numba.njit(cache=True)
 def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs):
     """The cranks' arm bushings (or the FE crank's pairs) and support bushings (or the FE
@@ -674,6 +832,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
     energy = 0.0
     power = 0.0
     coupled = P[FE_CRANK_XX1] > 0.0     # finite-element crank (RV reducers only)
+    begin_arms(P, arm_elastic)          # the FE disc's crank holes (dynamics._fe_holes)
     for j in range(int(P[CRANK_COUNT])):
         pair0 = pair1 = 0.0
         if coupled:     # both bushings together
@@ -687,7 +846,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
                 if P[FRICTION_ON] == 1.0:
                     power += arm_bearing_friction(P, v, Q, j, disc, force)
                 continue
-            wl, wu, hole_x, hole_y = arm_station(P, holes, j, disc)
+            wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
             force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
                                        arm_elastic)
             channel[CH_ARM_F00 + 2 * j + disc] = force
@@ -703,6 +862,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
             power += pw
             if P[FRICTION_ON] == 1.0:
                 power += support_bearing_friction(P, v, Q, j, force)
+    end_arms(P, arm_elastic)
     if P[FE_PLATE_XX1] != 0.0:    # finite-element carrier and flange (dynamics._fe_carrier)
         for upper in range(2):
             e, pw = plate_supports(P, q, v, Q, K, upper == 1, crank_angles, arm_elastic,
@@ -779,7 +939,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         if ring:  # the pins turn with the output: contacts found in the ring's axes
             qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
             e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
-                                      step, pin_force, pin_elastic, fe, modes, slots, work)
+                                      step, pin_force, pin_elastic, fe, modes)
             ring_forces(q, qr, Qr, Kr, Q, K, disc)
         else:   # pin_contacts' parts, called here (no reference counting in the pin loop)
             if coupled:
@@ -787,8 +947,14 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             e, pw, pen, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
                                          step, pin_force, pin_elastic, coupled, slots, work)
             if count > 0:
+                if holes_on(P):     # the FE disc's crank holes as load points (_fe_holes)
+                    hole = hole_row(P, arm_elastic, disc)
+                    css = hole_css(P, disc)
+                else:
+                    hole = Q[0:0]
+                    css = 0.0
                 e_fe, pw_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modes[disc], slots,
-                                           work, count, pin_force, pin_elastic)
+                                           work, count, pin_force, pin_elastic, hole, css)
                 e += e_fe
                 pw += pw_fe
         energy += e
@@ -843,8 +1009,8 @@ def new_state(n_pins, n_channels, n_output_pins=0):
     """Work arrays that :func:`integrate` carries from one call to the next (all zero at t = 0):
     (pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic, mesh_state, channel,
     counters).  ``arm_elastic`` has the columns of _layout (the arm and support bushings',
-    the finite-element crank's and plates' force vectors) and a column per output pin from
-    _layout.OUT_SLOT0."""
+    the finite-element crank's and plates' force vectors, the crank holes' state) and a
+    column per output pin from _layout.OUT_SLOT0."""
     pin_angle = 2.0 * np.pi * np.arange(n_pins) / n_pins
     return (pin_angle, np.zeros((2, n_pins)), np.zeros((2, n_pins), dtype=np.int64),
             np.zeros((2, n_pins)), np.zeros((2, n_pins)),

@@ -19,11 +19,14 @@ N_DOF = 17
 #: (x, y, housing frame) with a finite-element crank (rvsim.dynamics._fe_crank),
 #: arm_elastic[crank, PLATE_SLOT0 + 2 upper + (0, 1)] the support force vector on a
 #: finite-element carrier / flange (rvsim.dynamics._fe_carrier),
+#: arm_elastic[disc, HOLE_SLOT0 + (0, 1, 2)] the FE disc's crank-hole state
+#: (rvsim.dynamics._fe_holes),
 #: arm_elastic[disc, OUT_SLOT0 + m] output pin m's in disc ``disc`` (single-stage drive)
 SUP_SLOT0 = 2
 FE_CRANK_SLOT0 = 4
 PLATE_SLOT0 = 8
-OUT_SLOT0 = 12
+HOLE_SLOT0 = 12
+OUT_SLOT0 = 15
 N_CRANKS = 2
 N_DISCS = 2
 
@@ -152,6 +155,14 @@ RING_OUTPUT    = 120       # single-stage: 1.0 = the pin ring is the output (CAR
 
 # ---- finite-element bodies: 130-139 ------------------------------------------------------
 FE_DISC        = 130       # 1: the discs' pins are coupled through finite-element tables
+# the disc's crank holes as load points (flexibility.fe_disc_holes; dynamics._fe_holes): 1 on;
+# c_ss of disc 1 and 2 [m/N] (the holes' stretch under unit Q; the c_sp column is the last
+# column of each disc's table)
+FE_HOLES       = 131
+FE_HOLE_CSS0   = 132
+FE_HOLE_CSS1   = 133
+FE_HOLE_EX     = 134       # unit vector from hole 0 (crank 0's) to hole 1, disc axes
+FE_HOLE_EY     = 135
 # (disc: 130-139; crankshaft: 140-149; carrier and flange: 150-159; disc modes: 160-169;
 # finite-element pins: 170-179)
 # carrier and flange (docs/model.md section 17, rvsim.dynamics._fe_carrier): the upper

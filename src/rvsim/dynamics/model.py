@@ -252,6 +252,8 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
         _fe_pin_table(r, P)
     _bearing_constants(r, P)
     P[L.FE_DISC] = 1.0 if fe_disc else 0.0
+    holes = fe_disc and r.flexibility.fe_disc_holes and not r.layout.single_stage
+    P[L.FE_HOLES] = 1.0 if holes else 0.0
     # the dynamic engine's disc modes (rvsim.dynamics.simulate builds them; docs/model.md 17)
     P[L.FE_MODES] = r.flexibility.fe_modes if fe_disc else 0
     P[L.MODE_ZETA] = r.contact.damping_ratio
@@ -314,14 +316,24 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
         q0[d] = P[L.ECC] * math.cos(kd * math.pi)
         q0[d + 1] = P[L.ECC] * math.sin(kd * math.pi)
     return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses,
-                       _fe_tables(r) if fe_disc else np.zeros((2, 0, 0)))
+                       _fe_tables(r, P, holes) if fe_disc else np.zeros((2, 0, 0)))
 
 
-def _fe_tables(r: Reducer) -> np.ndarray:
-    """The finite-element disc tables (rvsim.fe: meshed and condensed once per geometry)."""
-    from ..fe.disc import disc_tables
+def _fe_tables(r: Reducer, P: np.ndarray, holes: np.ndarray) -> np.ndarray:
+    """The finite-element disc tables (rvsim.fe: meshed and condensed once per geometry); with
+    the crank holes as load points (P[FE_HOLES], rvsim.fe.disc_holes) each disc's table has the
+    holes' stretch column c_sp last and P gets c_ss and the holes' axis (dynamics._fe_holes)."""
+    if P[L.FE_HOLES] == 0.0:
+        from ..fe.disc import disc_tables
 
-    return disc_tables(r)
+        return disc_tables(r)
+    from ..fe.disc_holes import disc_hole_tables
+
+    tables, css = disc_hole_tables(r)
+    P[L.FE_HOLE_CSS0], P[L.FE_HOLE_CSS1] = css
+    axis = holes[1, :2] - holes[0, :2]
+    P[L.FE_HOLE_EX], P[L.FE_HOLE_EY] = axis / np.hypot(*axis)
+    return tables
 
 
 def _fe_pin_table(r: Reducer, P: np.ndarray) -> None:

@@ -139,6 +139,12 @@ def disc_modes(reducer: Reducer, model, time_step: float) -> tuple[np.ndarray, n
     no modes."""
     if model.fe.shape[1] == 0:
         return model.fe, np.zeros((2, 0, 0))
+    if model.P[L.FE_HOLES] != 0.0 and model.P[L.FE_MODES] > 0:
+        from ..errors import ParameterError
+
+        raise ParameterError("flexibility.fe_modes", "the disc's modes are built with its crank "
+                             "holes held; set flexibility.fe_disc_holes = false to integrate "
+                             "them (docs/decisions.md)")
     from ..fe.modes import disc_modal_arrays
     from ._fe_modes import modal_array
 

@@ -91,6 +91,13 @@ def disc_body(g: dict) -> tuple[PlaneStressBody, np.ndarray, sp.csc_matrix]:
     """Mesh and assemble the disc of geometry ``g`` (:func:`disc_geometry`): the body, its
     supported dofs (the crank-hole edges) and the unit loads of its contact segments
     (n_dofs x segments)."""
+    body, hole_nodes, loads = _disc_mesh(g)
+    supported = np.concatenate([body.supported_dofs(hole_nodes[j]) for j in range(2)])
+    return body, supported, loads
+
+
+def _disc_mesh(g: dict) -> tuple[PlaneStressBody, tuple, sp.csc_matrix]:
+    """The body, the vertices on each hole's circle and the segments' unit loads."""
     segments = g["segments"]
     dense = disc_outline(g["rg"], g["a"], g["zp"], g["offset"], 16 * segments)
     length = float(np.sum(np.linalg.norm(np.roll(dense, -1, axis=0) - dense, axis=1)))
@@ -108,13 +115,12 @@ def disc_body(g: dict) -> tuple[PlaneStressBody, np.ndarray, sp.csc_matrix]:
                          f"libraries libglu1-mesa libxcursor1 libxft2 libxinerama1): {exc}"
                          ) from None
     body = PlaneStressBody(mesh.points, mesh.triangles, g["E"], g["nu"], g["width"])
-    supported = np.concatenate([body.supported_dofs(mesh.holes[j]) for j in range(2)])
     nodes = mesh.outline
     loads = sp.hstack([
         edge_load(body, [(int(nodes[e]), int(nodes[(e + 1) % n_edges]))
                          for e in range(s * per_segment, (s + 1) * per_segment)])
         for s in range(segments)]).tocsc()
-    return body, supported, loads
+    return body, mesh.holes, loads
 
 
 def _compute(g: dict) -> tuple[np.ndarray, int, int]:

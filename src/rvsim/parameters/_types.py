@@ -206,6 +206,10 @@ class Flexibility:
                           "that the dynamic engine integrates; 0: massless condensed disc "
                           "(the quasi-static engine is static: modes do not change it)",
                           minimum=0)
+    fe_disc_holes: bool = flag(False, "with model = fe and A: the disc's two crank holes are "
+                               "load points of its finite-element table (the arm bushings "
+                               "stretch the web between them) instead of held edges; "
+                               "5-7x the quasi-static cost (docs/decisions.md)")
     fe_carrier: bool = flag(True, "with model = fe: the carrier and the flange are "
                             "finite-element plates on which the crank support bushings bear "
                             "(RV reducer; no effect with closed-form)")

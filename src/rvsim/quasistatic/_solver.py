@@ -36,10 +36,11 @@ from ..dynamics._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 from ..dynamics._fe_carrier import COLUMNS as PLATE_COLUMNS  # noqa: E402
-from ..dynamics._kernel import forces_at  # noqa: E402
+from ..dynamics._fe_holes import COLUMNS as HOLE_COLUMNS  # noqa: E402
+from ..dynamics._kernel import forces_at, hole_stiffness, settle_holes  # noqa: E402
 from ..dynamics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
                                 DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
-                                FE_DISC, PEN_LIMIT, PIN_RADIUS, RING_OUTPUT, STAGES,
+                                FE_DISC, FE_HOLES, PEN_LIMIT, PIN_RADIUS, RING_OUTPUT, STAGES,
                                 PROFILE_OFFSET, PROFILE_ROT, RB1, RB2, RG, ZC, ZP)
 from ..geometry._curve import curvature  # noqa: E402
 
@@ -73,10 +74,17 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
     -f_ext . q added to Pi."""
     K[:, :] = 0.0
     next_eval[:, :] = 0
+    modes = np.zeros((2, 0, 0))
+    if P[FE_HOLES] != 0.0:    # the FE disc's crank holes: their coupling solved first
+        settle_holes(P, q, v, pins, pin_angle, holes, u, next_eval, 1, pin_force,
+                     pin_elastic, arm_elastic, fe, modes)
     energy, _, torque_in, worst = forces_at(
         P, q, v, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
         next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
         mesh_hold, fe)
+    if P[FE_HOLES] != 0.0:    # and their coupling in the stiffness
+        hole_stiffness(P, q, v, pins, pin_angle, holes, u, next_eval, 1, pin_force,
+                       pin_elastic, arm_elastic, fe, modes, K)
     work = torque * q[CARRIER]
     held = 0.0
     for i in range(N_DOF):
@@ -521,7 +529,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     pin_force = np.zeros((2, zp))
     pin_elastic = np.zeros((2, zp))
     n_out = int(P[OUT_COUNT])
-    arm_elastic = np.zeros((2, OUT_SLOT0 + n_out + PLATE_COLUMNS))
+    arm_elastic = np.zeros((2, OUT_SLOT0 + n_out + HOLE_COLUMNS + PLATE_COLUMNS))
     mesh_state = np.zeros((2, 4))
     channel = np.zeros(N_CHANNELS)
     Q = np.zeros(N_DOF)
