@@ -13,6 +13,7 @@ import numba
 import numpy as np
 
 from ._cache_guard import invalidate_stale_cache
+from ._jit import NO_REFCOUNT
 
 # numba's on-disk cache is keyed on this file only; the index constants of _layout, the curve
 # functions of geometry._curve, the contact law and the single-stage elements are compiled in,
@@ -99,7 +100,7 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
     Q[b + 3] += wu * fy
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank):
     """Sun-planet mesh j: returns (normal force, input torque, energy, dissipated power,
     stiffness, deflection, number of tooth pairs at the roll position, loaded flank).
@@ -246,7 +247,7 @@ def _disc_frame(P, q, v, disc):
     return angle, cos_t, sin_t, cos_t * vx + sin_t * vy, -sin_t * vx + cos_t * vy, w
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
              coupled, slots, work):
     """The pin loop of :func:`pin_contacts` (compiled without reference counting: it
@@ -376,7 +377,7 @@ def pin_friction(P, fn, px, py, gap, nx, ny, lvx, lvy, w, cos_t, sin_t):
             ft * (cx * tiy - cy * tix), -ft * slide)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx, sy, cx, cy,
                   w_in):
     """Stiffness matrix -dQ/dq of an arm element whose elastic force S (on the disc hole;
@@ -399,7 +400,7 @@ def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx,
     K[d + 2, d + 2] += sx * lx + sy * ly
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, sx, sy, cx, cy, w_in):
     """Stiffness matrix of a support element (node coordinates from b, crank rotation at
     ``phi``, bore centre (bx, by) on the carrier), as :func:`arm_stiffness`."""
@@ -496,7 +497,7 @@ def apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy
     Q[d + 2] -= -fx * (hy - q[d + 1]) + fy * (hx - q[d])
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
     contact, :func:`~rvsim.dynamics._bearings.conforming_force`) or a needle roller bearing
@@ -632,7 +633,7 @@ def arm_pair_stiffness(K, q, crank, geo, dsdr, force, w_in):
                     K[row, col] += gx[a] * ax + gy[a] * ay
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
     """Crank ``crank``'s lower or upper support node in its carrier / flange bore: the paper's
     bushing (conforming contact) or a tapered roller bearing (P[SUP_KIND]).
