@@ -187,6 +187,8 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
                  fe, modal, arm_elastic=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
+    (``forces_at`` calls the same parts, :func:`pin_loop` and :func:`coupled_pins`, itself for
+    the pins in the housing; a change here belongs there too.)
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
     gamma_i - theta (exact in the kinematic pose).  Near contact one Newton step from the
@@ -942,7 +944,8 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
                                       step, pin_force, pin_elastic, fe, modes)
             ring_forces(q, qr, Qr, Kr, Q, K, disc)
-        else:   # pin_contacts' parts, called here (no reference counting in the pin loop)
+        else:   # pin_contacts' parts, called here (no reference counting in the pin loop;
+                # docs/decisions.md): a change to one sequence belongs in the other too
             if coupled:
                 clear_modal_force(modes[disc])
             e, pw, pen, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
