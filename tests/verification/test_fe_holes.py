@@ -195,8 +195,8 @@ def test_sweep_contraction_and_the_modes_refused():
     angle = 2 * np.pi * np.arange(zp) / zp
     u, ne = np.zeros((2, zp)), np.zeros((2, zp), dtype=np.int64)
     pf, pe = np.zeros((2, zp)), np.zeros((2, zp))
-    arm = np.zeros((2, L.OUT_SLOT0 + HOLE_COLUMNS + 4))
-    col = arm.shape[1] - HOLE_COLUMNS - 4
+    arm = np.zeros((2, L.OUT_SLOT0 + 3 + 4))
+    col = L.HOLE_SLOT0            # Q read by the pins (_fe_holes.Q_PINS)
     history = []
     for _ in range(8):
         Q, K = np.zeros(17), np.zeros((17, 17))

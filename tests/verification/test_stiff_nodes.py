@@ -124,3 +124,18 @@ def test_balance_exact_with_guard_acting_in_window(run_2_quick, monkeypatch):
     # checks every step): 2 x 0.4 s / 5e-6 s = 160000
     assert abs(P[L.NODE_CHECKS_STEADY] - 160000) <= 2
     assert abs(result.energy["relative_residual"]) < 5e-6   # measured -1.0e-6
+
+
+@pytest.mark.parametrize("bodies", [
+    {"A": 1, "flexibility.fe_crank": False, "flexibility.fe_carrier": False},
+    {"A": 0, "flexibility.fe_crank": True, "flexibility.fe_carrier": False},
+    {"A": 0, "flexibility.fe_crank": False, "flexibility.fe_carrier": True},
+])
+def test_guard_off_with_coupled_fe_bodies(bodies):
+    # its stiffness assembly would switch their solves to the converged quasi-static path
+    from rvsim.dynamics.model import build_model
+    plain = build_model(with_values(RV40E, paper_run_values(3)), 1e-5)
+    assert plain.P[L.NODE_OMEGA_DT] == 1.6
+    fe = build_model(with_values(RV40E, {**paper_run_values(3), "flexibility.model": "fe",
+                                         **bodies}), 1e-5)
+    assert fe.P[L.NODE_OMEGA_DT] == 0.0

@@ -21,8 +21,8 @@ turning anisotropic table conservative (u x S is the crank's ``compliance_torque
 quasi-static stiffness here also holds the carrier-angle terms (the bores and the table turn
 with the carrier).
 
-The force vectors are carried from step to step in the last :data:`COLUMNS` columns of the
-kernel's ``arm_elastic`` array (row = crank); the table is in P from FE_PLATE_XX1
+The force vectors are carried from step to step in the :data:`COLUMNS` columns of the
+kernel's ``arm_elastic`` array from ``_layout.PLATE_SLOT0`` (row = crank); the table is in P from FE_PLATE_XX1
 (model.build_model fills it, packed as the crank's: ``_fe_crank.pack_table``).
 """
 
@@ -40,12 +40,13 @@ invalidate_stale_cache(__file__)
 from ._contact_law import damped  # noqa: E402
 from ._fe_crank import compliance_torque, pair_forces, rotated_table  # noqa: E402
 from ._layout import (BORE_DR0, BORE_DT0, CARRIER, CENTRE_DIST, CH_SUP_FL0,  # noqa: E402
-                      CRANK0, CRANK_STRIDE, FE_PLATE_XX1, M_NODE, SUP_A1, SUP_A2_L, SUP_A2_U,
+                      CRANK0, CRANK_STRIDE, FE_PLATE_XX1, M_NODE, PLATE_SLOT0, SUP_A1, SUP_A2_L, SUP_A2_U,
                       SUP_CLEAR_L, SUP_CLEAR_U, SUP_J1, SUP_J2, SUP_SLOT0, ZETA)
 
 __all__ = ["COLUMNS", "bore_centre", "support_law", "plate_supports"]
 
-#: columns of ``arm_elastic`` (at its end) holding the support forces (upper, x / y)
+#: columns of ``arm_elastic`` (from _layout.PLATE_SLOT0) holding the support forces (upper,
+#: x / y)
 COLUMNS = 4
 
 
@@ -115,7 +116,7 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
     r, rate, guess, force = work[0:2, 8:10], work[2:4, 8:10], work[0:2, 10:12], work[2:4, 10:12]
     bore, series = work[0:2, 12:14], work[2:4, 14]
     rotated_table(P, FE_PLATE_XX1, q[CARRIER] + crank_angles[0], cm)   # x axis: crank 0's bore
-    col = elastic.shape[1] - COLUMNS + (2 if upper else 0)
+    col = PLATE_SLOT0 + (2 if upper else 0)
     slot = SUP_SLOT0 + (1 if upper else 0)
     shift = 2 if upper else 0
     wc = v[CARRIER]

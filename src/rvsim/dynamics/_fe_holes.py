@@ -22,8 +22,8 @@ engine solves the coupling at fixed coordinates by Newton with its exact derivat
 it to its stiffness (:mod:`rvsim.quasistatic._solver`), so its forces and energy are those
 of the coupled solution.
 
-State: per disc (row ``disc`` of the kernel's ``arm_elastic``) :data:`COLUMNS` columns just
-before the carrier's (:data:`rvsim.dynamics._fe_carrier.COLUMNS`, the array's last ones).
+State: per disc (row ``disc`` of the kernel's ``arm_elastic``) :data:`COLUMNS` columns from
+``_layout.HOLE_SLOT0``.
 """
 
 from __future__ import annotations
@@ -36,9 +36,8 @@ from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-from ._fe_carrier import COLUMNS as PLATE_COLUMNS  # noqa: E402
 from ._layout import (DISC0, DISC_STRIDE, FE_HOLE_CSS0, FE_HOLE_CSS1, FE_HOLE_EX,  # noqa: E402
-                      FE_HOLE_EY, FE_HOLES, N_DOF)
+                      FE_HOLE_EY, FE_HOLES, HOLE_COLUMNS, HOLE_SLOT0)
 
 __all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED", "PREDICT", "hole_row", "hole_css", "hole_shift",
            "add_hole_load", "hole_load", "set_hole_load", "hole_stretch", "set_hole_stretch", "hole_sum", "begin_arms", "end_arms", "holes_on"]
@@ -50,7 +49,7 @@ __all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED",
 #: the coupling tight (1.0) or loosely (0.0), then the predictor of the next evaluation's Q:
 #: Q + PREDICT + sum_i dQ/dq_i q_i (PREDICT = -dQ/dq . q at the last solution; the N_DOF
 #: columns of dQ/dq from PREDICT + 1)
-COLUMNS = 9 + N_DOF
+COLUMNS = HOLE_COLUMNS      # 9 + N_DOF (_layout)
 Q_PINS, Q_SUM, STRETCH, DS_DQ, DF_DQ, SETTLED, PREDICT = 0, 1, 2, 3, 4, 7, 8
 
 
@@ -63,7 +62,7 @@ def holes_on(P):
 @numba.njit(cache=True, inline="always")
 def _col(elastic, k):
     """Column of state ``k`` in the kernel's ``arm_elastic``."""
-    return elastic.shape[1] - PLATE_COLUMNS - COLUMNS + k
+    return HOLE_SLOT0 + k
 
 
 @numba.njit(cache=True, inline="always")

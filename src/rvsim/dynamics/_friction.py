@@ -16,6 +16,7 @@ import math
 import numba
 
 from ._cache_guard import invalidate_stale_cache
+from ._jit import NO_REFCOUNT
 
 invalidate_stale_cache(__file__)
 
@@ -68,7 +69,7 @@ def bearing_friction(P, v, Q, inner, outer, f0, f1, dm, load):
     return torque * omega
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def arm_bearing_friction(P, v, Q, crank, disc, load):
     """Turning-arm bearing of crank ``crank`` in disc ``disc``: the eccentric (the crank's
     rotation) turns in the disc's hole."""
@@ -77,14 +78,14 @@ def arm_bearing_friction(P, v, Q, crank, disc, load):
                             load)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def support_bearing_friction(P, v, Q, crank, load):
     """Support bearing of crank ``crank`` (lower or upper): the journal turns in the carrier."""
     return bearing_friction(P, v, Q, CRANK0 + CRANK_STRIDE * crank + 4, CARRIER, P[SUP_F0],
                             P[SUP_F1], P[SUP_DM], load)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def mesh_friction(P, force, omega_in, px, py, pvx, pvy):
     """Sliding friction of a sun-planet mesh of normal force ``force``, the planet's centre at
     (px, py) moving at (pvx, pvy): the mean loss of Ohlendorf's gear loss factor H_V

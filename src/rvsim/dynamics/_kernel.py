@@ -13,6 +13,7 @@ import numba
 import numpy as np
 
 from ._cache_guard import invalidate_stale_cache
+from ._jit import NO_REFCOUNT
 
 # numba's on-disk cache is keyed on this file only; the index constants of _layout, the curve
 # functions of geometry._curve, the contact law and the single-stage elements are compiled in,
@@ -26,8 +27,8 @@ from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._pin_compliance import pin_series_compliance
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
-from ._fe_carrier import COLUMNS as PLATE_COLUMNS, bore_centre, plate_supports
-from ._fe_holes import COLUMNS as HOLE_COLUMNS, add_hole_load, begin_arms, end_arms
+from ._fe_carrier import bore_centre, plate_supports
+from ._fe_holes import add_hole_load, begin_arms, end_arms
 from ._fe_holes import hole_css, hole_row, hole_shift, holes_on
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
@@ -98,7 +99,7 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
     Q[b + 3] += wu * fy
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank):
     """Sun-planet mesh j: returns (normal force, input torque, energy, dissipated power,
     stiffness, deflection, number of tooth pairs at the roll position, loaded flank).
@@ -185,6 +186,8 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
                  fe, modal, arm_elastic=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
+    (``forces_at`` calls the same parts, :func:`pin_loop` and :func:`coupled_pins`, itself for
+    the pins in the housing; a change here belongs there too.)
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
     gamma_i - theta (exact in the kinematic pose).  Near contact one Newton step from the
@@ -207,16 +210,57 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     force this evaluation fills.  ``arm_elastic``: the kernel's arm state, whose crank-hole
     columns carry the holes' load Q and stretch (:mod:`rvsim.dynamics._fe_holes`); passed
     only with the holes as load points (an array argument costs the step its reference
-    counting: measured 4-6 % of the closed-form run).
+    counting: measured 4-6 % of the closed-form run).  The loop over the pins,
+    :func:`pin_loop`, allocates nothing and counts no references; the coupled solve,
+    :func:`coupled_pins`, does.  (:func:`forces_at` calls the two itself.)
     """
+    coupled = fe.shape[1] > 0
+    n = pins.shape[0]
+    pin_slots = np.empty(n if coupled else 0, dtype=np.int64)
+    pin_work = np.empty((n if coupled else 0, 12))
+    if coupled:
+        clear_modal_force(modal[disc])
+    energy, power, worst, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
+                                           step, forces, elastic, coupled, pin_slots,
+                                           pin_work)
+    if count > 0:
+        if arm_elastic is None:
+            hole = Q[0:0]
+            css = 0.0
+        else:
+            hole = hole_row(P, arm_elastic, disc)
+            css = hole_css(P, disc)
+        e, pw = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], pin_slots, pin_work,
+                             count, forces, elastic, hole, css)
+        energy += e
+        power += pw
+    return energy, power, worst
+
+
+@numba.njit(cache=True, inline="always")
+def _disc_frame(P, q, v, disc):
+    """Disc ``disc``'s profile angle: (cos, sin) and the housing velocity seen from the disc
+    centre in disc axes (rotation part excluded), and its angular velocity."""
     d = DISC0 + DISC_STRIDE * disc
-    ox, oy, th = q[d], q[d + 1], q[d + 2]
     vx, vy, w = v[d], v[d + 1], v[d + 2]
-    zp = P[ZP]
-    angle = th - disc * math.pi / P[ZC] + P[PROFILE_ROT]
+    angle = q[d + 2] - disc * math.pi / P[ZC] + P[PROFILE_ROT]
     cos_t, sin_t = math.cos(angle), math.sin(angle)
+    return angle, cos_t, sin_t, cos_t * vx + sin_t * vy, -sin_t * vx + cos_t * vy, w
+
+
+@numba.njit(**NO_REFCOUNT)
+def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
+             coupled, slots, work):
+    """The pin loop of :func:`pin_contacts` (compiled without reference counting: it
+    allocates nothing): the independent contacts' forces added to ``Q``; with ``coupled``, the
+    touching pins written to ``slots`` / ``work`` for :func:`coupled_pins`.  Returns (energy,
+    dissipated power, max penetration, number of coupled contacts)."""
+    d = DISC0 + DISC_STRIDE * disc
+    ox, oy = q[d], q[d + 1]
+    vx, vy = v[d], v[d + 1]
+    zp = P[ZP]
     # housing velocity seen from the disc centre, in disc axes (rotation part added per pin)
-    lvx, lvy = cos_t * vx + sin_t * vy, -sin_t * vx + cos_t * vy
+    angle, cos_t, sin_t, lvx, lvy, w = _disc_frame(P, q, v, disc)
     rg, a = P[RG], P[A_GEN]
     clearance = P[PROFILE_OFFSET] - P[PIN_RADIUS]
     runout_x = P[RUNOUT_X0] if disc == 0 else P[RUNOUT_X1]
@@ -228,12 +272,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     worst = 0.0
     want = K.shape[0] > 0
     n = pins.shape[0]
-    coupled = fe.shape[1] > 0
-    slots = np.empty(n if coupled else 0, dtype=np.int64)
-    work = np.empty((n if coupled else 0, 12))
     count = 0
-    if coupled:
-        clear_modal_force(modal[disc])
     for i in range(n):
         if step < next_eval[disc, i]:
             continue        # open: its force and elastic force were zeroed when it was skipped
@@ -292,30 +331,33 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
         Q[d] += fx
         Q[d + 1] += fy
         Q[d + 2] += torque
-    if count > 0:
-        if arm_elastic is None:
-            hole = Q[0:0]
-            css = 0.0
-        else:
-            hole = hole_row(P, arm_elastic, disc)
-            css = hole_css(P, disc)
-        e, pw, _ = apply_coupled(fe[disc], slots, work, count, P[PIN_C], P[ZETA],
-                                 P[M_DISC], forces[disc], elastic[disc], Q, K, d,
-                                 modal[disc], hole, css)
-        energy += e
-        power += pw
-        if P[MU] > 0.0:
-            # friction at the coupled solve's normal forces (the table is normal-normal: the
-            # tangential forces do not deflect the neighbours' approaches)
-            for a in range(count):
-                fx_t, fy_t, torque_t, loss = pin_friction(
-                    P, forces[disc, slots[a]], work[a, 7], work[a, 8], work[a, 9],
-                    work[a, 10], work[a, 11], lvx, lvy, w, cos_t, sin_t)
-                Q[d] += fx_t
-                Q[d + 1] += fy_t
-                Q[d + 2] += torque_t
-                power += loss
-    return energy, power, worst
+    return energy, power, worst, count
+
+
+@numba.njit(cache=True)
+def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, elastic,
+                 hole, css):
+    """The touching pins of disc ``disc`` that :func:`pin_loop` collected, solved together with
+    the disc's finite-element ``table`` (:func:`rvsim.dynamics._fe_contacts.apply_coupled`),
+    and their friction; ``hole``, ``css``: the disc's crank-hole state (0-length, 0: none;
+    :mod:`rvsim.dynamics._fe_holes`).  Returns (energy, dissipated power)."""
+    d = DISC0 + DISC_STRIDE * disc
+    _, cos_t, sin_t, lvx, lvy, w = _disc_frame(P, q, v, disc)
+    energy, power, _ = apply_coupled(table, slots, work, count, P[PIN_C], P[ZETA],
+                                     P[M_DISC], forces[disc], elastic[disc], Q, K, d, modal,
+                                     hole, css)
+    if P[MU] > 0.0:
+        # friction at the coupled solve's normal forces (the table is normal-normal: the
+        # tangential forces do not deflect the neighbours' approaches)
+        for a in range(count):
+            fx_t, fy_t, torque_t, loss = pin_friction(
+                P, forces[disc, slots[a]], work[a, 7], work[a, 8], work[a, 9],
+                work[a, 10], work[a, 11], lvx, lvy, w, cos_t, sin_t)
+            Q[d] += fx_t
+            Q[d + 1] += fy_t
+            Q[d + 2] += torque_t
+            power += loss
+    return energy, power
 
 
 @numba.njit(cache=True, inline="always")
@@ -336,7 +378,7 @@ def pin_friction(P, fn, px, py, gap, nx, ny, lvx, lvy, w, cos_t, sin_t):
             ft * (cx * tiy - cy * tix), -ft * slide)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx, sy, cx, cy,
                   w_in):
     """Stiffness matrix -dQ/dq of an arm element whose elastic force S (on the disc hole;
@@ -359,7 +401,7 @@ def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx,
     K[d + 2, d + 2] += sx * lx + sy * ly
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, sx, sy, cx, cy, w_in):
     """Stiffness matrix of a support element (node coordinates from b, crank rotation at
     ``phi``, bore centre (bx, by) on the carrier), as :func:`arm_stiffness`."""
@@ -456,7 +498,7 @@ def apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy
     Q[d + 2] -= -fx * (hy - q[d + 1]) + fy * (hx - q[d])
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
     contact, :func:`~rvsim.dynamics._bearings.conforming_force`) or a needle roller bearing
@@ -592,7 +634,7 @@ def arm_pair_stiffness(K, q, crank, geo, dsdr, force, w_in):
                     K[row, col] += gx[a] * ax + gy[a] * ay
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(**NO_REFCOUNT)
 def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
     """Crank ``crank``'s lower or upper support node in its carrier / flange bore: the paper's
     bushing (conforming contact) or a tapered roller bearing (P[SUP_KIND]).
@@ -708,7 +750,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
 @numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-              channel, mesh_state, mesh_hold, fe, modal=None):
+              channel, mesh_state, mesh_hold, fe, modal=None, pin_slots=None, pin_work=None):
     """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
     ``torque_load``: the one evaluation of the force elements that both engines use.
 
@@ -720,12 +762,19 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     With P[FRICTION_ON], the mesh and bearing friction (dynamics._friction) act after their
     elements with the normal forces those return.  Returns (potential energy, dissipated
     power, input torque, max pin penetration).  ``modal``: the discs' modes (dynamic engine,
-    :mod:`rvsim.dynamics._fe_modes`; omitted: none).
+    :mod:`rvsim.dynamics._fe_modes`; omitted: none).  ``pin_slots``, ``pin_work``: the pin
+    contacts' work arrays (:func:`pin_contacts`; omitted: allocated per call).
     """
     if modal is None:
         modes = np.zeros((2, 0, 0))
     else:
         modes = modal
+    coupled = fe.shape[1] > 0
+    if pin_slots is None:
+        slots = np.empty(pins.shape[0] if coupled else 0, dtype=np.int64)
+        work = np.empty((pins.shape[0] if coupled else 0, 12))
+    else:
+        slots, work = pin_slots, pin_work
     for i in range(N_DOF):
         Q[i] = 0.0
     energy = 0.0
@@ -763,12 +812,23 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
             e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
                                       step, pin_force, pin_elastic, fe, modes)
             ring_forces(q, qr, Qr, Kr, Q, K, disc)
-        elif holes_on(P):     # the FE disc's crank holes as load points (_fe_holes)
-            e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
-                                      pin_force, pin_elastic, fe, modes, arm_elastic)
-        else:
-            e, pw, pen = pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
-                                      pin_force, pin_elastic, fe, modes)
+        else:   # pin_contacts' parts, called here (no reference counting in the pin loop;
+                # docs/decisions.md): a change to one sequence belongs in the other too
+            if coupled:
+                clear_modal_force(modes[disc])
+            e, pw, pen, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
+                                         step, pin_force, pin_elastic, coupled, slots, work)
+            if count > 0:
+                if holes_on(P):     # the FE disc's crank holes as load points (_fe_holes)
+                    hole = hole_row(P, arm_elastic, disc)
+                    css = hole_css(P, disc)
+                else:
+                    hole = Q[0:0]
+                    css = 0.0
+                e_fe, pw_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modes[disc], slots,
+                                           work, count, pin_force, pin_elastic, hole, css)
+                e += e_fe
+                pw += pw_fe
         energy += e
         power += pw
         if pen > worst:
@@ -788,7 +848,8 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
 
 @numba.njit(cache=True, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe, modal):
+           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe, modal,
+           pin_slots, pin_work):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
     the run's schedule). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration, input angle, input speed)."""
@@ -797,7 +858,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     energy, power, torque_in, worst = forces_at(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-        mesh_state, mesh_hold, fe, modal)
+        mesh_state, mesh_hold, fe, modal, pin_slots, pin_work)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
@@ -819,14 +880,13 @@ COUNT_ROW, COUNT_IN_WINDOW = 0, 1
 def new_state(n_pins, n_channels, n_output_pins=0):
     """Work arrays that :func:`integrate` carries from one call to the next (all zero at t = 0):
     (pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic, mesh_state, channel,
-    counters).  ``arm_elastic`` has a column per output pin after the two arm and the two
-    support columns (_layout.OUT_SLOT0), and the support forces on finite-element plates in
-    its last columns (dynamics._fe_carrier)."""
+    counters).  ``arm_elastic`` has the columns of _layout (the arm and support bushings',
+    the finite-element crank's and plates' force vectors, the crank holes' state) and a
+    column per output pin from _layout.OUT_SLOT0."""
     pin_angle = 2.0 * np.pi * np.arange(n_pins) / n_pins
     return (pin_angle, np.zeros((2, n_pins)), np.zeros((2, n_pins), dtype=np.int64),
             np.zeros((2, n_pins)), np.zeros((2, n_pins)),
-            np.zeros((2, OUT_SLOT0 + n_output_pins + HOLE_COLUMNS + PLATE_COLUMNS)),
-            np.zeros((2, 2)),
+            np.zeros((2, OUT_SLOT0 + n_output_pins)), np.zeros((2, 2)),
             np.zeros(n_channels), np.zeros(2, dtype=np.int64))
 
 
@@ -860,6 +920,10 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             P[i] = 0.0
     mesh_hold = np.zeros((2, 2))
     previous_stiffness = np.zeros(2)
+    # the pin contacts' work arrays (coupled finite-element discs only), once per call
+    coupled = fe.shape[1] > 0
+    pin_slots = np.empty(pins.shape[0] if coupled else 0, dtype=np.int64)
+    pin_work = np.empty((pins.shape[0] if coupled else 0, 12))
     row = counters[COUNT_ROW]
     in_window = counters[COUNT_IN_WINDOW] == 1
     # inverse inertias, and the step's impulse per unit force on each coordinate
@@ -879,7 +943,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
             pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state,
-            K_node if check else K, mesh_hold, fe, modal)
+            K_node if check else K, mesh_hold, fe, modal, pin_slots, pin_work)
         if check:
             P[NODE_ALERT] = 0.0
             for j in range(2):

@@ -17,10 +17,18 @@ N_DOF = 17
 #: elastic force, arm_elastic[crank, SUP_SLOT0 + upper] the support bushing's (Newton starts),
 #: arm_elastic[crank, FE_CRANK_SLOT0 + 2 disc + (0, 1)] the arm bushing's elastic force vector
 #: (x, y, housing frame) with a finite-element crank (rvsim.dynamics._fe_crank),
+#: arm_elastic[crank, PLATE_SLOT0 + 2 upper + (0, 1)] the support force vector on a
+#: finite-element carrier / flange (rvsim.dynamics._fe_carrier),
+#: arm_elastic[disc, HOLE_SLOT0 + (0 .. HOLE_COLUMNS - 1)] the FE disc's crank-hole state
+#: (rvsim.dynamics._fe_holes: Q, Q summed, stretch and the quasi-static engine's derivatives
+#: and predictor),
 #: arm_elastic[disc, OUT_SLOT0 + m] output pin m's in disc ``disc`` (single-stage drive)
 SUP_SLOT0 = 2
 FE_CRANK_SLOT0 = 4
-OUT_SLOT0 = 8
+PLATE_SLOT0 = 8
+HOLE_SLOT0 = 12
+HOLE_COLUMNS = 9 + N_DOF
+OUT_SLOT0 = HOLE_SLOT0 + HOLE_COLUMNS
 N_CRANKS = 2
 N_DISCS = 2
 

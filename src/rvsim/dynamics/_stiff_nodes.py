@@ -15,7 +15,9 @@ matrix is scaled by (1 + alpha), alpha = (omega dt / limit)^2 - 1, until the nex
 the node mode then runs at omega dt = limit (checks every step while some crank is above
 ALERT x the limit), and the scheme stays symplectic Euler of a
 system with that inertia.  Where the limit is not exceeded (alpha = 0) nothing changes, bit
-for bit.  The energy balance stays exact for the scaled system: its kinetic energy
+for bit (closed-form bodies; with a coupled finite-element disc, crank or plate the guard is
+off, ``model.build_model``, because passing a K switches their solves to the converged
+quasi-static path).  The energy balance stays exact for the scaled system: its kinetic energy
 1/2 (1 + alpha) v^T M_n v is counted, and the change of alpha at fixed velocities is counted
 as parametric work, like the meshes' stiffness change.
 
@@ -29,7 +31,11 @@ import math
 import numba
 import numpy as np
 
-from ._layout import CRANK0, CRANK_STRIDE, MINV_LL, MINV_LU, MINV_UU
+from ._cache_guard import invalidate_stale_cache
+
+invalidate_stale_cache(__file__)
+
+from ._layout import CRANK0, CRANK_STRIDE, MINV_LL, MINV_LU, MINV_UU  # noqa: E402
 
 #: above ALERT x the limit the next check comes at the next step, not P[NODE_REFRESH] steps
 #: later: a bushing's stiffness can double within a few steps when the play is thrown

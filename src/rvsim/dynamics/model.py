@@ -276,8 +276,12 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.W_D2_L], P[L.W_D2_U] = _station_weights(r, k.disc2_z)
     P[L.W_G_L], P[L.W_G_U] = _station_weights(r, k.gear_z)
     P[L.PEN_LIMIT] = 0.2e-3
-    # stability guard of the crank nodes (dynamics._stiff_nodes; docs/model.md section 9)
-    P[L.NODE_OMEGA_DT] = OMEGA_DT_LIMIT if time_step > GUARD_FROM_STEP else 0.0
+    # stability guard of the crank nodes (dynamics._stiff_nodes; docs/model.md section 9);
+    # off with a coupled finite-element body (disc, crank, plates): its stiffness assembly
+    # would switch their solves from the dynamic sweep to the converged quasi-static one
+    coupled_fe = P[L.FE_DISC] == 1.0 or P[L.FE_CRANK_XX1] > 0.0 or P[L.FE_PLATE_XX1] > 0.0
+    P[L.NODE_OMEGA_DT] = (OMEGA_DT_LIMIT if time_step > GUARD_FROM_STEP and not coupled_fe
+                          else 0.0)
     P[L.NODE_REFRESH] = REFRESH_STEPS
 
     pins = pin_table(r)       # pin centres, and per-pin / per-tooth errors when there are any

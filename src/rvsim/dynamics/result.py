@@ -88,7 +88,7 @@ class Result:
     guard: dict[str, float] = dataclasses.field(default_factory=dict)
     """what the crank nodes' stability guard did (steps above 6e-6 s only; docs/model.md
     section 9): ``guard_scaled_checks`` (whole run) and ``guard_scaled_checks_steady`` (steady
-    window) count the checks where it scaled a crank's node mass, ``guard_peak_omega_dt`` is
+    window) count the cranks it scaled, summed over its checks, ``guard_peak_omega_dt`` is
     the largest omega dt of the node modes it found; empty when the guard was off"""
 
     def channel(self, name: str) -> np.ndarray:

@@ -44,6 +44,12 @@ def check_run_options(reducer: Reducer, duration: float | None = None,
     sampling, a finite duration past the steady window whose histories fit in memory); a
     study checks every run with it before anything is simulated."""
     duration = float(reducer.operating.duration if duration is None else duration)
+    f = reducer.flexibility
+    if (f.fe_modes > 0 and f.fe_disc_holes and f.cycloid_disc and f.model == "fe"
+            and not reducer.layout.single_stage):
+        raise ParameterError("flexibility.fe_modes", "the disc's modes are built with its crank "
+                             "holes held; set flexibility.fe_disc_holes = false to integrate "
+                             "them (docs/decisions.md)")
     if not 0 < time_step <= MAX_TIME_STEP:
         raise ParameterError("time_step", f"must be in (0, {MAX_TIME_STEP:g}] s (got "
                              f"{time_step:g})")
@@ -139,12 +145,7 @@ def disc_modes(reducer: Reducer, model, time_step: float) -> tuple[np.ndarray, n
     no modes."""
     if model.fe.shape[1] == 0:
         return model.fe, np.zeros((2, 0, 0))
-    if model.P[L.FE_HOLES] != 0.0 and model.P[L.FE_MODES] > 0:
-        from ..errors import ParameterError
-
-        raise ParameterError("flexibility.fe_modes", "the disc's modes are built with its crank "
-                             "holes held; set flexibility.fe_disc_holes = false to integrate "
-                             "them (docs/decisions.md)")
+    # (the modes with the crank holes as load points are refused by check_run_options)
     from ..fe.modes import disc_modal_arrays
     from ._fe_modes import modal_array
 
