@@ -78,11 +78,12 @@ ROUNDOFF_FACTOR = 1e3
 # with Q give the stretch s_d(Q_d) and its derivative B_d = ds_d/dQ_d
 # (:func:`rvsim.dynamics._fe_contacts.apply_coupled`, from the Cholesky factor of the pins'
 # solve), the arm bushings at the stretches give Q_sum(s) and D = dQ_sum/ds (2 x 2, from the
-# elements' tangent stiffness, :func:`arm_response`).  :func:`settle` is Newton on
+# elements' tangent stiffness, :func:`arm_response`).  :func:`_evaluate` runs Newton on
 # R(Q) = Q_sum(s(Q)) - Q, whose Jacobian is D B - I: each pass is the kernel's whole force
 # evaluation (:func:`rvsim.dynamics._kernel.forces_at`) with the current Q, repeated with the
-# Newton update until R is below :data:`HOLE_RTOL` of the largest arm-bushing force; the
-# evaluation that passes the test is the one whose forces, energy and stiffness the solver takes.
+# Newton update until R passes :func:`settled` (tight, or loosely away from the equilibrium
+# with the forces corrected, :func:`correct_forces`); the evaluation that passes is the one
+# whose forces, energy and stiffness the solver takes.
 # :func:`add_coupling_stiffness` then adds what the coupling changes in the stiffness, by the
 # implicit-function theorem (no differences).
 
