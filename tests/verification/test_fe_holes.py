@@ -128,8 +128,8 @@ def test_zero_hole_block_gives_back_the_held_holes(monkeypatch):
 def test_quasi_static_stiffness_is_the_derivative_of_the_forces():
     """K (with the holes' correction by the implicit-function theorem, the solver's
     add_coupling_stiffness) against central differences of the generalised forces at an
-    equilibrium, every evaluation solving the holes' coupling: measured 2.0e-4 of the largest scaled entry, as with the holes held (2.1e-4: the
-    differences' own error)."""
+    equilibrium, every evaluation solving the holes' coupling: measured 2.0e-4 of the largest
+    scaled entry, as with the holes held (2.1e-4: the differences' own error)."""
     from rvsim.dynamics.model import build_model
     from rvsim.quasistatic import _solver as S
     from rvsim.quasistatic.transmission import solve_path

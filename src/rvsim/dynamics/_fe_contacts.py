@@ -340,8 +340,8 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
 def _hole_derivatives(table, work, active, jac, y, na, css, scratch, hole):
     """The crank holes' load Q seen from the solved pins (:mod:`rvsim.dynamics._fe_holes`;
     quasi-static engine): into ``hole[3]`` ds/dQ = c_ss - c_A^T S_AA c_A and the pins'
-    generalised forces on the disc (``hole[4:7]``) d(x, y, theta)/dQ = -G_A^T S_AA c_A, S_AA = (C_AA +
-    D_A^-1)^-1 = L^-T L^-1 the tangent of the loaded pins A (factor L in ``jac``), c_A their
+    generalised forces on the disc (``hole[4:7]``) d(x, y, theta)/dQ = -G_A^T S_AA c_A,
+    S_AA = (C_AA + D_A^-1)^-1 = L^-T L^-1 the tangent of the loaded pins A (factor L in ``jac``), c_A their
     stretch column (the approaches fall by c_sp Q), ``y`` = L^-1 G_A (na x 3) already formed:
     one forward substitution for t = L^-1 c_A."""
     t = scratch[:na].reshape((na, 1))
