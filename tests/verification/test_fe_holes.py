@@ -216,3 +216,39 @@ def test_sweep_contraction_and_the_modes_refused():
     assert np.all((rho > -0.45) & (rho < -0.2)), rho
     with pytest.raises(ParameterError, match="flexibility.fe_modes"):
         simulate(with_values(r, {"flexibility.fe_modes": 2}))
+
+
+def test_no_pin_touching_leaves_the_stretch_of_the_holes_load_alone():
+    """A disc no pin touches (the pins 0.2 mm thinner, the kinematic pose): its stretch is
+    c_ss Q from the holes' own load, whatever it was before (found stale by review), with the
+    strain energy c_ss Q^2 / 2."""
+    from rvsim.dynamics import _kernel as Kn
+    from rvsim.dynamics._fe_holes import Q_PINS, STRETCH
+    from rvsim.dynamics.model import build_model
+
+    m = build_model(with_values(RV40E, COARSE), 1e-5)
+    zp = m.pins.shape[0]
+    angle = 2 * np.pi * np.arange(zp) / zp
+    q = m.q0.copy()
+    P = m.P.copy()
+    P[L.PIN_RADIUS] -= 0.2e-3
+    css = P[L.FE_HOLE_CSS0]
+    assert css > 0
+    arm = np.zeros((2, L.OUT_SLOT0))
+    for d in range(2):
+        arm[d, L.HOLE_SLOT0 + Q_PINS] = 40.0 * (d + 1)
+        arm[d, L.HOLE_SLOT0 + STRETCH] = 1e-3          # stale
+    u, ne = np.zeros((2, zp)), np.zeros((2, zp), dtype=np.int64)
+    pf, pe = np.zeros((2, zp)), np.zeros((2, zp))
+    energies = []
+    for d in range(2):
+        Q, K = np.zeros(17), np.zeros((0, 0))
+        energy, _, _ = Kn.pin_contacts(P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne, 1,
+                                       pf, pe, m.fe, np.zeros((2, 0, 0)), arm)
+        energies.append(energy)
+    assert not pf.any()                                # no pin touches
+    assert P[L.FE_HOLE_CSS1] == css
+    for d in range(2):
+        load = 40.0 * (d + 1)
+        assert arm[d, L.HOLE_SLOT0 + STRETCH] == pytest.approx(css * load, rel=1e-15)
+        assert energies[d] == pytest.approx(0.5 * css * load ** 2, rel=1e-15)

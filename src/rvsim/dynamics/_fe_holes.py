@@ -39,7 +39,7 @@ invalidate_stale_cache(__file__)
 from ._layout import (DISC0, DISC_STRIDE, FE_HOLE_CSS0, FE_HOLE_CSS1, FE_HOLE_EX,  # noqa: E402
                       FE_HOLE_EY, FE_HOLES, HOLE_COLUMNS, HOLE_SLOT0)
 
-__all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED", "PREDICT",
+__all__ = ["free_stretch", "COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED", "PREDICT",
            "hole_row", "hole_css", "hole_shift", "add_hole_load", "hole_load", "set_hole_load",
            "hole_stretch", "set_hole_stretch", "hole_sum", "begin_arms", "end_arms", "holes_on"]
 
@@ -103,6 +103,17 @@ def add_hole_load(P, q, elastic, crank, disc, sx, sy):
     ey = s * P[FE_HOLE_EX] + c * P[FE_HOLE_EY]
     sign = 1.0 if crank == 1 else -1.0
     elastic[disc, _col(elastic, Q_SUM)] += 0.5 * sign * (ex * sx + ey * sy)
+
+
+@numba.njit(cache=True, inline="always")
+def free_stretch(hole, css):
+    """A disc no pin touches: its holes' stretch from their own load alone, s = c_ss Q, and the
+    strain energy Q s - c_ss Q^2 / 2 = c_ss Q^2 / 2 (what the coupled pins' solve gives with
+    no pin force; without it s would keep a stale value).  ``hole``: the disc's state row
+    (:func:`hole_row`); returns the energy."""
+    s = css * hole[Q_PINS]
+    hole[STRETCH] = s
+    return 0.5 * s * hole[Q_PINS]
 
 
 @numba.njit(cache=True)

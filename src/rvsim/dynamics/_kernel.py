@@ -29,7 +29,7 @@ from ._pin_compliance import pin_series_compliance
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
 from ._fe_carrier import bore_centre, plate_supports
 from ._fe_holes import add_hole_load, begin_arms, end_arms
-from ._fe_holes import hole_css, hole_row, hole_shift, holes_on
+from ._fe_holes import free_stretch, hole_css, hole_row, hole_shift, holes_on
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
 from ._layout import (ECC_ERR0, ECC_PHASE0, MODE_ZETA)
@@ -234,6 +234,8 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
                              count, forces, elastic, hole, css)
         energy += e
         power += pw
+    elif arm_elastic is not None and holes_on(P):     # no pin touches: s = c_ss Q
+        energy += free_stretch(hole_row(P, arm_elastic, disc), hole_css(P, disc))
     return energy, power, worst
 
 
@@ -829,6 +831,8 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
                                            work, count, pin_force, pin_elastic, hole, css)
                 e += e_fe
                 pw += pw_fe
+            elif holes_on(P):       # no pin touches: s = c_ss Q (_fe_holes.free_stretch)
+                e += free_stretch(hole_row(P, arm_elastic, disc), hole_css(P, disc))
         energy += e
         power += pw
         if pen > worst:
