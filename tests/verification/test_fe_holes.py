@@ -61,7 +61,7 @@ def test_hole_table_reproduces_the_full_model_and_has_the_stretch_structure():
     f = np.random.default_rng(1).normal(size=m + 4)
     u = spla.spsolve(saddle, np.concatenate([loads @ f, np.zeros(3)]))[:body.n_dofs]
     full = loads.T @ u
-    assert np.abs(c @ f - full).max() <= 1e-9 * np.abs(full).max()
+    assert np.abs(c @ f - full).max() <= 1e-11 * np.abs(full).max()   # measured 2e-12; issue: 1e-9
 
 
 def test_web_stretch_against_the_held_hole_estimate():

@@ -39,8 +39,8 @@ invalidate_stale_cache(__file__)
 from ._layout import (DISC0, DISC_STRIDE, FE_HOLE_CSS0, FE_HOLE_CSS1, FE_HOLE_EX,  # noqa: E402
                       FE_HOLE_EY, FE_HOLES, HOLE_COLUMNS, HOLE_SLOT0)
 
-__all__ = ["free_stretch", "COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED", "PREDICT",
-           "hole_row", "hole_css", "hole_shift", "add_hole_load", "hole_load", "set_hole_load",
+__all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED", "PREDICT",
+           "free_stretch", "hole_row", "hole_css", "hole_shift", "add_hole_load", "hole_load", "set_hole_load",
            "hole_stretch", "set_hole_stretch", "hole_sum", "begin_arms", "end_arms", "holes_on"]
 
 #: columns per disc row: Q read by the pins, Q summed by the arm bushings, the stretch s; for

@@ -208,8 +208,9 @@ class Flexibility:
                           minimum=0)
     fe_disc_holes: bool = flag(False, "with model = fe and A: the disc's two crank holes are "
                                "load points of its finite-element table (the arm bushings "
-                               "stretch the web between them) instead of held edges; "
-                               "5-7x the quasi-static cost (docs/decisions.md)")
+                               "stretch the web between them) instead of held edges: the "
+                               "soft bound of the hole region, as held edges are the stiff "
+                               "one (docs/decisions.md)")
     fe_carrier: bool = flag(True, "with model = fe: the carrier and the flange are "
                             "finite-element plates on which the crank support bushings bear "
                             "(RV reducer; no effect with closed-form)")
