@@ -40,8 +40,8 @@ from ._layout import (DISC0, DISC_STRIDE, FE_HOLE_CSS0, FE_HOLE_CSS1, FE_HOLE_EX
                       FE_HOLE_EY, FE_HOLES, HOLE_COLUMNS, HOLE_SLOT0)
 
 __all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED", "PREDICT",
-           "free_stretch", "hole_row", "hole_css", "hole_shift", "add_hole_load", "hole_load", "set_hole_load",
-           "hole_stretch", "set_hole_stretch", "hole_sum", "begin_arms", "end_arms", "holes_on"]
+           "free_stretch", "hole_row", "hole_css", "hole_shift", "add_hole_load", "begin_arms",
+           "end_arms", "holes_on"]
 
 #: columns per disc row: Q read by the pins, Q summed by the arm bushings, the stretch s; for
 #: the quasi-static engine (:mod:`rvsim.quasistatic._solver`) also ds/dQ of the pins' solve
@@ -114,36 +114,6 @@ def free_stretch(hole, css):
     s = css * hole[Q_PINS]
     hole[STRETCH] = s
     return 0.5 * s * hole[Q_PINS]
-
-
-@numba.njit(cache=True)
-def hole_load(elastic, disc):
-    """The Q the pins of disc ``disc`` read [N]."""
-    return elastic[disc, _col(elastic, Q_PINS)]
-
-
-@numba.njit(cache=True)
-def set_hole_load(elastic, disc, value):
-    """Set the Q the pins of disc ``disc`` read [N]."""
-    elastic[disc, _col(elastic, Q_PINS)] = value
-
-
-@numba.njit(cache=True)
-def hole_stretch(elastic, disc):
-    """The stretch s of disc ``disc``'s holes the arm bushings read [m]."""
-    return elastic[disc, _col(elastic, STRETCH)]
-
-
-@numba.njit(cache=True)
-def set_hole_stretch(elastic, disc, value):
-    """Set the stretch s of disc ``disc``'s holes [m]."""
-    elastic[disc, _col(elastic, STRETCH)] = value
-
-
-@numba.njit(cache=True)
-def hole_sum(elastic, disc):
-    """The Q the arm bushings summed for disc ``disc`` [N]."""
-    return elastic[disc, _col(elastic, Q_SUM)]
 
 
 @numba.njit(cache=True, inline="always")
