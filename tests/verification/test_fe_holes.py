@@ -252,3 +252,14 @@ def test_no_pin_touching_leaves_the_stretch_of_the_holes_load_alone():
         load = 40.0 * (d + 1)
         assert arm[d, L.HOLE_SLOT0 + STRETCH] == pytest.approx(css * load, rel=1e-15)
         assert energies[d] == pytest.approx(0.5 * css * load ** 2, rel=1e-15)
+    # the dynamic engine's own path (forces_at calls the pin parts itself): the same stretch
+    for d in range(2):
+        arm[d, L.HOLE_SLOT0 + Q_PINS] = 40.0 * (d + 1)
+        arm[d, L.HOLE_SLOT0 + STRETCH] = 1e-3
+    ne[:, :] = 0
+    Kn.forces_at(P, q, np.zeros(17), 0.0, 0.0, 0.0, m.pins, angle, m.holes, m.crank_angles,
+                 m.mesh_phase, u, ne, 1, pf, pe, arm, np.zeros(17), np.zeros((0, 0)),
+                 np.zeros(L.N_CHANNELS), np.zeros((2, 2)), np.zeros((2, 2)), m.fe)
+    assert not pf.any()
+    for d in range(2):
+        assert arm[d, L.HOLE_SLOT0 + STRETCH] == pytest.approx(css * 40.0 * (d + 1), rel=1e-15)

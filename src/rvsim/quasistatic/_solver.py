@@ -35,8 +35,6 @@ from ..dynamics._cache_guard import invalidate_stale_cache
 # its layout and the curve functions are compiled in (same guard as the kernel's)
 invalidate_stale_cache(__file__)
 
-from ..dynamics._fe_carrier import COLUMNS as PLATE_COLUMNS  # noqa: E402
-from ..dynamics._fe_holes import COLUMNS as HOLE_COLUMNS  # noqa: E402
 from ..dynamics._fe_holes import (DF_DQ, DS_DQ, PREDICT, Q_PINS, Q_SUM, SETTLED,  # noqa: E402
                                   STRETCH, hole_css, hole_row, holes_on)
 from ..dynamics._kernel import arm_bushing, arm_pair, forces_at, hole_station  # noqa: E402
@@ -135,21 +133,23 @@ def forget_prediction(P, arm_elastic):
 
 
 @numba.njit(cache=True)
-def settled(P, arm_elastic, given, r, Q):
+def settled(P, arm_elastic, given, r, Q, f_ext):
     """After a pass (the arm bushings have summed Q_sum, and the kernel's ``end_arms`` copied it
     to the pins' Q): r = Q_sum - Q given; returns (solved tight, solved loosely) by
-    :data:`HOLE_RTOL` and :data:`HOLE_LOOSE` (``Q`` the pass's generalised forces) and records
-    the first (:func:`hole_settled`)."""
+    :data:`HOLE_RTOL` and :data:`HOLE_LOOSE` (``Q`` the pass's generalised forces, ``f_ext``
+    the friction forces held, which the residual includes) and records the first
+    (:func:`hole_settled`)."""
     largest = 0.0
     for j in range(2):
         largest = max(largest, abs(arm_elastic[j, 0]), abs(arm_elastic[j, 1]))
     outer = 0.0
     for j in range(int(P[CRANK_COUNT])):
         for i in range(4):
-            outer = max(outer, abs(Q[CRANK0 + CRANK_STRIDE * j + i]))
+            k = CRANK0 + CRANK_STRIDE * j + i
+            outer = max(outer, abs(Q[k] + f_ext[k]))
     for disc in range(int(P[DISC_COUNT])):
         dd = DISC0 + DISC_STRIDE * disc
-        outer = max(outer, abs(Q[dd]), abs(Q[dd + 1]))
+        outer = max(outer, abs(Q[dd] + f_ext[dd]), abs(Q[dd + 1] + f_ext[dd + 1]))
     worst = 0.0
     for disc in range(2):
         r[disc] = hole_row(P, arm_elastic, disc)[Q_SUM] - given[disc]
@@ -340,7 +340,7 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
             mesh_hold, fe)
         if not coupled:
             break
-        tight, loose = settled(P, arm_elastic, given, r, Q)
+        tight, loose = settled(P, arm_elastic, given, r, Q, f_ext)
         arm_response(P, q, holes, arm_elastic, c, d)
         # a Newton step that did not halve |r| (contacts switching): plain sweeps from here
         # (Q = Q_sum, a contraction)
@@ -431,6 +431,9 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                 mesh_hold, f_ext, fe)
             continue
         if norm <= tol:
+            if not hole_settled(P, arm_elastic):
+                # polishing used up with the holes still solved loosely: not an equilibrium
+                return STATUS_NOT_CONVERGED, iteration, torque_in
             if worst > P[PEN_LIMIT]:
                 return STATUS_PENETRATION, iteration, torque_in
             return STATUS_OK, iteration, torque_in
@@ -511,7 +514,8 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
                     # no step left above the round-off of the positions (1e-16 m): converged
                     # as far as double precision goes if the residual is near tol (very stiff
                     # contacts turn the positions' round-off into ~ tol of force)
-                    if norm <= ROUNDOFF_FACTOR * tol and worst <= P[PEN_LIMIT]:
+                    if (norm <= ROUNDOFF_FACTOR * tol and worst <= P[PEN_LIMIT]
+                            and hole_settled(P, arm_elastic)):
                         return STATUS_OK, iteration, torque_in
                     return STATUS_NOT_CONVERGED, iteration, torque_in
     return STATUS_NOT_CONVERGED, max_iter, torque_in
@@ -810,7 +814,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     pin_force = np.zeros((2, zp))
     pin_elastic = np.zeros((2, zp))
     n_out = int(P[OUT_COUNT])
-    arm_elastic = np.zeros((2, OUT_SLOT0 + n_out + HOLE_COLUMNS + PLATE_COLUMNS))
+    arm_elastic = np.zeros((2, OUT_SLOT0 + n_out))
     mesh_state = np.zeros((2, 4))
     channel = np.zeros(N_CHANNELS)
     Q = np.zeros(N_DOF)
