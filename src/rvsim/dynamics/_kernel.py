@@ -32,7 +32,7 @@ from ._fe_holes import add_hole_load, begin_arms, end_arms
 from ._fe_holes import free_stretch, hole_css, hole_row, hole_shift, holes_on
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
-from ._layout import (ECC_ERR0, ECC_PHASE0, MODE_ZETA)
+from ._layout import (ECC_ERR0, ECC_PHASE0)
 from ._layout import (NODE_ALERT, NODE_ALPHA0, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_OMEGA_DT,
                       NODE_PEAK, NODE_REFRESH)
 from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt
@@ -1031,7 +1031,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             q[i] += dt * v[i]
         if modal.shape[2] > 0:
             for disc in range(2):
-                power = advance_modes(modal[disc], dt, P[MODE_ZETA])
+                power = advance_modes(modal[disc], dt, P[ZETA])   # the contacts' ratio
                 if in_window:
                     energy[E_DISSIPATED] += power * dt
         step += 1

@@ -197,7 +197,7 @@ FE_CRANK_YY2   = 149
 
 # ---- disc modes: 160-169 (rvsim.dynamics._fe_modes; the modes travel in the ``modal`` array)
 FE_MODES       = 160       # flexibility.fe_modes: modes of each disc the kernel integrates
-MODE_ZETA      = 161       # their modal damping ratio (contact.damping_ratio)
+                           # (their modal damping ratio is the contacts', P[ZETA])
 
 
 # ---- finite-element pins in their grooves: 170-179 (rvsim.fe.pin) --------------------------

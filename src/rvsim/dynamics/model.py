@@ -256,7 +256,6 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.FE_HOLES] = 1.0 if holes else 0.0
     # the dynamic engine's disc modes (rvsim.dynamics.simulate builds them; docs/model.md 17)
     P[L.FE_MODES] = r.flexibility.fe_modes if fe_disc else 0
-    P[L.MODE_ZETA] = r.contact.damping_ratio
     if fe_crank_used(r):
         P[L.FE_CRANK_XX1:L.FE_CRANK_XX1 + 10] = _fe_crank_constants(r)
     _fe_plate_constants(r, P)      # finite-element carrier and flange (docs/model.md sec. 17)

@@ -22,7 +22,6 @@ import math
 
 import numpy as np
 
-from ..errors import RvsimError
 from ..parameters import Reducer
 from . import cache
 from .elasticity import PlaneStressBody, edge_force
@@ -56,11 +55,7 @@ def plate_compliance(g: dict) -> tuple[np.ndarray, int, int]:
     outline = g["radius"] * np.column_stack([np.cos(angle), np.sin(angle)])
     bores = [Circle(sign * g["crank_circle"], 0.0, g["crank_bore"]) for sign in (1, -1)]
     holes = bores + ([Circle(0.0, 0.0, g["bore"])] if g["bore"] > 0 else [])
-    try:
-        mesh = mesh_plane_region(outline, holes, size)
-    except (ImportError, OSError) as exc:
-        raise RvsimError(f"flexibility.model: the finite-element route needs gmsh and "
-                         f"scikit-fem (pip install 'rvsim[fe]'): {exc}") from None
+    mesh = mesh_plane_region(outline, holes, size)
     body = PlaneStressBody(mesh.points, mesh.triangles, g["E"], g["nu"], g["thickness"])
     rim = body.supported_dofs(mesh.outline)
     boundary = body.mesh.facets[:, body.mesh.boundary_facets()]

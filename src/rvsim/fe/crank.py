@@ -33,7 +33,6 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import RvsimError
 from ..parameters import Reducer
 from . import cache
 from .elasticity import Factor
@@ -139,11 +138,7 @@ def shaft_compliance(g: dict) -> tuple[np.ndarray, int, int]:
     from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, LinearForm, MeshTet, asm
     from skfem.models.elasticity import lame_parameters, linear_elasticity
 
-    try:
-        points, tets = _mesh_shaft(g, g["size"])
-    except (ImportError, OSError) as exc:
-        raise RvsimError(f"flexibility.model: the finite-element route needs gmsh and "
-                         f"scikit-fem (pip install 'rvsim[fe]'): {exc}") from None
+    points, tets = _mesh_shaft(g, g["size"])
     cylinders = [(0.0, 0.0, g["journal_radius"])]
     cylinders += [(g["eccentricity"] * (1 if j == 0 else -1), 0.0, g["eccentric_radius"])
                   for j in range(len(g["stations"]))]

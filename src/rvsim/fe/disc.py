@@ -20,7 +20,7 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import ParameterError, RvsimError
+from ..errors import ParameterError
 from ..parameters import Reducer
 from . import cache
 from .elasticity import PlaneStressBody, edge_load
@@ -107,13 +107,7 @@ def _disc_mesh(g: dict) -> tuple[PlaneStressBody, tuple, sp.csc_matrix]:
     holes = [Circle(x, y, r) for x, y, r in g["crank_holes"]]
     holes += [Circle(0.0, 0.0, g["bore"])] if g["bore"] > 0 else []
     holes += [Circle(x, y, r) for x, y, r in g["pillars"]]
-    try:
-        mesh = mesh_plane_region(outline, holes, g["size"])
-    except (ImportError, OSError) as exc:
-        raise RvsimError(f"flexibility.model: the finite-element route needs gmsh and "
-                         f"scikit-fem (pip install 'rvsim[fe]'; gmsh needs the Debian "
-                         f"libraries libglu1-mesa libxcursor1 libxft2 libxinerama1): {exc}"
-                         ) from None
+    mesh = mesh_plane_region(outline, holes, g["size"])
     body = PlaneStressBody(mesh.points, mesh.triangles, g["E"], g["nu"], g["width"])
     nodes = mesh.outline
     loads = sp.hstack([

@@ -69,8 +69,17 @@ def disc_outline(rg: float, a: float, zp: int, offset: float, n: int) -> np.ndar
 @contextlib.contextmanager
 def gmsh_model(name: str):
     """A gmsh model ``name`` (gmsh initialised for it unless it already was; one thread, no
-    terminal output); yields the gmsh module, removes the model afterwards."""
-    import gmsh
+    terminal output); yields the gmsh module, removes the model afterwards.  Without gmsh
+    (or its system libraries): one RvsimError saying what to install."""
+    try:
+        import gmsh
+    except (ImportError, OSError) as exc:
+        from ..errors import RvsimError
+
+        raise RvsimError(f"flexibility.model: the finite-element route needs gmsh and "
+                         f"scikit-fem (pip install 'rvsim[fe]'; gmsh needs the Debian "
+                         f"libraries libglu1-mesa libxcursor1 libxft2 libxinerama1): {exc}"
+                         ) from None
 
     own = not gmsh.isInitialized()
     if own:

@@ -39,7 +39,6 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..dynamics._layout import PIN_FE_N
-from ..errors import RvsimError
 from ..parameters import Reducer
 from . import cache
 from .elasticity import Factor, PlaneStressBody, edge_force
@@ -107,11 +106,7 @@ class PinModel:
         theta = self.edge_angle * np.arange(n)
         outline = radius * np.column_stack([np.cos(theta), np.sin(theta)])
         edge = 2.0 * radius * math.sin(0.5 * self.edge_angle)
-        try:
-            mesh = mesh_plane_region(outline, [], 2.0 * edge)
-        except (ImportError, OSError) as exc:
-            raise RvsimError(f"flexibility.model: the finite-element pin needs gmsh and "
-                             f"scikit-fem (pip install 'rvsim[fe]'): {exc}") from None
+        mesh = mesh_plane_region(outline, [], 2.0 * edge)
         self.body = PlaneStressBody(mesh.points, mesh.triangles, g["E"], g["nu"], g["length"],
                                     plane_strain=True)
         self.outline = mesh.outline
