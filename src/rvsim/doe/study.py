@@ -48,8 +48,8 @@ MAX_RUNS = 100_000
 #: columns of results.csv besides the factors (a factor label must not be one of them); every
 #: metric column starts with ``te_`` or is listed here
 RESULT_COLUMNS = frozenset({"run", "status", "error", "key", "reducer", "steps", "wall_s",
-                            "sim_time_s", "speed_ratio", "guard_scaled_checks",
-                            "guard_scaled_checks_steady", "guard_peak_omega_dt"})
+                            "sim_time_s", "speed_ratio", "guard_substep_checks",
+                            "guard_substep_checks_steady", "guard_peak_omega_dt"})
 
 
 @dataclasses.dataclass(frozen=True)

@@ -22,7 +22,7 @@ invalidate_stale_cache()
 
 from ..geometry._curve import deviated_gap, pin_gap, pin_opening, profile_axes
 from ._bearings import conforming_force, radial_stiffness, roller_set
-from ._contact_law import EXPONENT, add_rank_one, contact, damped, spring_force  # noqa: F401
+from ._contact_law import add_rank_one, contact, damped
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._pin_compliance import pin_series_compliance
@@ -33,9 +33,10 @@ from ._fe_holes import free_stretch, hole_css, hole_row, hole_shift, holes_on
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
 from ._layout import (ECC_ERR0, ECC_PHASE0)
-from ._layout import (NODE_ALERT, NODE_ALPHA0, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_OMEGA_DT,
+from ._layout import (NODE_ALERT, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_OMEGA_DT,
+                      NODE_SUBSTEPS,
                       NODE_PEAK, NODE_REFRESH)
-from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt
+from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt, substeps_for
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
                       ARM_J2, ARM_KIND, ARM_ROLLERS, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
                       SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, BACKLASH, BASE_PITCH, CARRIER,
@@ -268,7 +269,7 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, e
     runout_x = P[RUNOUT_X0] if disc == 0 else P[RUNOUT_X1]
     runout_y = P[RUNOUT_Y0] if disc == 0 else P[RUNOUT_Y1]
     speed_bound = 2.0 * (math.sqrt(vx * vx + vy * vy) + abs(w) * (P[RG] + 2.0 * a + 1e-3)) \
-        * P[DT] + 1e-15
+        * (P[NODE_H] if P[NODE_H] > 0.0 else P[DT]) + 1e-15
     energy = 0.0
     power = 0.0
     worst = 0.0
@@ -866,19 +867,8 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
-@numba.njit(cache=True)
-def scaled_kinetic(P, v):
-    """Kinetic energy of the node mass the stability guard added (alpha_j M_n per crank;
-    dynamics._stiff_nodes)."""
-    energy = 0.0
-    for j in range(2):
-        if P[NODE_ALPHA0 + j] > 0.0:
-            energy += P[NODE_ALPHA0 + j] * node_kinetic(P, v, j)
-    return energy
-
-
 #: slots of the integer ``counters`` array carried between calls of :func:`integrate`
-COUNT_ROW, COUNT_IN_WINDOW = 0, 1
+COUNT_ROW, COUNT_IN_WINDOW, COUNT_TICK = 0, 1, 2
 
 
 def new_state(n_pins, n_channels, n_output_pins=0):
@@ -891,7 +881,7 @@ def new_state(n_pins, n_channels, n_output_pins=0):
     return (pin_angle, np.zeros((2, n_pins)), np.zeros((2, n_pins), dtype=np.int64),
             np.zeros((2, n_pins)), np.zeros((2, n_pins)),
             np.zeros((2, OUT_SLOT0 + n_output_pins)), np.zeros((2, 2)),
-            np.zeros(n_channels), np.zeros(2, dtype=np.int64))
+            np.zeros(n_channels), np.zeros(3, dtype=np.int64))
 
 
 @numba.njit(cache=True)
@@ -914,13 +904,12 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     Q = np.zeros(N_DOF)
     K = np.zeros((0, 0))
     # stability guard of the crank nodes (dynamics._stiff_nodes): the stiffness assembled
-    # every P[NODE_REFRESH] steps, a crank's node mass scaled by 1 + alpha where needed
+    # every P[NODE_REFRESH] steps, the step divided into sub-steps where the nodes need it
     guard = P[NODE_OMEGA_DT] > 0.0
     K_node = np.zeros((N_DOF, N_DOF) if guard else (0, 0))
     refresh = max(1, int(P[NODE_REFRESH]))
     if first_step == 0:
-        for i in (NODE_ALPHA0, NODE_ALPHA0 + 1, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_PEAK,
-                  NODE_ALERT):
+        for i in (NODE_SUBSTEPS, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_PEAK, NODE_ALERT):
             P[i] = 0.0
     mesh_hold = np.zeros((2, 2))
     previous_stiffness = np.zeros(2)
@@ -930,44 +919,57 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     pin_work = np.empty((pins.shape[0] if coupled else 0, 12))
     row = counters[COUNT_ROW]
     in_window = counters[COUNT_IN_WINDOW] == 1
-    # inverse inertias, and the step's impulse per unit force on each coordinate
-    h_carrier, h_crank = dt / P[J_CARRIER], dt / P[J_CRANK]
-    h_mass, h_disc = dt / P[M_DISC], dt / P[J_DISC]
-    h_ll, h_lu, h_uu = dt * P[MINV_LL], dt * P[MINV_LU], dt * P[MINV_UU]
+    # sub-steps of the step where the guard found the node modes too stiff for it
+    n_sub = max(1, int(P[NODE_SUBSTEPS])) if first_step > 0 else 1
+    sub = 0
+    h = dt / n_sub
+    P[NODE_H] = h
+    tick = counters[COUNT_TICK]       # force evaluations so far (the pin loop's clock)
+    # inverse inertias, and the sub-step's impulse per unit force on each coordinate
+    h_carrier, h_crank = h / P[J_CARRIER], h / P[J_CRANK]
+    h_mass, h_disc = h / P[M_DISC], h / P[J_DISC]
+    h_ll, h_lu, h_uu = h * P[MINV_LL], h * P[MINV_LU], h * P[MINV_UU]
     status = STATUS_OK
     step = first_step
     while step < stop_step:
-        t = step * dt
+        first = sub == 0
+        t = step * dt + sub * h
         modal_kinetic = 0.0
         for j in range(2):
             previous_stiffness[j] = mesh_state[j, 0]
-        check = guard and (step % refresh == 0 or P[NODE_ALERT] == 1.0)
+        check = first and guard and (step % refresh == 0 or P[NODE_ALERT] == 1.0)
         if check:
             K_node[:, :] = 0.0
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
-            P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
+            P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, tick,
             pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state,
             K_node if check else K, mesh_hold, fe, modal, pin_slots, pin_work)
+        tick += 1
         if check:
-            P[NODE_ALERT] = 0.0
-            for j in range(2):
-                w = node_omega_dt(P, K_node, j, dt)
-                if w > ALERT * P[NODE_OMEGA_DT]:     # near or above the limit: every step
-                    P[NODE_ALERT] = 1.0
-                if w > P[NODE_PEAK]:
-                    P[NODE_PEAK] = w
-                alpha = 0.0
-                if w > P[NODE_OMEGA_DT]:
-                    alpha = (w / P[NODE_OMEGA_DT]) ** 2 - 1.0
-                    P[NODE_CHECKS] += 1.0
-                    if in_window:
-                        P[NODE_CHECKS_STEADY] += 1.0
-                if in_window and alpha != P[NODE_ALPHA0 + j]:
-                    # kinetic energy of the scaled nodes changed at fixed velocities
-                    energy[E_PARAMETRIC] += (alpha - P[NODE_ALPHA0 + j]) * node_kinetic(P, v, j)
-                P[NODE_ALPHA0 + j] = alpha
+            # the stiffest node mode of the two cranks sets the sub-steps of this step and of
+            # the steps up to the next check (dynamics._stiff_nodes)
+            stiffest = max(node_omega_dt(P, K_node, 0, dt), node_omega_dt(P, K_node, 1, dt))
+            if stiffest > P[NODE_PEAK]:
+                P[NODE_PEAK] = stiffest
+            wanted = substeps_for(stiffest, P[NODE_OMEGA_DT])
+            if wanted != n_sub:
+                n_sub = wanted
+                h = dt / n_sub
+                h_carrier, h_crank = h / P[J_CARRIER], h / P[J_CRANK]
+                h_mass, h_disc = h / P[M_DISC], h / P[J_DISC]
+                h_ll, h_lu, h_uu = h * P[MINV_LL], h * P[MINV_LU], h * P[MINV_UU]
+                # the open pins' skips were counted in the old sub-step: evaluate them all
+                P[NODE_H] = h
+                next_eval[:, :] = 0
+            # near the limit (a bushing can stiffen within a few steps): check every step
+            P[NODE_ALERT] = 1.0 if stiffest / n_sub > ALERT * P[NODE_OMEGA_DT] else 0.0
+            if n_sub > 1:
+                P[NODE_CHECKS] += 1.0
+                if in_window:
+                    P[NODE_CHECKS_STEADY] += 1.0
         # the discs' modes: their energies, where the balance reads them
-        if modal.shape[2] > 0 and (step == n_steps or in_window != (t >= P[STEADY_START])):
+        if first and modal.shape[2] > 0 and (step == n_steps
+                                             or in_window != (t >= P[STEADY_START])):
             for disc in range(2):
                 kinetic, strain = modal_energy(modal[disc])
                 pot += strain
@@ -983,42 +985,39 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
         if pen > P[PEN_LIMIT]:
             status = STATUS_PENETRATION
             break
-        if step % sample_every == 0 and row < channels.shape[0]:
-            channel[CH_TIME] = t
-            channel[CH_THETA_IN] = theta_in
-            channel[CH_OMEGA_IN] = omega_in
-            channel[CH_THETA_OUT] = q[CARRIER]
-            channel[CH_OMEGA_OUT] = v[CARRIER]
-            channel[CH_TORQUE_IN] = t_in
-            channel[CH_TORQUE_LOAD] = t_load
-            channels[row, :] = channel
-            pin_forces[row, :, :] = pin_force
-            row += 1
-        if step == n_steps:
-            if in_window:
-                energy[E_KIN1] = kinetic_energy(P, v) + modal_kinetic + scaled_kinetic(P, v)
-                energy[E_POT1] = pot
-            step += 1
-            break
-        if not in_window and t >= P[STEADY_START]:
-            in_window = True
-            energy[E_KIN0] = kinetic_energy(P, v) + modal_kinetic + scaled_kinetic(P, v)
-            energy[E_POT0] = pot
+        if first:
+            if step % sample_every == 0 and row < channels.shape[0]:
+                channel[CH_TIME] = t
+                channel[CH_THETA_IN] = theta_in
+                channel[CH_OMEGA_IN] = omega_in
+                channel[CH_THETA_OUT] = q[CARRIER]
+                channel[CH_OMEGA_OUT] = v[CARRIER]
+                channel[CH_TORQUE_IN] = t_in
+                channel[CH_TORQUE_LOAD] = t_load
+                channels[row, :] = channel
+                pin_forces[row, :, :] = pin_force
+                row += 1
+            if step == n_steps:
+                if in_window:
+                    energy[E_KIN1] = kinetic_energy(P, v) + modal_kinetic
+                    energy[E_POT1] = pot
+                step += 1
+                break
+            if not in_window and t >= P[STEADY_START]:
+                in_window = True
+                energy[E_KIN0] = kinetic_energy(P, v) + modal_kinetic
+                energy[E_POT0] = pot
         if in_window:
-            # power flows over this step, velocities taken at the start of the step
-            energy[E_INPUT] += t_in * omega_in * dt
-            energy[E_OUTPUT] += t_load * v[CARRIER] * dt
-            energy[E_DISSIPATED] += diss * dt
+            # power flows over this (sub-)step, velocities taken at its start
+            energy[E_INPUT] += t_in * omega_in * h
+            energy[E_OUTPUT] += t_load * v[CARRIER] * h
+            energy[E_DISSIPATED] += diss * h
         # semi-implicit Euler: velocities first, then positions with the new velocities
         v[CARRIER] += h_carrier * Q[CARRIER]
         for j in range(2):
             b = CRANK0 + CRANK_STRIDE * j
-            scale = P[NODE_ALPHA0 + j]
             for axis in range(2):
                 f_low, f_up = Q[b + axis], Q[b + 2 + axis]
-                if scale > 0.0:      # the guard's scaled node mass (1 + alpha) M_n
-                    f_low /= 1.0 + scale
-                    f_up /= 1.0 + scale
                 v[b + axis] += h_ll * f_low + h_lu * f_up
                 v[b + 2 + axis] += h_lu * f_low + h_uu * f_up
             v[b + 4] += h_crank * Q[b + 4]
@@ -1028,13 +1027,19 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
             v[d + 1] += h_mass * Q[d + 1]
             v[d + 2] += h_disc * Q[d + 2]
         for i in range(N_DOF):
-            q[i] += dt * v[i]
+            q[i] += h * v[i]
         if modal.shape[2] > 0:
             for disc in range(2):
-                power = advance_modes(modal[disc], dt, P[ZETA])   # the contacts' ratio
+                power = advance_modes(modal[disc], h, P[ZETA])   # the contacts' ratio
                 if in_window:
-                    energy[E_DISSIPATED] += power * dt
-        step += 1
+                    energy[E_DISSIPATED] += power * h
+        sub += 1
+        if sub >= n_sub:
+            sub = 0
+            step += 1
+    P[NODE_SUBSTEPS] = n_sub
+    P[NODE_H] = 0.0
+    counters[COUNT_TICK] = tick
     counters[COUNT_ROW] = row
     counters[COUNT_IN_WINDOW] = 1 if in_window else 0
     return status, step

@@ -208,15 +208,15 @@ PIN_FE0        = 171       # c_pin(k step) [m/N], k = 0 .. PIN_FE_N - 1 (added t
 
 # ---- integration scheme (issue 14): 180-189 -----------------------------------------------
 # stability guard of the crank nodes (rvsim.dynamics._stiff_nodes, docs/model.md section 9)
-NODE_OMEGA_DT  = 180       # largest omega dt of a crank's node modes before its node mass
-                           # is scaled (0: guard off)
+NODE_OMEGA_DT  = 180       # largest omega dt of a crank's node modes before the step is
+                           # divided into sub-steps (0: guard off)
 NODE_REFRESH   = 181       # steps between two checks (stiffness assembled)
-NODE_ALPHA0    = 182       # state carried between calls: crank j's mass scaling alpha at
-                           # slot 182 + j ...
-NODE_CHECKS    = 184       # ... checks where the guard scaled a crank (whole run) ...
+NODE_SUBSTEPS  = 182       # state carried between calls: sub-steps per step (0 or 1: none)
+NODE_H         = 183       # state: the (sub-)step [s] of the pin loop's skip bound (0: DT)
+NODE_CHECKS    = 184       # checks after which the guard sub-stepped (whole run) ...
 NODE_CHECKS_STEADY = 185   # ... of them in the steady window ...
-NODE_PEAK      = 186       # ... and the largest omega dt found
-NODE_ALERT     = 187       # state: 1 while the last check found omega dt above ALERT x the
+NODE_PEAK      = 186       # ... and the largest omega dt (of the whole step) found
+NODE_ALERT     = 187       # state: 1 while the last check found omega h above ALERT x the
                            # limit (then checked every step), else 0
 
 

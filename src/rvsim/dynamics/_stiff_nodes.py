@@ -4,24 +4,22 @@ The step of the semi-implicit Euler scheme is limited by the crank nodes on thei
 the largest eigenvalue omega^2 of M_n^-1 K_n, M_n the 4 x 4 mass matrix of one crank's two
 support nodes (x_l, y_l, x_u, y_u) and K_n the tangent stiffness of the elements on them (the
 two supports, the two arm bushings, the mesh), rises with the conforming bushings' load, and
-the scheme is unstable once omega dt exceeds 2 (less with damping).  In a run the largest
+the scheme is unstable once omega h exceeds 2 (less with damping).  In a run the largest
 values come in the unloaded start and the load step, where the play is thrown through
-(docs/benchmarks.md, issue 14), not in the steady window.
+(docs/benchmarks.md, issue 14), and in the steady window of the runs with stiff bushings.
 
 The guard: every P[NODE_REFRESH] steps the kernel assembles the stiffness matrix (the one the
-quasi-static engine uses, ``forces_at`` with a 17 x 17 K) and, for each crank,
-omega dt = sqrt(lambda_max) dt.  Where it exceeds P[NODE_OMEGA_DT] the crank's node mass
-matrix is scaled by (1 + alpha), alpha = (omega dt / limit)^2 - 1, until the next refresh:
-the node mode then runs at omega dt = limit (checks every step while some crank is above
-ALERT x the limit), and the scheme stays symplectic Euler of a
-system with that inertia.  Where the limit is not exceeded (alpha = 0) nothing changes, bit
-for bit (closed-form bodies; with a coupled finite-element disc, crank or plate the guard is
-off, ``model.build_model``, because passing a K switches their solves to the converged
-quasi-static path).  The energy balance stays exact for the scaled system: its kinetic energy
-1/2 (1 + alpha) v^T M_n v is counted, and the change of alpha at fixed velocities is counted
-as parametric work, like the meshes' stiffness change.
+quasi-static engine uses, ``forces_at`` with a 17 x 17 K) and finds omega dt of both cranks'
+node modes.  Where the larger exceeds P[NODE_OMEGA_DT], the whole system takes that step and
+the following ones up to the next check in n equal sub-steps (:func:`substeps_for`: omega h
+at most ALERT x the limit), each a full step of the same scheme: the physics is unchanged,
+only the step is smaller where the nodes need it (the stiff phases run as they would at
+dt / n).  While omega h stays above ALERT x the limit the check comes every step.  Where the
+limit is not exceeded (n = 1) nothing changes, bit for bit.  With a coupled finite-element
+disc, crank or plate the guard is off (``model.build_model``): passing a K switches their
+solves to the converged quasi-static path.
 
-P[NODE_ALPHA0 + j] carries crank j's alpha from one call of ``integrate`` to the next.
+P[NODE_SUBSTEPS] carries n from one call of ``integrate`` to the next.
 """
 
 from __future__ import annotations
@@ -41,6 +39,11 @@ from ._layout import CRANK0, CRANK_STRIDE, MINV_LL, MINV_LU, MINV_UU  # noqa: E4
 #: later: a bushing's stiffness can double within a few steps when the play is thrown
 #: through (paper run 29 diverged at 1e-5 s with checks every 8 steps only)
 ALERT = 0.9
+#: most sub-steps per step the guard takes (beyond, it scales the node mass)
+MAX_SUBSTEPS = 8
+#: most sub-steps per step (a step so large that even this is not enough may diverge: the
+#: run then ends with its status)
+MAX_SUBSTEPS = 64
 #: Jacobi sweeps for the 4 x 4 symmetric eigenproblem (converged to rounding in 4-6)
 _SWEEPS = 8
 
@@ -126,3 +129,14 @@ def node_kinetic(P, v, crank):
         energy += 0.5 * (m_ll * v_low * v_low + 2.0 * m_lu * v_low * v_up
                          + m_uu * v_up * v_up)
     return energy
+
+
+@numba.njit(cache=True)
+def substeps_for(omega_dt, limit):
+    """Sub-steps per step for the node modes' omega dt: 1 up to ``limit``, above it the
+    fewest that bring omega h to ALERT x ``limit`` or below (so that the next check need not
+    come at the next step), at most MAX_SUBSTEPS."""
+    if limit <= 0.0 or omega_dt <= limit:
+        return 1
+    n = int(math.ceil(omega_dt / (ALERT * limit)))
+    return n if n < MAX_SUBSTEPS else MAX_SUBSTEPS

@@ -22,9 +22,10 @@ from .compliance import palmgren_coefficient, pin_compliance, ring_compliance, t
 __all__ = ["KernelModel", "build_model", "MassProperties", "mass_properties"]
 
 #: stability guard of the crank nodes (dynamics._stiff_nodes, docs/model.md section 9): the
-#: largest omega dt of a crank's node modes before its node mass is scaled (below the undamped
-#: limit 2 of the scheme with the margin measured in docs/benchmarks.md: 1.8 let paper run 2
-#: diverge at 1e-5 s), and the steps between two checks
+#: largest omega dt of a crank's node modes before the step is divided into sub-steps (below
+#: the undamped limit 2 of the scheme with the margin measured in docs/benchmarks.md: 1.8 let
+#: paper run 2 diverge at 1e-5 s with the earlier mass-scaling guard), and the steps between
+#: two checks
 OMEGA_DT_LIMIT = 1.6
 REFRESH_STEPS = 8
 #: the guard runs for steps above this [s] only: at and below it the node modes stay at

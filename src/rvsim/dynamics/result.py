@@ -87,9 +87,10 @@ class Result:
     reducer_name: str = "RV-40E"
     guard: dict[str, float] = dataclasses.field(default_factory=dict)
     """what the crank nodes' stability guard did (steps above 6e-6 s only; docs/model.md
-    section 9): ``guard_scaled_checks`` (whole run) and ``guard_scaled_checks_steady`` (steady
-    window) count the cranks it scaled, summed over its checks, ``guard_peak_omega_dt`` is
-    the largest omega dt of the node modes it found; empty when the guard was off"""
+    section 9): ``guard_substep_checks`` (whole run) and ``guard_substep_checks_steady``
+    (steady window) count its checks after which the step was divided into sub-steps,
+    ``guard_peak_omega_dt`` is the largest omega dt (of the whole step) of the node modes it
+    found; empty when the guard was off"""
 
     def channel(self, name: str) -> np.ndarray:
         return self.channels[:, L.CHANNEL_NAMES.index(name)]

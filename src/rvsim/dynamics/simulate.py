@@ -191,8 +191,8 @@ def _guard_report(P: np.ndarray) -> dict[str, float]:
     off: steps up to model.GUARD_FROM_STEP)."""
     if P[L.NODE_OMEGA_DT] <= 0.0:
         return {}
-    return {"guard_scaled_checks": int(P[L.NODE_CHECKS]),
-            "guard_scaled_checks_steady": int(P[L.NODE_CHECKS_STEADY]),
+    return {"guard_substep_checks": int(P[L.NODE_CHECKS]),
+            "guard_substep_checks_steady": int(P[L.NODE_CHECKS_STEADY]),
             "guard_peak_omega_dt": float(P[L.NODE_PEAK])}
 
 
