@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from rvsim.dynamics import _layout as L
-from rvsim.dynamics._kernel import EXPONENT, pin_contacts
+from rvsim.dynamics._contact_law import EXPONENT
+from rvsim.dynamics._kernel import pin_contacts
 from rvsim.dynamics.model import build_model
 from rvsim.geometry import nominal_disc_pose, pin_gaps
 from rvsim.parameters import RV40E, with_values
