@@ -9,7 +9,9 @@ worker processes (those it has ended) and the load average.
 what remains is the runner's own cost per run (processes, dispatch, store), which a loaded
 machine disturbs far less than the full study.
 
-Usage:  python benchmarks/bench_study.py [--repeat 3] [--workers N] [--short]
+``--time-step`` sets every run's step (a study's ``time_step``; e.g. 1e-5 with the stability guard).
+
+Usage:  python benchmarks/bench_study.py [--repeat 3] [--workers N] [--short] [--time-step S]
 """
 
 from __future__ import annotations
@@ -34,6 +36,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--workers", type=int, default=None)
     parser.add_argument("--short", action="store_true", help="0.05 s runs: runner overhead")
+    parser.add_argument("--time-step", type=float, default=None,
+                        help="integration step [s] of every run (default: the model's)")
     args = parser.parse_args()
 
     from rvsim.doe import paper_l36, run
@@ -44,6 +48,8 @@ def main() -> None:
     study = paper_l36()
     if args.short:
         study = dataclasses.replace(study, fixed=study.fixed + SHORT_SCHEDULE)
+    if args.time_step is not None:
+        study = dataclasses.replace(study, time_step=args.time_step)
     walls, cpus = [], []
     for _ in range(args.repeat):
         with tempfile.TemporaryDirectory() as folder:
@@ -62,6 +68,7 @@ def main() -> None:
         "date": time.strftime("%Y-%m-%d"),
         "runs_per_study": 36,
         "schedule": "short (0.05 s)" if args.short else "paper (4 s)",
+        "time_step_s": study.time_step,
         "workers": args.workers or os.cpu_count(),
         "median_study_wall_s": round(statistics.median(walls), 2),
         "studies": [round(w, 2) for w in walls],
