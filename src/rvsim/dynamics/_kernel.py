@@ -1,7 +1,8 @@
 """Compiled time integration of the RV reducer (numba; arrays and scalars only, no raises).
 
 One driver, :func:`integrate`, advances the 17 generalised coordinates with the semi-implicit
-(symplectic) Euler scheme at a fixed step and returns a status code.  The force elements are
+(symplectic) Euler scheme at a fixed step (divided into sub-steps where the crank nodes'
+stability guard needs it: dynamics._stiff_nodes) and returns a status code.  The force elements are
 small functions; docs/model.md maps every symbol to its equation and source.
 """
 
@@ -55,7 +56,7 @@ from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLE
                       SUP_SLOT0, V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA,
                       ZP)
 
-MAX_SKIP = 64          # longest skip of an open pin contact [steps]
+MAX_SKIP = 64          # longest skip of an open pin contact [force evaluations]
 
 
 @numba.njit(cache=True)
@@ -196,10 +197,12 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     contact near the medial axis of a concave stretch of the curve, where the foot point is not
     unique) the nearest point is found robustly over one lobe period (geometry._curve.pin_gap).
 
-    A pin whose gap cannot close before step ``next_eval[disc, i]`` is not evaluated: the gap
-    is a 1-Lipschitz function of the pin centre in disc axes, whose speed is at most
-    |dO/dt| + |dtheta/dt| * (pin circle + a), so a gap g stays open for g / (2 v dt) steps
-    (factor 2 for speed changes within at most 64 steps).
+    A pin whose gap cannot close before force evaluation ``next_eval[disc, i]`` is not
+    evaluated (``step`` counts the force evaluations: the integrator's steps, or its sub-steps
+    where the stability guard takes them): the gap is a 1-Lipschitz function of the pin centre
+    in disc axes, whose speed is at most |dO/dt| + |dtheta/dt| * (pin circle + a), so a gap g
+    stays open for g / (2 v h) evaluations, h the current (sub-)step P[NODE_H] (P[DT] when
+    0; factor 2 for speed changes within at most 64 evaluations).
 
     ``K`` (17 x 17, or 0 x 0) accumulates the material stiffness k g g^T of each contact, g the
     gradient of its gap (the profile-curvature term F d2gap/dq2 is left out).

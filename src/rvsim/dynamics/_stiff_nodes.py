@@ -14,7 +14,12 @@ node modes.  Where the larger exceeds P[NODE_OMEGA_DT], the whole system takes t
 the following ones up to the next check in n equal sub-steps (:func:`substeps_for`: omega h
 at most ALERT x the limit), each a full step of the same scheme: the physics is unchanged,
 only the step is smaller where the nodes need it (the stiff phases run as they would at
-dt / n).  While omega h stays above ALERT x the limit the check comes every step.  Where the
+dt / n).  While omega h stays above ALERT x the limit the check comes every step; since the
+sub-steps leave omega h at most ALERT x the limit, that happens only at n = 1 (omega dt
+between ALERT x the limit and the limit) or at the most sub-steps: while sub-stepped, the
+checks come every P[NODE_REFRESH] steps, and a stiffness that more than doubles within
+those steps would reach the scheme's limit before the next check (not seen in the 36 L36
+runs at 1e-5 s; such a run would end with its status, docs/model.md section 9).  Where the
 limit is not exceeded (n = 1) nothing changes, bit for bit.  With a coupled finite-element
 disc, crank or plate the guard is off (``model.build_model``): passing a K switches their
 solves to the converged quasi-static path.
@@ -39,8 +44,6 @@ from ._layout import CRANK0, CRANK_STRIDE, MINV_LL, MINV_LU, MINV_UU  # noqa: E4
 #: later: a bushing's stiffness can double within a few steps when the play is thrown
 #: through (paper run 29 diverged at 1e-5 s with checks every 8 steps only)
 ALERT = 0.9
-#: most sub-steps per step the guard takes (beyond, it scales the node mass)
-MAX_SUBSTEPS = 8
 #: most sub-steps per step (a step so large that even this is not enough may diverge: the
 #: run then ends with its status)
 MAX_SUBSTEPS = 64
@@ -120,7 +123,7 @@ def node_omega_dt(P, K, crank, dt):
 
 @numba.njit(cache=True)
 def node_kinetic(P, v, crank):
-    """1/2 v_n^T M_n v_n of crank ``crank``'s nodes (unscaled)."""
+    """1/2 v_n^T M_n v_n of crank ``crank``'s nodes."""
     m_ll, m_lu, m_uu = node_mass(P)
     base = CRANK0 + CRANK_STRIDE * crank
     energy = 0.0
