@@ -39,6 +39,7 @@ invalidate_stale_cache(__file__)
 
 from ._contact_law import damped  # noqa: E402
 from ._fe_crank import compliance_torque, pair_forces, rotated_table  # noqa: E402
+from ._jit import REFCOUNT  # noqa: E402
 from ._layout import (BORE_DR0, BORE_DT0, CARRIER, CENTRE_DIST, CH_SUP_FL0,  # noqa: E402
                       CRANK0, CRANK_STRIDE, FE_PLATE_XX1, M_NODE, PLATE_SLOT0, SUP_A1, SUP_A2_L, SUP_A2_U,
                       SUP_CLEAR_L, SUP_CLEAR_U, SUP_J1, SUP_J2, SUP_SLOT0, ZETA)
@@ -101,7 +102,7 @@ def _stiffness(K, shift, cm, force, bore, sm):
     K[CARRIER, CARRIER] += theta
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
     """Both cranks' support bushings on one plate (``upper``: the carrier; else the flange),
     with the plate's table: adds their forces to ``Q`` (and their stiffness to a 17 x 17

@@ -14,7 +14,7 @@ import numba
 import numpy as np
 
 from ._cache_guard import invalidate_stale_cache
-from ._jit import NO_REFCOUNT
+from ._jit import NO_REFCOUNT, REFCOUNT
 
 # numba's on-disk cache is keyed on this file only; the index constants of _layout, the curve
 # functions of geometry._curve, the contact law and the single-stage elements are compiled in,
@@ -340,7 +340,7 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, e
     return energy, power, worst, count
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, elastic,
                  hole, css):
     """The touching pins of disc ``disc`` that :func:`pin_loop` collected, solved together with
@@ -545,7 +545,7 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     return fn, energy, power
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def arm_pair(P, q, v, Q, K, crank, holes, elastic):
     """Crank ``crank``'s two eccentrics in their discs' holes with the finite-element crank
     between them (docs/model.md section 17; :mod:`rvsim.dynamics._fe_crank`): the two arm
@@ -699,7 +699,7 @@ def kinetic_energy(P, v):
     return energy
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs):
     """The cranks' arm bushings (or the FE crank's pairs) and support bushings (or the FE
     plates), with their friction: adds to ``Q`` (and ``K``) and the force channels; returns
@@ -753,6 +753,20 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
     return energy, power
 
 
+@numba.njit(**REFCOUNT)
+def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, pin_force, pin_elastic,
+              fe, modes):
+    """Disc ``disc``'s pin contacts with the pin ring as output (single-stage drive): found
+    in the ring's axes (:func:`~rvsim.dynamics._single_stage.ring_frame`), their forces and
+    stiffness added to ``Q`` and ``K``.  Returns (energy, dissipated power, max
+    penetration).  (A function of its own: it allocates, the step loop does not.)"""
+    qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
+    e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval, step,
+                              pin_force, pin_elastic, fe, modes)
+    ring_forces(q, qr, Qr, Kr, Q, K, disc)
+    return e, pw, pen
+
+
 @numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
@@ -781,6 +795,19 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         work = np.empty((pins.shape[0] if coupled else 0, 12))
     else:
         slots, work = pin_slots, pin_work
+    return forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes,
+                       crank_angles, mesh_phase, u, next_eval, step, pin_force, pin_elastic,
+                       arm_elastic, Q, K, channel, mesh_state, mesh_hold, fe, modes, slots, work)
+
+
+@numba.njit(cache=True, inline="always")
+def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
+                mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
+                channel, mesh_state, mesh_hold, fe, modes, slots, work):
+    """:func:`forces_at` with every work array given (``modes``, the pin contacts' ``slots``
+    and ``work``): allocates nothing, so that the step loop compiles without reference
+    counting."""
+    coupled = fe.shape[1] > 0
     for i in range(N_DOF):
         Q[i] = 0.0
     energy = 0.0
@@ -814,10 +841,8 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     ring = single and P[RING_OUTPUT] == 1.0
     for disc in range(n_discs):
         if ring:  # the pins turn with the output: contacts found in the ring's axes
-            qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
-            e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
-                                      step, pin_force, pin_elastic, fe, modes)
-            ring_forces(q, qr, Qr, Kr, Q, K, disc)
+            e, pw, pen = ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
+                                   pin_force, pin_elastic, fe, modes)
         else:   # pin_contacts' parts, called here (no reference counting in the pin loop;
                 # docs/decisions.md): a change to one sequence belongs in the other too
             if coupled:
@@ -863,7 +888,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     load torque, max pin penetration, input angle, input speed)."""
     theta_in, omega_in = input_motion(P, t)
     torque_load = load_torque(P, t)
-    energy, power, torque_in, worst = forces_at(
+    energy, power, torque_in, worst = forces_with(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
         mesh_state, mesh_hold, fe, modal, pin_slots, pin_work)
@@ -903,23 +928,36 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     ``modal`` (2, m + HEADER, modes): the discs' modes and their state (``fe`` then the residual
     tables; :mod:`rvsim.dynamics._fe_modes`), (2, m + HEADER, 0) or (2, 0, 0) for none.
     """
-    dt = P[DT]
     Q = np.zeros(N_DOF)
     K = np.zeros((0, 0))
     # stability guard of the crank nodes (dynamics._stiff_nodes): the stiffness assembled
     # every P[NODE_REFRESH] steps, the step divided into sub-steps where the nodes need it
-    guard = P[NODE_OMEGA_DT] > 0.0
-    K_node = np.zeros((N_DOF, N_DOF) if guard else (0, 0))
-    refresh = max(1, int(P[NODE_REFRESH]))
-    if first_step == 0:
-        for i in (NODE_SUBSTEPS, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_PEAK, NODE_ALERT):
-            P[i] = 0.0
+    K_node = np.zeros((N_DOF, N_DOF) if P[NODE_OMEGA_DT] > 0.0 else (0, 0))
     mesh_hold = np.zeros((2, 2))
     previous_stiffness = np.zeros(2)
     # the pin contacts' work arrays (coupled finite-element discs only), once per call
     coupled = fe.shape[1] > 0
     pin_slots = np.empty(pins.shape[0] if coupled else 0, dtype=np.int64)
     pin_work = np.empty((pins.shape[0] if coupled else 0, 12))
+    return _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
+                    crank_angles, mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic,
+                    arm_elastic, mesh_state, channel, counters, channels, pin_forces, energy, fe,
+                    modal, Q, K, K_node, mesh_hold, previous_stiffness, pin_slots, pin_work)
+
+
+@numba.njit(**NO_REFCOUNT)
+def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes, crank_angles,
+             mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic,
+             mesh_state, channel, counters, channels, pin_forces, energy, fe, modal, Q, K,
+             K_node, mesh_hold, previous_stiffness, pin_slots, pin_work):
+    """The step loop of :func:`integrate` (compiled without reference counting: the work
+    arrays are allocated by the caller)."""
+    dt = P[DT]
+    guard = P[NODE_OMEGA_DT] > 0.0
+    refresh = max(1, int(P[NODE_REFRESH]))
+    if first_step == 0:
+        for i in (NODE_SUBSTEPS, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_PEAK, NODE_ALERT):
+            P[i] = 0.0
     row = counters[COUNT_ROW]
     in_window = counters[COUNT_IN_WINDOW] == 1
     # sub-steps of the step where the guard found the node modes too stiff for it
@@ -997,8 +1035,11 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
                 channel[CH_OMEGA_OUT] = v[CARRIER]
                 channel[CH_TORQUE_IN] = t_in
                 channel[CH_TORQUE_LOAD] = t_load
-                channels[row, :] = channel
-                pin_forces[row, :, :] = pin_force
+                for k in range(channel.shape[0]):    # element by element: a slice copy
+                    channels[row, k] = channel[k]     # would need reference counting
+                for disc in range(pin_force.shape[0]):
+                    for i in range(pin_force.shape[1]):
+                        pin_forces[row, disc, i] = pin_force[disc, i]
                 row += 1
             if step == n_steps:
                 if in_window:

@@ -38,6 +38,7 @@ from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
+from ._jit import REFCOUNT  # noqa: E402
 from ._layout import CRANK0, CRANK_STRIDE, MINV_LL, MINV_LU, MINV_UU  # noqa: E402
 
 #: above ALERT x the limit the next check comes at the next step, not P[NODE_REFRESH] steps
@@ -96,7 +97,7 @@ def largest_eigenvalue(C):
     return best
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def node_omega_dt(P, K, crank, dt):
     """omega dt of crank ``crank``'s stiffest node mode: sqrt(lambda_max(M_n^-1 K_n)) dt, K_n
     the symmetric part of K's node block."""
