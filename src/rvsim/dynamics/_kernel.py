@@ -912,7 +912,7 @@ def new_state(n_pins, n_channels, n_output_pins=0):
             np.zeros(n_channels), np.zeros(3, dtype=np.int64))
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes, crank_angles,
               mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic,
               mesh_state, channel, counters, channels, pin_forces, energy, fe, modal):
