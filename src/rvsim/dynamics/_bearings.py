@@ -34,6 +34,9 @@ __all__ = ["WRAP_RATIO", "johnson_interface", "conforming_approach", "conforming
 WRAP_RATIO = 16.0
 #: Newton steps below this fraction of the force end the iteration (:func:`conforming_force`)
 NEWTON_CLOSE = 3e-7
+#: relative Newton steps up to which ln(a1 / F) follows the step by its series
+#: (:func:`log_ratio`) instead of a new logarithm
+SERIES_LIMIT = 1e-3
 _LOG_WRAP = math.log(WRAP_RATIO)
 
 
@@ -61,7 +64,12 @@ def johnson_interface(f, j, a):
 def _conforming(f, j1, a1, j2, a2, cb, shift):
     """:func:`conforming_approach` with ``shift`` = ln(a2 / a1) given: one logarithm per
     evaluation, ln(a2 / f) = ln(a1 / f) + shift."""
-    log = math.log(a1 / f)
+    return _conforming_log(f, math.log(a1 / f), j1, a1, j2, a2, cb, shift)
+
+
+@numba.njit(cache=True, inline="always")
+def _conforming_log(f, log, j1, a1, j2, a2, cb, shift):
+    """:func:`_conforming` with ``log`` = ln(a1 / f) given."""
     d1, c1, e1 = _interface(f, log, j1, a1)
     d2, c2, e2 = _interface(f, log + shift, j2, a2)
     return d1 + d2 + cb * f, c1 + c2 + cb, e1 + e2 + 0.5 * cb * f * f
@@ -104,8 +112,9 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess):
         # the secant compliance is at least j1 + j2 + cb: an upper bound of the root
         f = delta / (j1 + j2 + cb)
     shift = 0.0 if a2 == a1 else math.log(a2 / a1)
+    log = math.log(a1 / f)
     for _ in range(60):
-        d, c, e = _conforming(f, j1, a1, j2, a2, cb, shift)
+        d, c, e = _conforming_log(f, log, j1, a1, j2, a2, cb, shift)
         step = (d - delta) / c
         new = f - step
         if new <= 0.0:
@@ -115,9 +124,20 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess):
             e += f * c * change
             c += conforming_curvature(f, a1, j1, a2, j2) * change
             return new, 1.0 / c, e
+        if abs(step) <= SERIES_LIMIT * f:   # ln(a1 / F) by its series: one logarithm per call
+            log -= log_ratio(-step / f)
+        else:
+            log = math.log(a1 / new)
         f = new
     d, c, e = _conforming(f, j1, a1, j2, a2, cb, shift)
     return f, 1.0 / c, e
+
+
+@numba.njit(cache=True, inline="always")
+def log_ratio(x):
+    """ln(1 + x) by its series to x^5, for |x| <= SERIES_LIMIT (the next term, x^6 / 6, is
+    below 2e-19)."""
+    return x * (1.0 - x * (0.5 - x * (1.0 / 3.0 - x * (0.25 - x * 0.2))))
 
 
 @numba.njit(cache=True)

@@ -14,12 +14,24 @@ from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-__all__ = ["EXPONENT", "spring_force", "damped", "contact", "add_rank_one"]
+__all__ = ["EXPONENT", "spring_force", "power_ratio", "damped", "contact", "add_rank_one"]
 
 EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
 _INV_EXPONENT = 1.0 / EXPONENT
 #: Newton steps below this fraction of the force end the iteration (:func:`spring_force`)
 NEWTON_CLOSE = 1e-6
+#: relative Newton steps up to which F**0.9 follows the step by its binomial series
+#: (:func:`power_ratio`: truncation error below 1e-19) instead of a new power
+SERIES_LIMIT = 1e-3
+
+
+@numba.njit(cache=True, inline="always")
+def power_ratio(x):
+    """(1 + x) ** EXPONENT by its binomial series to x^5, for |x| <= SERIES_LIMIT (the next
+    term, C(0.9, 6) x^6, is below 1e-20)."""
+    p = EXPONENT
+    return 1.0 + p * x * (1.0 + (p - 1.0) / 2.0 * x * (1.0 + (p - 2.0) / 3.0 * x * (
+        1.0 + (p - 3.0) / 4.0 * x * (1.0 + (p - 4.0) / 5.0 * x))))
 
 
 @numba.njit(cache=True)
@@ -53,8 +65,11 @@ def spring_force(delta, c, cb, guess):
             fe *= 1.0 - EXPONENT * step / f
             f = new
             break
+        if abs(step) <= SERIES_LIMIT * f:     # F^0.9 by its series: one power per call
+            fe *= power_ratio(-step / f)
+        else:
+            fe = new ** EXPONENT
         f = new
-        fe = f ** EXPONENT
     stiffness = 1.0 / (EXPONENT * c * fe / f + cb)
     energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
     return f, stiffness, energy
