@@ -1,5 +1,6 @@
 """The kernel's compile options: no reference counting where Numba offers it, plain cached
-compilation where it does not (dynamics._jit; docs/decisions.md)."""
+compilation where it does not, numpy's error model throughout (dynamics._jit;
+docs/decisions.md)."""
 
 import importlib
 
@@ -8,17 +9,35 @@ from numba.core import cpu
 
 from rvsim.dynamics import _jit
 
+HAS_NRT_OPTION = hasattr(cpu.CPUTargetOptions, "_nrt")
 
-@pytest.mark.skipif(not hasattr(cpu.CPUTargetOptions, "_nrt"),
+
+@pytest.mark.skipif(not HAS_NRT_OPTION,
                     reason="this Numba has no _nrt option (the fallback is tested below)")
 def test_no_refcount_where_numba_has_the_option():
-    assert _jit.NO_REFCOUNT == {"cache": True, "_nrt": False}
+    assert _jit.NO_REFCOUNT == {"cache": True, "error_model": "numpy", "_nrt": False}
+    assert _jit.REFCOUNT == {"cache": True, "error_model": "numpy", "_nrt": True}
+
+
+@pytest.mark.skipif(not HAS_NRT_OPTION, reason="this Numba has no _nrt option")
+def test_step_loop_counts_no_references_and_allocating_callees_do():
+    # Numba's callees inherit the caller's reference counting: the step loop and the bearings
+    # it calls every step go without, the functions that allocate set it back explicitly
+    from rvsim.dynamics import _fe_carrier, _kernel, _stiff_nodes
+
+    for function in (_kernel._advance, _kernel.crank_bearings, _kernel.pin_loop):
+        assert function.targetoptions["_nrt"] is False, function.__name__
+    for function in (_kernel.integrate, _kernel.ring_pins, _kernel.coupled_pins,
+                     _kernel.arm_pair, _fe_carrier.plate_supports, _stiff_nodes.node_omega_dt):
+        assert function.targetoptions["_nrt"] is True, function.__name__
 
 
 def test_plain_cached_compilation_without_the_option(monkeypatch):
     monkeypatch.setattr(cpu, "CPUTargetOptions", type("OptionsWithoutNrt", (), {}))
     try:
-        assert importlib.reload(_jit).NO_REFCOUNT == {"cache": True}
+        module = importlib.reload(_jit)
+        assert module.NO_REFCOUNT == {"cache": True, "error_model": "numpy"}
+        assert module.REFCOUNT == {"cache": True, "error_model": "numpy"}
     finally:
         monkeypatch.undo()
         importlib.reload(_jit)
