@@ -28,6 +28,7 @@ from ._contact_law import contact
 invalidate_stale_cache(__file__)
 
 __all__ = ["WRAP_RATIO", "johnson_interface", "conforming_approach", "conforming_force",
+           "bushing_shift",
            "radial_stiffness", "roller_set"]
 
 #: a / F at which the Hertz half-width of the conforming pair reaches the journal radius
@@ -36,7 +37,7 @@ WRAP_RATIO = 16.0
 NEWTON_CLOSE = 3e-7
 #: relative Newton steps up to which ln(a1 / F) follows the step by its series
 #: (:func:`log_ratio`) instead of a new logarithm
-SERIES_LIMIT = 1e-3
+SERIES_LIMIT = 1e-2
 _LOG_WRAP = math.log(WRAP_RATIO)
 
 
@@ -94,8 +95,15 @@ def conforming_curvature(f, a1, j1, a2, j2):
     return slope
 
 
+def bushing_shift(a1, a2):
+    """ln(a2 / a1), the shift between the logarithms of a conforming bushing's two interfaces
+    (0 where a2 = a1, or where the bushing has none: a1 = 0); the model computes it once per run
+    for :func:`conforming_force`."""
+    return 0.0 if a2 == a1 or a1 <= 0.0 or a2 <= 0.0 else math.log(a2 / a1)
+
+
 @numba.njit(cache=True)
-def conforming_force(delta, j1, a1, j2, a2, cb, guess):
+def conforming_force(delta, j1, a1, j2, a2, cb, guess, shift=math.nan):
     """Force, tangent stiffness dF/d(delta) and stored energy of the conforming bushing at the
     approach ``delta`` > 0 (inverse of :func:`conforming_approach`).
 
@@ -106,12 +114,14 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess):
     least (j1 + j2)(ln 16 - 2)), so a step below :data:`NEWTON_CLOSE` F leaves a relative
     error below 1e-13: the iteration stops there, the compliance and energy carried from the
     last evaluation to the new force to first order (their error is of the same order).
+    ``shift``: ln(a2 / a1) (:func:`bushing_shift`; omitted: computed here).
     """
     f = guess
     if not f > 0.0:
         # the secant compliance is at least j1 + j2 + cb: an upper bound of the root
         f = delta / (j1 + j2 + cb)
-    shift = 0.0 if a2 == a1 else math.log(a2 / a1)
+    if shift != shift:
+        shift = 0.0 if a2 == a1 else math.log(a2 / a1)
     log = math.log(a1 / f)
     for _ in range(60):
         d, c, e = _conforming_log(f, log, j1, a1, j2, a2, cb, shift)
@@ -135,9 +145,12 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess):
 
 @numba.njit(cache=True, inline="always")
 def log_ratio(x):
-    """ln(1 + x) by its series to x^5, for |x| <= SERIES_LIMIT (the next term, x^6 / 6, is
+    """ln(1 + x) by its series to x^8, for |x| <= SERIES_LIMIT (the next term, x^9 / 9, is
     below 2e-19)."""
-    return x * (1.0 - x * (0.5 - x * (1.0 / 3.0 - x * (0.25 - x * 0.2))))
+    total = 0.0
+    for n in range(8, 0, -1):          # Horner: x (1 - x (1/2 - x (1/3 - ...)))
+        total = 1.0 / n - x * total
+    return x * total
 
 
 @numba.njit(cache=True)

@@ -14,24 +14,26 @@ from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-__all__ = ["EXPONENT", "spring_force", "power_ratio", "damped", "contact", "add_rank_one"]
+__all__ = ["EXPONENT", "spring_force", "spring_force_power", "power_ratio", "damped", "contact", "add_rank_one"]
 
 EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
 _INV_EXPONENT = 1.0 / EXPONENT
 #: Newton steps below this fraction of the force end the iteration (:func:`spring_force`)
 NEWTON_CLOSE = 1e-6
 #: relative Newton steps up to which F**0.9 follows the step by its binomial series
-#: (:func:`power_ratio`: truncation error below 1e-19) instead of a new power
-SERIES_LIMIT = 1e-3
+#: (:func:`power_ratio`: truncation error below 1e-20) instead of a new power
+SERIES_LIMIT = 1e-2
 
 
 @numba.njit(cache=True, inline="always")
 def power_ratio(x):
-    """(1 + x) ** EXPONENT by its binomial series to x^5, for |x| <= SERIES_LIMIT (the next
-    term, C(0.9, 6) x^6, is below 1e-20)."""
+    """(1 + x) ** EXPONENT by its binomial series to x^8, for |x| <= SERIES_LIMIT (the next
+    term, C(0.9, 9) x^9, is below 1e-20)."""
     p = EXPONENT
-    return 1.0 + p * x * (1.0 + (p - 1.0) / 2.0 * x * (1.0 + (p - 2.0) / 3.0 * x * (
-        1.0 + (p - 3.0) / 4.0 * x * (1.0 + (p - 4.0) / 5.0 * x))))
+    total = 1.0
+    for n in range(8, 0, -1):         # Horner: 1 + C(p,1) x (1 + (p-1)/2 x (1 + ...))
+        total = 1.0 + (p - n + 1.0) / n * x * total
+    return total
 
 
 @numba.njit(cache=True)
@@ -42,37 +44,48 @@ def spring_force(delta, c, cb, guess):
     Newton from it converges in one or two iterations.  Returns (F, tangent stiffness
     dF/ddelta, stored energy).
     """
+    f, k, energy, _ = spring_force_power(delta, c, cb, guess, 0.0)
+    return f, k, energy
+
+
+@numba.njit(cache=True)
+def spring_force_power(delta, c, cb, guess, guess_power):
+    """:func:`spring_force` with ``guess_power`` = guess**0.9 where the caller carries it (0:
+    computed here), and F**0.9 returned as well, for the caller to carry to its next call:
+    (F, tangent stiffness, stored energy, F**0.9).  Carried, F**0.9 follows each step by its
+    series (:func:`power_ratio`), so that a contact in touch takes no power at all."""
     if cb == 0.0:
         f = (delta / c) ** _INV_EXPONENT
         # c f^0.9 = delta: stiffness f / (0.9 delta), energy 0.9/1.9 delta f
-        return f, f / (EXPONENT * delta), EXPONENT / (1.0 + EXPONENT) * delta * f
+        return f, f / (EXPONENT * delta), EXPONENT / (1.0 + EXPONENT) * delta * f, delta / c
     if guess > 0.0:
         f = guess
+        fe = guess_power if guess_power > 0.0 else f ** EXPONENT
     else:
         # secant compliance at the contact-only force: below the root
         f = (delta / c) ** _INV_EXPONENT
         f = delta / (c * f ** (EXPONENT - 1.0) + cb)
-    fe = f ** EXPONENT
+        fe = f ** EXPONENT
     for _ in range(20):
         # Newton on g(F) = c F^0.9 + cb F - delta (concave, increasing): the error after a
         # step s is at most (|g''| / 2 g') s^2 <= 0.05 s^2 / F, so a step below NEWTON_CLOSE F
-        # leaves a relative error below 1e-13; F^0.9 then follows the step to first order
+        # leaves a relative error below 1e-13; F^0.9 follows every step by its series
         step = (c * fe + cb * f - delta) / (EXPONENT * c * fe / f + cb)
         new = f - step
         if new <= 0.0:
             new = 1e-3 * f
         elif abs(step) <= NEWTON_CLOSE * new:
-            fe *= 1.0 - EXPONENT * step / f
+            fe *= power_ratio(-step / f)
             f = new
             break
-        if abs(step) <= SERIES_LIMIT * f:     # F^0.9 by its series: one power per call
+        if abs(step) <= SERIES_LIMIT * f:     # F^0.9 by its series: one power at most
             fe *= power_ratio(-step / f)
         else:
             fe = new ** EXPONENT
         f = new
     stiffness = 1.0 / (EXPONENT * c * fe / f + cb)
     energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
-    return f, stiffness, energy
+    return f, stiffness, energy, fe
 
 
 @numba.njit(cache=True)

@@ -23,7 +23,7 @@ invalidate_stale_cache()
 
 from ..geometry._curve import deviated_gap, pin_gap, pin_opening, profile_axes
 from ._bearings import conforming_force, radial_stiffness, roller_set
-from ._contact_law import add_rank_one, contact, damped
+from ._contact_law import add_rank_one, damped, spring_force_power
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._pin_compliance import pin_series_compliance
@@ -39,8 +39,8 @@ from ._layout import (NODE_ALERT, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_
                       NODE_PEAK, NODE_REFRESH)
 from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt, substeps_for
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
-                      ARM_J2, ARM_KIND, ARM_ROLLERS, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
-                      SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, BACKLASH, BASE_PITCH, CARRIER,
+                      ARM_J2, ARM_KIND, ARM_ROLLERS, ARM_SHIFT, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
+                      SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, SUP_SHIFT_L, SUP_SHIFT_U, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
                       CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
                       CONTACT_RATIO, CRANK0, CRANK_COUNT, CRANK_STRIDE, DISC0, DISC_COUNT,
@@ -186,7 +186,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 
 @numba.njit(cache=True)
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
-                 fe, modal, arm_elastic=None):
+                 fe, modal, arm_elastic=None, carried=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
     (``forces_at`` calls the same parts, :func:`pin_loop` and :func:`coupled_pins`, itself for
     the pins in the housing; a change here belongs there too.)
@@ -216,17 +216,22 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     only with the holes as load points (an array argument costs the step its reference
     counting: measured 4-6 % of the closed-form run).  The loop over the pins,
     :func:`pin_loop`, allocates nothing and counts no references; the coupled solve,
-    :func:`coupled_pins`, does.  (:func:`forces_at` calls the two itself.)
+    :func:`coupled_pins`, does.  (:func:`forces_at` calls the two itself.)  ``carried``: what
+    each pin's evaluation carries to the next (:func:`pin_loop`; omitted: nothing).
     """
     coupled = fe.shape[1] > 0
     n = pins.shape[0]
+    if carried is None:
+        carry = nothing_carried(n)
+    else:
+        carry = carried
     pin_slots = np.empty(n if coupled else 0, dtype=np.int64)
     pin_work = np.empty((n if coupled else 0, 12))
     if coupled:
         clear_modal_force(modal[disc])
     energy, power, worst, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
                                            step, forces, elastic, coupled, pin_slots,
-                                           pin_work)
+                                           pin_work, carry)
     if count > 0:
         if arm_elastic is None:
             hole = Q[0:0]
@@ -256,11 +261,14 @@ def _disc_frame(P, q, v, disc):
 
 @numba.njit(**NO_REFCOUNT)
 def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
-             coupled, slots, work):
+             coupled, slots, work, carried):
     """The pin loop of :func:`pin_contacts` (compiled without reference counting: it
     allocates nothing): the independent contacts' forces added to ``Q``; with ``coupled``, the
     touching pins written to ``slots`` / ``work`` for :func:`coupled_pins`.  Returns (energy,
-    dissipated power, max penetration, number of coupled contacts)."""
+    dissipated power, max penetration, number of coupled contacts).  ``carried[disc, i]``:
+    what pin i's evaluation carries to its next one, the foot's cosines and sines
+    (geometry._curve.pin_gap) and the elastic force with its power 0.9
+    (_contact_law.spring_force_power); NaN: nothing carried."""
     d = DISC0 + DISC_STRIDE * disc
     ox, oy = q[d], q[d + 1]
     vx, vy = v[d], v[d + 1]
@@ -285,7 +293,8 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, e
         qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, runout_x, runout_y)
         nominal = pin_angle[i] - angle
         gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp,
-                                  clearance + pin_opening(pins, i), step > 0)
+                                  clearance + pin_opening(pins, i), step > 0,
+                                  carried[disc, i, 0:5])
         gap, nx, ny = deviated_gap(pins, disc, ui, gap, nx, ny, rg, a, zp)  # per-part errors
         u[disc, i] = ui - nominal
         if gap >= 0.0:
@@ -316,8 +325,13 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, e
             work[count, 10], work[count, 11] = nx, ny
             count += 1
             continue
-        fn, e, pw, fel, k = contact(delta, -gap_rate, P[PIN_C], cb, P[ZETA],
-                                    P[M_DISC], elastic[disc, i])
+        guess = elastic[disc, i]
+        fel, k, e, power_09 = spring_force_power(
+            delta, P[PIN_C], cb, guess,
+            carried[disc, i, 6] if guess > 0.0 and carried[disc, i, 5] == guess else 0.0)
+        carried[disc, i, 5] = fel
+        carried[disc, i, 6] = power_09
+        fn, pw = damped(fel, k, -gap_rate, P[ZETA], P[M_DISC])
         forces[disc, i] = fn
         elastic[disc, i] = fel
         energy += e
@@ -426,15 +440,15 @@ def support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, sx, sy, cx, cy, w_in):
 
 
 @numba.njit(cache=True)
-def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess):
-    """Conforming bushing on the relative position r of journal and bore: returns (Sx, Sy,
-    energy, power, force, elastic force, kxx, kxy, kyy)."""
+def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess, shift):
+    """Conforming bushing on the relative position r of journal and bore (``shift``: ln(a2 /
+    a1)): returns (Sx, Sy, energy, power, force, elastic force, kxx, kxy, kyy)."""
     dist = math.sqrt(rx * rx + ry * ry)
     delta = dist - clearance
     if delta <= 0.0 or dist < 1e-15:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     nx, ny = rx / dist, ry / dist
-    f, k, energy = conforming_force(delta, j1, a1, j2, a2, cb, guess)
+    f, k, energy = conforming_force(delta, j1, a1, j2, a2, cb, guess, shift)
     fn, power = damped(f, k, nx * vx + ny * vy, zeta, mass)
     kxx, kxy, kyy = radial_stiffness(nx, ny, k, f, dist)
     return fn * nx, fn * ny, energy, power, fn, f, kxx, kxy, kyy
@@ -531,7 +545,7 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
     else:
         sx, sy, energy, power, fn, f_el, kxx, kxy, kyy = _bushing(
             rx, ry, rvx, rvy, P[ARM_CLEAR], P[ARM_J1], P[ARM_A1], P[ARM_J2],
-            P[ARM_A2], P[ARM_CB], P[ZETA], P[M_NODE], elastic[crank, disc])
+            P[ARM_A2], P[ARM_CB], P[ZETA], P[M_NODE], elastic[crank, disc], P[ARM_SHIFT])
         elastic[crank, disc] = f_el
         if fn == 0.0 and f_el == 0.0:
             return 0.0, 0.0, 0.0
@@ -672,7 +686,7 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
         slot = SUP_SLOT0 + (1 if upper else 0)
         sx, sy, energy, power, fn, f_el, kxx, kxy, kyy = _bushing(
             rx, ry, vx, vy, clearance, P[SUP_J1], P[SUP_A1], P[SUP_J2], a2, 0.0, P[ZETA],
-            P[M_NODE], elastic[crank, slot])
+            P[M_NODE], elastic[crank, slot], P[SUP_SHIFT_U] if upper else P[SUP_SHIFT_L])
         elastic[crank, slot] = f_el
         if fn == 0.0 and f_el == 0.0:
             return 0.0, 0.0, 0.0
@@ -755,14 +769,14 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
 
 @numba.njit(**REFCOUNT)
 def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, pin_force, pin_elastic,
-              fe, modes):
+              fe, modes, carried):
     """Disc ``disc``'s pin contacts with the pin ring as output (single-stage drive): found
     in the ring's axes (:func:`~rvsim.dynamics._single_stage.ring_frame`), their forces and
     stiffness added to ``Q`` and ``K``.  Returns (energy, dissipated power, max
     penetration).  (A function of its own: it allocates, the step loop does not.)"""
     qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
     e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval, step,
-                              pin_force, pin_elastic, fe, modes)
+                              pin_force, pin_elastic, fe, modes, None, carried)
     ring_forces(q, qr, Qr, Kr, Q, K, disc)
     return e, pw, pen
 
@@ -770,7 +784,8 @@ def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, pin_forc
 @numba.njit(cache=True, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-              channel, mesh_state, mesh_hold, fe, modal=None, pin_slots=None, pin_work=None):
+              channel, mesh_state, mesh_hold, fe, modal=None, pin_slots=None, pin_work=None,
+              pin_carried=None):
     """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
     ``torque_load``: the one evaluation of the force elements that both engines use.
 
@@ -784,6 +799,8 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     power, input torque, max pin penetration).  ``modal``: the discs' modes (dynamic engine,
     :mod:`rvsim.dynamics._fe_modes`; omitted: none).  ``pin_slots``, ``pin_work``: the pin
     contacts' work arrays (:func:`pin_contacts`; omitted: allocated per call).
+    ``pin_carried``: what each pin's evaluation carries to the next (:func:`pin_loop`; omitted:
+    nothing).
     """
     if modal is None:
         modes = np.zeros((2, 0, 0))
@@ -795,15 +812,20 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         work = np.empty((pins.shape[0] if coupled else 0, 12))
     else:
         slots, work = pin_slots, pin_work
+    if pin_carried is None:
+        carried = nothing_carried(pins.shape[0])
+    else:
+        carried = pin_carried
     return forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes,
                        crank_angles, mesh_phase, u, next_eval, step, pin_force, pin_elastic,
-                       arm_elastic, Q, K, channel, mesh_state, mesh_hold, fe, modes, slots, work)
+                       arm_elastic, Q, K, channel, mesh_state, mesh_hold, fe, modes, slots, work,
+                       carried)
 
 
 @numba.njit(cache=True, inline="always")
 def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
                 mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-                channel, mesh_state, mesh_hold, fe, modes, slots, work):
+                channel, mesh_state, mesh_hold, fe, modes, slots, work, carried):
     """:func:`forces_at` with every work array given (``modes``, the pin contacts' ``slots``
     and ``work``): allocates nothing, so that the step loop compiles without reference
     counting."""
@@ -842,13 +864,14 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
     for disc in range(n_discs):
         if ring:  # the pins turn with the output: contacts found in the ring's axes
             e, pw, pen = ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
-                                   pin_force, pin_elastic, fe, modes)
+                                   pin_force, pin_elastic, fe, modes, carried)
         else:   # pin_contacts' parts, called here (no reference counting in the pin loop;
                 # docs/decisions.md): a change to one sequence belongs in the other too
             if coupled:
                 clear_modal_force(modes[disc])
             e, pw, pen, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
-                                         step, pin_force, pin_elastic, coupled, slots, work)
+                                         step, pin_force, pin_elastic, coupled, slots, work,
+                                         carried)
             if count > 0:
                 if holes_on(P):     # the FE disc's crank holes as load points (_fe_holes)
                     hole = hole_row(P, arm_elastic, disc)
@@ -882,7 +905,7 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
 @numba.njit(cache=True, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe, modal,
-           pin_slots, pin_work):
+           pin_slots, pin_work, pin_carried):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
     the run's schedule). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration, input angle, input speed)."""
@@ -891,8 +914,19 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     energy, power, torque_in, worst = forces_with(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-        mesh_state, mesh_hold, fe, modal, pin_slots, pin_work)
+        mesh_state, mesh_hold, fe, modal, pin_slots, pin_work, pin_carried)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
+
+
+#: values each pin's evaluation carries to its next (:func:`pin_loop`): the foot's u, cos u,
+#: sin u, cos zp u, sin zp u, the elastic force and its power 0.9
+CARRIED = 7
+
+
+@numba.njit(cache=True)
+def nothing_carried(n_pins):
+    """What the pins carry before their first evaluation (NaN: nothing; :func:`pin_loop`)."""
+    return np.full((2, n_pins, CARRIED), np.nan)
 
 
 #: slots of the integer ``counters`` array carried between calls of :func:`integrate`
@@ -915,7 +949,8 @@ def new_state(n_pins, n_channels, n_output_pins=0):
 @numba.njit(**REFCOUNT)
 def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes, crank_angles,
               mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic,
-              mesh_state, channel, counters, channels, pin_forces, energy, fe, modal):
+              mesh_state, channel, counters, channels, pin_forces, energy, fe, modal,
+              pin_carried):
     """Advance from step ``first_step`` to ``stop_step`` (exclusive) of a run of ``n_steps``
     steps of size P[DT] that starts at t = 0; returns (status, next step).
 
@@ -927,6 +962,8 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     balance.  ``fe``: the discs' finite-element compliance tables, (2, 0, 0) for none;
     ``modal`` (2, m + HEADER, modes): the discs' modes and their state (``fe`` then the residual
     tables; :mod:`rvsim.dynamics._fe_modes`), (2, m + HEADER, 0) or (2, 0, 0) for none.
+    ``pin_carried``: what each pin's evaluation carries to the next (:func:`nothing_carried`
+    at t = 0, then carried between calls like the other state).
     """
     Q = np.zeros(N_DOF)
     K = np.zeros((0, 0))
@@ -942,14 +979,15 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     return _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
                     crank_angles, mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic,
                     arm_elastic, mesh_state, channel, counters, channels, pin_forces, energy, fe,
-                    modal, Q, K, K_node, mesh_hold, previous_stiffness, pin_slots, pin_work)
+                    modal, pin_carried, Q, K, K_node, mesh_hold, previous_stiffness, pin_slots,
+                    pin_work)
 
 
 @numba.njit(**NO_REFCOUNT)
 def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes, crank_angles,
              mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic,
-             mesh_state, channel, counters, channels, pin_forces, energy, fe, modal, Q, K,
-             K_node, mesh_hold, previous_stiffness, pin_slots, pin_work):
+             mesh_state, channel, counters, channels, pin_forces, energy, fe, modal,
+             pin_carried, Q, K, K_node, mesh_hold, previous_stiffness, pin_slots, pin_work):
     """The step loop of :func:`integrate` (compiled without reference counting: the work
     arrays are allocated by the caller)."""
     dt = P[DT]
@@ -984,7 +1022,7 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, tick,
             pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state,
-            K_node if check else K, mesh_hold, fe, modal, pin_slots, pin_work)
+            K_node if check else K, mesh_hold, fe, modal, pin_slots, pin_work, pin_carried)
         tick += 1
         if check:
             # the stiffest node mode of the two cranks sets the sub-steps of this step and of

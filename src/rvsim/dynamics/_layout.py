@@ -125,6 +125,9 @@ ARM_CAGE_IN    = 78        # cage angle = w phi_inner + (1 - w) theta_outer, w =
 SUP_ROLLERS    = 79        # rollers per support bearing
 SUP_CAGE_IN    = 80
 SUP_COS_ALPHA  = 81        # cosine of the tapered rollers' contact angle
+ARM_SHIFT      = 82        # ln(ARM_A2 / ARM_A1) of the arm bushing (0 without one) ...
+SUP_SHIFT_L    = 83        # ... ln(SUP_A2_L / SUP_A1) of the lower support bushing ...
+SUP_SHIFT_U    = 84        # ... and ln(SUP_A2_U / SUP_A1) of the upper one
 
 
 # ---- friction and efficiency: 86-99 ------------------------------------------------------

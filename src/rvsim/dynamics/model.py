@@ -17,6 +17,7 @@ from ..geometry.involute import gear_geometry
 from ..friction import fill_constants as fill_friction_constants
 from ..parameters import Reducer
 from . import _layout as L
+from ._bearings import bushing_shift
 from .compliance import palmgren_coefficient, pin_compliance, ring_compliance, tooth_compliance
 
 __all__ = ["KernelModel", "build_model", "MassProperties", "mass_properties"]
@@ -298,6 +299,10 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     P[L.DISC_COUNT] = 2
     if r.layout.single_stage:
         _single_stage_constants(r, P)
+    # ln(a2 / a1) of each conforming bushing, once per run (_bearings.conforming_force)
+    for shift, a1, a2 in ((L.ARM_SHIFT, L.ARM_A1, L.ARM_A2), (L.SUP_SHIFT_L, L.SUP_A1, L.SUP_A2_L),
+                          (L.SUP_SHIFT_U, L.SUP_A1, L.SUP_A2_U)):
+        P[shift] = bushing_shift(P[a1], P[a2])
     crank_angles = np.array([0.0, math.pi])
     if r.layout.single_stage:
         holes = np.zeros((2, 2))  # the eccentric shaft on the axis (the second row unused)

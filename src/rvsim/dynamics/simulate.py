@@ -10,7 +10,7 @@ import numpy as np
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from . import _layout as L
-from ._kernel import COUNT_ROW, integrate, new_state
+from ._kernel import COUNT_ROW, integrate, new_state, nothing_carried
 from .model import build_model
 from .result import Result
 
@@ -100,6 +100,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     q = model.q0.copy()
     v = np.zeros(L.N_DOF)
     state = new_state(reducer.cycloid.pin_count, L.N_CHANNELS, int(model.P[L.OUT_COUNT]))
+    carried = nothing_carried(reducer.cycloid.pin_count)
     bar = _progress_bar(duration) if progress else None
     start = _time.perf_counter()
     step = 0
@@ -109,7 +110,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
             status, step = integrate(model.P, q, v, step, stop, n_steps, sample_every,
                                      model.pins, model.holes, model.crank_angles,
                                      model.mesh_phase, *state, channels, pin_forces, energy,
-                                     fe, modal)
+                                     fe, modal, carried)
             if bar is not None:
                 bar.update(min(step, n_steps) * time_step - bar.n)
             if status != L.STATUS_OK or step > n_steps:

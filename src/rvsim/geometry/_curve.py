@@ -30,23 +30,42 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["curve_point", "foot_point", "nearest_point", "curvature", "profile_points",
+__all__ = ["curve_point", "curve_from", "rotated", "foot_point", "nearest_point", "curvature", "profile_points",
            "profile_axes", "pin_gap", "pin_gaps_at", "pin_opening", "profile_deviation", "lever_arms", "curvatures",
            "deviated_gap",
-           "TRACKING_LIMIT"]
+           "TRACKING_LIMIT", "ROTATION_LIMIT"]
 
 #: largest Newton correction [rad of u] accepted when a foot point is tracked from the previous
 #: one; beyond it the foot is searched again robustly (:func:`pin_gap`)
 TRACKING_LIMIT = 1e-4
+#: largest turn [rad of zp u] by which :func:`pin_gap` carries the foot's cosines and sines
+#: (:func:`rotated`) instead of computing them anew
+ROTATION_LIMIT = 1e-2
 
 
 @numba.njit(cache=True, fastmath=False)
 def curve_point(u, rg, a, zp):
     """Point, first and second derivative of q(u): (x, y, dx, dy, ddx, ddy)."""
-    cos_u = math.cos(u)
-    sin_u = math.sin(u)
-    cos_z = math.cos(zp * u)
-    sin_z = math.sin(zp * u)
+    return curve_from(math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u), rg, a, zp)
+
+
+@numba.njit(cache=True, inline="always")
+def rotated(c, s, d):
+    """(cos, sin) of an angle d from the angle whose cosine and sine are (c, s), for |d| <=
+    :data:`ROTATION_LIMIT`: cos d and sin d by their series (truncation below 3e-21), the pair
+    brought back to unit length to first order (so that rounding cannot drift it)."""
+    d2 = d * d
+    cd = 1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0))
+    sd = d * (1.0 - d2 * (1.0 / 6.0 - d2 * (1.0 / 120.0 - d2 / 5040.0)))
+    cn = c * cd - s * sd
+    sn = s * cd + c * sd
+    scale = 1.5 - 0.5 * (cn * cn + sn * sn)
+    return cn * scale, sn * scale
+
+
+@numba.njit(cache=True, inline="always")
+def curve_from(cos_u, sin_u, cos_z, sin_z, rg, a, zp):
+    """:func:`curve_point` from the cosines and sines of u and zp u."""
     x = rg * cos_u - a * cos_z
     y = rg * sin_u - a * sin_z
     dx = -rg * sin_u + a * zp * sin_z
@@ -145,7 +164,7 @@ def profile_axes(px, py, ox, oy, cos_t, sin_t, shift_x, shift_y):
 
 
 @numba.njit(cache=True, inline="always")
-def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track):
+def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track, carried):
     """Gap of the pin centred at (qx, qy) (profile axes) to the profile.
 
     ``clearance`` is the profile offset minus the pin radius: gap = signed distance of the pin
@@ -155,10 +174,22 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track):
     :data:`TRACKING_LIMIT` and stays on the lobe: the foot is then exact to ~ zp du^2 and the
     point to ~ a zp^3 du^3, far below a nanometre of gap.
 
+    ``carried`` (5 values, or none): u_c, cos u_c, sin u_c, cos zp u_c, sin zp u_c of the foot
+    found last; where ``previous`` is within :data:`ROTATION_LIMIT` / zp of u_c, the cosines
+    and sines at ``previous`` are turned from them instead of computed (four transcendental
+    calls per pin and step saved), and they are written for the new foot.
+
     Returns (gap, u, nx, ny): foot parameter and unit outward normal of q there.
     """
     u = previous
-    x, y, tx, ty, ddx, ddy = curve_point(u, rg, a, zp)
+    keep = carried.shape[0] > 0
+    turn = u - carried[0] if keep else math.inf
+    if track and abs(zp * turn) <= ROTATION_LIMIT:
+        cu, su = rotated(carried[1], carried[2], turn)
+        cz, sz = rotated(carried[3], carried[4], zp * turn)
+    else:
+        cu, su, cz, sz = math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u)
+    x, y, tx, ty, ddx, ddy = curve_from(cu, su, cz, sz, rg, a, zp)
     robust = not track
     if track:
         rx, ry = qx - x, qy - y
@@ -175,9 +206,15 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track):
             tx += du * ddx
             ty += du * ddy
             u += du
+            if keep:
+                cu, su = rotated(cu, su, du)
+                cz, sz = rotated(cz, sz, zp * du)
     if robust:
         u = nearest_point(qx, qy, nominal, rg, a, zp)
-        x, y, tx, ty, _, _ = curve_point(u, rg, a, zp)
+        cu, su, cz, sz = math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u)
+        x, y, tx, ty, _, _ = curve_from(cu, su, cz, sz, rg, a, zp)
+    if keep:
+        carried[0], carried[1], carried[2], carried[3], carried[4] = u, cu, su, cz, sz
     norm = math.sqrt(tx * tx + ty * ty)
     nx = ty / norm
     ny = -tx / norm
@@ -279,7 +316,7 @@ def pin_gaps_at(pins, ox, oy, angle, shift_x, shift_y, rg, a, zp, clearance, dis
         qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, shift_x, shift_y)
         nominal = 2.0 * math.pi * i / n - angle
         gap, u, nx, ny = pin_gap(qx, qy, nominal, nominal, rg, a, zp,
-                                 clearance + pin_opening(pins, i), False)
+                                 clearance + pin_opening(pins, i), False, out[0, 0:0])
         gap, nx, ny = deviated_gap(pins, disc, u, gap, nx, ny, rg, a, zp)
         out[0, i] = gap
         out[1, i] = u
