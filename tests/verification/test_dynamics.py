@@ -147,16 +147,16 @@ def test_unstable_step_reports_status():
 # docs/decisions.md), and re-pinned for the faster kernel of issue 14 (same physics, other
 # rounding; before: 3.3745810629783386, 0.1742743314709907, 761.7890007333014 /
 # 8.100121040256605, 0.41565929759822673, 1207.2903257609764 / 12.961114241408588,
-# 0.6780180152296236, 1642.1394312128896), and again for the contact laws' series (one power
-# and one logarithm per call, issue 14, 2026-11-26; before: 3.374585558284625,
-# 0.17428258572410593, 763.7551172649006 / 8.100119452864666, 0.41565931094815944,
-# 1207.3041158690949 / 12.96111977432062, 0.6755408931098632, 1642.1394311592592).  The pins
-# hold one machine's arithmetic bit for bit: the kernel with the step changed by 1e-12
-# relative moves run 1's peak-to-peak TE and largest pin force by up to 3 % and its mean TE by
-# 2.5e-6 (docs/benchmarks.md, issue 14)
-PINNED = {1: (3.374586615945721, 0.17250393357202132, 757.8212006249051),
-          2: (8.10012099313625, 0.4156592947250397, 1207.4479027311565),
-          3: (12.961117734497153, 0.6755408930854365, 1642.139431112576)}
+# 0.6780180152296236, 1642.1394312128896), and again for issue 14's carried values (the
+# contact laws' series, the pins' carried cosines and powers: other rounding, 2026-11-26;
+# before: 3.374585558284625, 0.17428258572410593, 763.7551172649006 / 8.100119452864666,
+# 0.41565931094815944, 1207.3041158690949 / 12.96111977432062, 0.6755408931098632,
+# 1642.1394311592592).  The pins hold one machine's arithmetic bit for bit: the kernel with
+# the step changed by 1e-12 relative moves run 1's peak-to-peak TE and largest pin force by up
+# to 3 % and its mean TE by 2.5e-6 (docs/benchmarks.md, issue 14)
+PINNED = {1: (3.374587219487491, 0.17269665728631978, 762.7127338061064),
+          2: (8.100121102859498, 0.4156592934914949, 1207.454440044266),
+          3: (12.961114681926587, 0.6755408932136753, 1642.1394311706538)}
 
 
 @pytest.mark.parametrize("run", [1, 3])

@@ -185,7 +185,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 
 
 @numba.njit(cache=True)
-def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
+def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
                  fe, modal, arm_elastic=None, carried=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
     (``forces_at`` calls the same parts, :func:`pin_loop` and :func:`coupled_pins`, itself for
@@ -198,7 +198,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     unique) the nearest point is found robustly over one lobe period (geometry._curve.pin_gap).
 
     A pin whose gap cannot close before force evaluation ``next_eval[disc, i]`` is not
-    evaluated (``step`` counts the force evaluations: the integrator's steps, or its sub-steps
+    evaluated (``clock`` counts the force evaluations: the integrator's steps, or its sub-steps
     where the stability guard takes them): the gap is a 1-Lipschitz function of the pin centre
     in disc axes, whose speed is at most |dO/dt| + |dtheta/dt| * (pin circle + a), so a gap g
     stays open for g / (2 v h) evaluations, h the current (sub-)step P[NODE_H] (P[DT] when
@@ -230,7 +230,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, force
     if coupled:
         clear_modal_force(modal[disc])
     energy, power, worst, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
-                                           step, forces, elastic, coupled, pin_slots,
+                                           clock, forces, elastic, coupled, pin_slots,
                                            pin_work, carry)
     if count > 0:
         if arm_elastic is None:
@@ -260,7 +260,7 @@ def _disc_frame(P, q, v, disc):
 
 
 @numba.njit(**NO_REFCOUNT)
-def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, elastic,
+def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
              coupled, slots, work, carried):
     """The pin loop of :func:`pin_contacts` (compiled without reference counting: it
     allocates nothing): the independent contacts' forces added to ``Q``; with ``coupled``, the
@@ -288,12 +288,12 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, e
     n = pins.shape[0]
     count = 0
     for i in range(n):
-        if step < next_eval[disc, i]:
+        if clock < next_eval[disc, i]:
             continue        # open: its force and elastic force were zeroed when it was skipped
         qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, runout_x, runout_y)
         nominal = pin_angle[i] - angle
         gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp,
-                                  clearance + pin_opening(pins, i), step > 0,
+                                  clearance + pin_opening(pins, i), clock > 0,
                                   carried[disc, i, 0:5])
         gap, nx, ny = deviated_gap(pins, disc, ui, gap, nx, ny, rg, a, zp)  # per-part errors
         u[disc, i] = ui - nominal
@@ -301,9 +301,9 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, forces, e
             forces[disc, i] = 0.0
             elastic[disc, i] = 0.0
             skip = int(gap / speed_bound)
-            next_eval[disc, i] = step + (skip if skip < MAX_SKIP else MAX_SKIP)
+            next_eval[disc, i] = clock + (skip if skip < MAX_SKIP else MAX_SKIP)
             continue
-        next_eval[disc, i] = step + 1
+        next_eval[disc, i] = clock + 1
         delta = -gap
         if delta > worst:
             worst = delta
@@ -918,6 +918,15 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
+@numba.njit(cache=True, inline="always")
+def impulse_factors(P, h):
+    """The (sub-)step ``h``'s velocity change per unit generalised force of each coordinate:
+    carrier, crank rotation, disc translation, disc rotation, and the crank nodes' inverse
+    mass blocks (lower-lower, lower-upper, upper-upper)."""
+    return (h / P[J_CARRIER], h / P[J_CRANK], h / P[M_DISC], h / P[J_DISC], h * P[MINV_LL],
+            h * P[MINV_LU], h * P[MINV_UU])
+
+
 #: values each pin's evaluation carries to its next (:func:`pin_loop`): the foot's u, cos u,
 #: sin u, cos zp u, sin zp u, the elastic force and its power 0.9
 CARRIED = 7
@@ -1005,9 +1014,7 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
     P[NODE_H] = h
     tick = counters[COUNT_TICK]       # force evaluations so far (the pin loop's clock)
     # inverse inertias, and the sub-step's impulse per unit force on each coordinate
-    h_carrier, h_crank = h / P[J_CARRIER], h / P[J_CRANK]
-    h_mass, h_disc = h / P[M_DISC], h / P[J_DISC]
-    h_ll, h_lu, h_uu = h * P[MINV_LL], h * P[MINV_LU], h * P[MINV_UU]
+    h_carrier, h_crank, h_mass, h_disc, h_ll, h_lu, h_uu = impulse_factors(P, h)
     status = STATUS_OK
     step = first_step
     while step < stop_step:
@@ -1034,9 +1041,7 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
             if wanted != n_sub:
                 n_sub = wanted
                 h = dt / n_sub
-                h_carrier, h_crank = h / P[J_CARRIER], h / P[J_CRANK]
-                h_mass, h_disc = h / P[M_DISC], h / P[J_DISC]
-                h_ll, h_lu, h_uu = h * P[MINV_LL], h * P[MINV_LU], h * P[MINV_UU]
+                h_carrier, h_crank, h_mass, h_disc, h_ll, h_lu, h_uu = impulse_factors(P, h)
                 # the open pins' skips were counted in the old sub-step: evaluate them all
                 P[NODE_H] = h
                 next_eval[:, :] = 0

@@ -1,0 +1,107 @@
+"""What the kernel carries from one step to the next instead of computing it again (issue 14,
+docs/model.md section 9): the contact laws' series, the pins' cosines and sines of their foot
+and F**0.9, the bushings' logarithm shift.  Each against the direct computation, to tolerances
+a few times the round-off measured."""
+
+import math
+
+import numpy as np
+import pytest
+
+from rvsim.dynamics._bearings import (SERIES_LIMIT as LOG_LIMIT, bushing_shift,
+                                      conforming_force, log_ratio)
+from rvsim.dynamics._contact_law import (EXPONENT, SERIES_LIMIT as POWER_LIMIT, power_ratio,
+                                         spring_force, spring_force_power)
+from rvsim.dynamics.model import build_model
+from rvsim.geometry._curve import ROTATION_LIMIT, pin_gap, rotated
+from rvsim.parameters import RV40E
+
+X = np.concatenate([-np.geomspace(1e-2, 1e-9, 60), [0.0], np.geomspace(1e-9, 1e-2, 60)])
+
+
+def test_series_limits_as_documented():
+    assert POWER_LIMIT == LOG_LIMIT == ROTATION_LIMIT == 1e-2
+
+
+@pytest.mark.parametrize("x", X)
+def test_power_series_within_round_off(x):
+    assert power_ratio(x) == pytest.approx((1.0 + x) ** EXPONENT, rel=4e-16, abs=0)  # 2.2e-16
+
+
+@pytest.mark.parametrize("x", X)
+def test_log_series_within_round_off(x):
+    assert log_ratio(x) == pytest.approx(math.log1p(x), rel=4e-16, abs=1e-300)
+
+
+@pytest.mark.parametrize("d", X)
+def test_rotation_within_round_off(d):
+    c0, s0 = math.cos(0.7), math.sin(0.7)
+    c, s = rotated(c0, s0, d)
+    assert c == pytest.approx(math.cos(0.7 + d), abs=4e-16)
+    assert s == pytest.approx(math.sin(0.7 + d), abs=4e-16)
+
+
+def test_rotation_keeps_unit_length_over_a_million_turns():
+    c, s = 1.0, 0.0
+    for _ in range(1000):
+        for _ in range(1000):
+            c, s = rotated(c, s, 3.3e-5)
+    assert c * c + s * s == pytest.approx(1.0, abs=1e-15)
+    assert c == pytest.approx(math.cos(33.0), abs=1e-10)   # the angle's own round-off
+
+
+def test_pin_gap_with_carried_trig_equals_the_direct_one():
+    model = build_model(RV40E, 5e-6)
+    from rvsim.dynamics import _layout as L
+    rg, a, zp = model.P[L.RG], model.P[L.A_GEN], model.P[L.ZP]
+    clearance = model.P[L.PROFILE_OFFSET] - model.P[L.PIN_RADIUS]
+    rng = np.random.default_rng(3)
+    worst_gap = worst_trig = worst_u = 0.0
+    for _ in range(200):
+        nominal = rng.uniform(-4.0, 4.0)
+        u_c = nominal + rng.uniform(-0.02, 0.02)
+        x, y, *_ = _point(u_c, rg, a, zp)
+        qx, qy = x * (1 + 1e-4), y * (1 + 1e-4)
+        carried = np.array([u_c, math.cos(u_c), math.sin(u_c), math.cos(zp * u_c),
+                            math.sin(zp * u_c)])
+        previous = u_c + rng.uniform(-0.9, 0.9) * ROTATION_LIMIT / zp
+        direct = pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, True, carried[0:0])
+        turned = pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, True, carried)
+        worst_u = max(worst_u, abs(turned[1] - direct[1]))
+        worst_gap = max(worst_gap, abs(turned[0] - direct[0]))
+        u = turned[1]
+        exact = (math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u))
+        assert carried[0] == u
+        worst_trig = max(worst_trig, max(abs(carried[1 + k] - exact[k]) for k in range(4)))
+    assert worst_u < 4e-15            # rad; measured 1.3e-15 (1.5 ulp of u ~ 4)
+    assert worst_gap < 1e-16          # m; measured 3.5e-17 (the point's round-off)
+    # measured 2.3e-14: cos(zp u) of zp u ~ 160 rad carries that much from rounding zp u
+    assert worst_trig < 6e-14
+
+
+def _point(u, rg, a, zp):
+    from rvsim.geometry._curve import curve_point
+    return curve_point(u, rg, a, zp)
+
+
+@pytest.mark.parametrize("change", [0.0, 1e-7, -3e-5, 2e-3, -8e-3, 0.3])
+def test_carried_power_gives_the_same_contact_force(change):
+    c, cb = 2.3e-9, 1.7e-10
+    guess = 850.0
+    delta = c * (guess * (1 + change)) ** EXPONENT + cb * guess * (1 + change)
+    plain = spring_force(delta, c, cb, guess)
+    f, k, e, fe = spring_force_power(delta, c, cb, guess, guess ** EXPONENT)
+    assert (f, k, e) == pytest.approx(plain, rel=1e-15)
+    assert fe == pytest.approx(f ** EXPONENT, rel=3e-16)   # what the next call is given
+
+
+def test_bushing_shift_given_or_computed_is_the_same_force():
+    model = build_model(RV40E, 5e-6)
+    from rvsim.dynamics import _layout as L
+    P = model.P
+    args = (P[L.SUP_J1], P[L.SUP_A1], P[L.SUP_J2], P[L.SUP_A2_U], 0.0, 4000.0)
+    assert P[L.SUP_SHIFT_U] == bushing_shift(P[L.SUP_A1], P[L.SUP_A2_U]) != 0.0
+    given = conforming_force(3e-6, *args, P[L.SUP_SHIFT_U])
+    computed = conforming_force(3e-6, *args)
+    assert given == computed          # bit for bit: the same logarithm
+    assert bushing_shift(1.0, 1.0) == bushing_shift(0.0, 2.0) == 0.0
