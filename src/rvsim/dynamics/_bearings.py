@@ -39,6 +39,8 @@ NEWTON_CLOSE = 3e-7
 #: (:func:`log_ratio`) instead of a new logarithm
 SERIES_LIMIT = 1e-2
 _LOG_WRAP = math.log(WRAP_RATIO)
+#: 1 / n of the series of ln(1 + x) (:func:`log_ratio`)
+_INV2, _INV3, _INV4, _INV5, _INV6, _INV7, _INV8 = (1.0 / n for n in range(2, 9))
 
 
 @numba.njit(cache=True, inline="always")
@@ -145,12 +147,10 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess, shift=math.nan):
 
 @numba.njit(cache=True, inline="always")
 def log_ratio(x):
-    """ln(1 + x) by its series to x^8, for |x| <= SERIES_LIMIT (the next term, x^9 / 9, is
-    below 2e-19)."""
-    total = 0.0
-    for n in range(8, 0, -1):          # Horner: x (1 - x (1/2 - x (1/3 - ...)))
-        total = 1.0 / n - x * total
-    return x * total
+    """ln(1 + x) by its series to x^8 (Horner, constant coefficients), for |x| <=
+    SERIES_LIMIT (the next term, x^9 / 9, is below 2e-19)."""
+    return x * (1.0 - x * (_INV2 - x * (_INV3 - x * (_INV4 - x * (
+        _INV5 - x * (_INV6 - x * (_INV7 - x * _INV8)))))))
 
 
 @numba.njit(cache=True)

@@ -25,15 +25,16 @@ NEWTON_CLOSE = 1e-6
 SERIES_LIMIT = 1e-2
 
 
+#: the ratios C(p, n) / C(p, n - 1) = (p - n + 1) / n of the binomial series of (1 + x)^p
+_B1, _B2, _B3, _B4, _B5, _B6, _B7, _B8 = ((EXPONENT - n + 1.0) / n for n in range(1, 9))
+
+
 @numba.njit(cache=True, inline="always")
 def power_ratio(x):
-    """(1 + x) ** EXPONENT by its binomial series to x^8, for |x| <= SERIES_LIMIT (the next
-    term, C(0.9, 9) x^9, is below 1e-20)."""
-    p = EXPONENT
-    total = 1.0
-    for n in range(8, 0, -1):         # Horner: 1 + C(p,1) x (1 + (p-1)/2 x (1 + ...))
-        total = 1.0 + (p - n + 1.0) / n * x * total
-    return total
+    """(1 + x) ** EXPONENT by its binomial series to x^8 (Horner, constant coefficients), for
+    |x| <= SERIES_LIMIT (the next term, C(0.9, 9) x^9, is below 1e-20)."""
+    return 1.0 + _B1 * x * (1.0 + _B2 * x * (1.0 + _B3 * x * (1.0 + _B4 * x * (
+        1.0 + _B5 * x * (1.0 + _B6 * x * (1.0 + _B7 * x * (1.0 + _B8 * x)))))))
 
 
 @numba.njit(cache=True)
