@@ -32,6 +32,39 @@ def test_step_loop_counts_no_references_and_allocating_callees_do():
         assert function.targetoptions["_nrt"] is True, function.__name__
 
 
+def _kernel_functions():
+    """Every compiled function of the kernel's modules that is not inlined."""
+    import importlib
+    import pkgutil
+
+    import rvsim.dynamics as package
+    names = ["rvsim.geometry._curve"] + [
+        f"rvsim.dynamics.{m.name}" for m in pkgutil.iter_modules(package.__path__)
+        if m.name.startswith("_") and m.name not in ("_jit", "_layout", "_cache_guard")]
+    found = []
+    for name in names:
+        module = importlib.import_module(name)
+        for attribute, value in vars(module).items():
+            options = getattr(value, "targetoptions", None)
+            if options is None or getattr(value, "__module__", name) != name:
+                continue
+            if options.get("inline", "never") == "always":
+                continue                 # compiled into its caller, with the caller's options
+            found.append((f"{name}.{attribute}", options))
+    return found
+
+
+def test_every_kernel_function_states_its_options():
+    # Numba keys a compiled function by its argument types only: one that set neither option
+    # would keep those of whichever function compiled it first (docs/decisions.md)
+    functions = _kernel_functions()
+    assert len(functions) > 80
+    for name, options in functions:
+        assert options.get("error_model") == "numpy", name
+        if HAS_NRT_OPTION:
+            assert "_nrt" in options, name
+
+
 def test_plain_cached_compilation_without_the_option(monkeypatch):
     monkeypatch.setattr(cpu, "CPUTargetOptions", type("OptionsWithoutNrt", (), {}))
     try:

@@ -13,7 +13,7 @@ from rvsim.dynamics._bearings import (SERIES_LIMIT as LOG_LIMIT, bushing_shift,
 from rvsim.dynamics._contact_law import (EXPONENT, SERIES_LIMIT as POWER_LIMIT, power_ratio,
                                          spring_force, spring_force_power)
 from rvsim.dynamics.model import build_model
-from rvsim.geometry._curve import ROTATION_LIMIT, pin_gap, rotated
+from rvsim.geometry._curve import ROTATION_LIMIT, TRACKING_LIMIT, pin_gap, rotated
 from rvsim.parameters import RV40E
 
 X = np.concatenate([-np.geomspace(1e-2, 1e-9, 60), [0.0], np.geomspace(1e-9, 1e-2, 60)])
@@ -57,25 +57,30 @@ def test_pin_gap_with_carried_trig_equals_the_direct_one():
     clearance = model.P[L.PROFILE_OFFSET] - model.P[L.PIN_RADIUS]
     rng = np.random.default_rng(3)
     worst_gap = worst_trig = worst_u = 0.0
+    tracked = 0
     for _ in range(200):
         nominal = rng.uniform(-4.0, 4.0)
         u_c = nominal + rng.uniform(-0.02, 0.02)
         x, y, *_ = _point(u_c, rg, a, zp)
-        qx, qy = x * (1 + 1e-4), y * (1 + 1e-4)
+        qx, qy = x * (1 + 1e-6), y * (1 + 1e-6)          # near the curve: tracked
         carried = np.array([u_c, math.cos(u_c), math.sin(u_c), math.cos(zp * u_c),
                             math.sin(zp * u_c)])
-        previous = u_c + rng.uniform(-0.9, 0.9) * ROTATION_LIMIT / zp
+        # the foot moved since (within the tracking step) and the disc turned (within the
+        # carried turn): the carried values are turned by previous - u_c, then by du
+        previous = u_c + rng.uniform(-0.9, 0.9) * min(TRACKING_LIMIT, ROTATION_LIMIT / zp)
         direct = pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, True, carried[0:0])
         turned = pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, True, carried)
+        tracked += abs(turned[1] - previous) <= TRACKING_LIMIT
         worst_u = max(worst_u, abs(turned[1] - direct[1]))
         worst_gap = max(worst_gap, abs(turned[0] - direct[0]))
         u = turned[1]
         exact = (math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u))
         assert carried[0] == u
         worst_trig = max(worst_trig, max(abs(carried[1 + k] - exact[k]) for k in range(4)))
-    assert worst_u < 4e-15            # rad; measured 1.3e-15 (1.5 ulp of u ~ 4)
+    assert tracked == 200             # every case took the tracked (carried) path
+    assert worst_u < 4e-15            # rad; measured 8.9e-16 (1 ulp of u ~ 4)
     assert worst_gap < 1e-16          # m; measured 3.5e-17 (the point's round-off)
-    # measured 2.3e-14: cos(zp u) of zp u ~ 160 rad carries that much from rounding zp u
+    # measured 2.9e-14: cos(zp u) of zp u ~ 160 rad carries that much from rounding zp u
     assert worst_trig < 6e-14
 
 
@@ -85,14 +90,33 @@ def _point(u, rg, a, zp):
 
 
 @pytest.mark.parametrize("change", [0.0, 1e-7, -3e-5, 2e-3, -8e-3, 0.3])
-def test_carried_power_gives_the_same_contact_force(change):
+def test_carried_power_finds_the_root(change):
+    # the approach of a known force, solved from the previous force with its power carried:
+    # Newton's steps below 1e-2 carry F^0.9 by the series, the last one to first order
     c, cb = 2.3e-9, 1.7e-10
     guess = 850.0
-    delta = c * (guess * (1 + change)) ** EXPONENT + cb * guess * (1 + change)
-    plain = spring_force(delta, c, cb, guess)
+    root = guess * (1 + change)
+    delta = c * root ** EXPONENT + cb * root
     f, k, e, fe = spring_force_power(delta, c, cb, guess, guess ** EXPONENT)
-    assert (f, k, e) == pytest.approx(plain, rel=1e-15)
-    assert fe == pytest.approx(f ** EXPONENT, rel=3e-16)   # what the next call is given
+    assert f == pytest.approx(root, rel=2e-14)             # measured 4.1e-15 at most
+    assert fe == pytest.approx(f ** EXPONENT, rel=1e-15)   # what the next call is given
+    assert (f, k, e) == pytest.approx(spring_force(delta, c, cb, 0.0), rel=2e-14)
+
+
+@pytest.mark.parametrize("change", [1e-7, -3e-5, 2e-3, -8e-3, 0.3])
+def test_conforming_force_with_carried_logarithm_finds_the_root(change):
+    from rvsim.dynamics import _layout as L
+    from rvsim.dynamics._bearings import conforming_approach
+    P = build_model(RV40E, 5e-6).P
+    law = (P[L.SUP_J1], P[L.SUP_A1], P[L.SUP_J2], P[L.SUP_A2_U], 0.0)
+    guess = 4000.0
+    root = guess * (1 + change)
+    delta, _, _ = conforming_approach(root, *law)
+    f, k, e = conforming_force(delta, *law, guess, P[L.SUP_SHIFT_U])
+    assert f == pytest.approx(root, rel=3e-14)           # measured 6.1e-15
+    _, compliance, energy = conforming_approach(f, *law)
+    assert 1.0 / k == pytest.approx(compliance, rel=3e-14)   # measured 5.2e-15
+    assert e == pytest.approx(energy, rel=5e-15)             # measured 8.9e-16
 
 
 def test_bushing_shift_given_or_computed_is_the_same_force():

@@ -154,9 +154,9 @@ def test_unstable_step_reports_status():
 # 1642.1394311592592).  The pins hold one machine's arithmetic bit for bit: the kernel with
 # the step changed by 1e-12 relative moves run 1's peak-to-peak TE and largest pin force by up
 # to 3 % and its mean TE by 2.5e-6 (docs/benchmarks.md, issue 14)
-PINNED = {1: (3.374587219487491, 0.17269665728631978, 762.7127338061064),
-          2: (8.100121102859498, 0.4156592934914949, 1207.454440044266),
-          3: (12.961114681926587, 0.6755408932136753, 1642.1394311706538)}
+PINNED = {1: (3.3745860685034157, 0.17237220851370916, 757.821199784776),
+          2: (8.100121731155845, 0.4156592862978439, 1207.455524647257),
+          3: (12.96111329849022, 0.6755408931541371, 1642.1394311587403)}
 
 
 @pytest.mark.parametrize("run", [1, 3])

@@ -22,6 +22,7 @@ import math
 
 import numba
 
+from ._jit import NO_REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 from ._contact_law import contact
 
@@ -56,7 +57,7 @@ def _interface(f, log, j, a):
             energy_wrap + 0.5 * slope * (f * f - f_wrap * f_wrap))
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def johnson_interface(f, j, a):
     """Approach, compliance d(delta)/dF and stored energy of one conforming interface at the
     force ``f`` > 0 (Johnson's law, continued linearly beyond F = a / 16)."""
@@ -78,14 +79,14 @@ def _conforming_log(f, log, j1, a1, j2, a2, cb, shift):
     return d1 + d2 + cb * f, c1 + c2 + cb, e1 + e2 + 0.5 * cb * f * f
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def conforming_approach(f, j1, a1, j2, a2, cb):
     """Approach, compliance and energy of two conforming interfaces and a linear compliance
     ``cb`` in series, at the force ``f`` > 0."""
-    return _conforming(f, j1, a1, j2, a2, cb, 0.0 if a2 == a1 else math.log(a2 / a1))
+    return _conforming(f, j1, a1, j2, a2, cb, bushing_shift(a1, a2))
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def conforming_curvature(f, a1, j1, a2, j2):
     """d(compliance)/dF of the two conforming interfaces at the force ``f`` > 0: -j / F for an
     interface below F = a / 16, zero on its linear continuation."""
@@ -97,14 +98,15 @@ def conforming_curvature(f, a1, j1, a2, j2):
     return slope
 
 
+@numba.njit(**NO_REFCOUNT)
 def bushing_shift(a1, a2):
     """ln(a2 / a1), the shift between the logarithms of a conforming bushing's two interfaces
-    (0 where a2 = a1, or where the bushing has none: a1 = 0); the model computes it once per run
-    for :func:`conforming_force`."""
+    (0 where a2 = a1, or where the bushing has none: a1 or a2 = 0); the model computes it once
+    per run for :func:`conforming_force`."""
     return 0.0 if a2 == a1 or a1 <= 0.0 or a2 <= 0.0 else math.log(a2 / a1)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def conforming_force(delta, j1, a1, j2, a2, cb, guess, shift=math.nan):
     """Force, tangent stiffness dF/d(delta) and stored energy of the conforming bushing at the
     approach ``delta`` > 0 (inverse of :func:`conforming_approach`).
@@ -123,7 +125,7 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess, shift=math.nan):
         # the secant compliance is at least j1 + j2 + cb: an upper bound of the root
         f = delta / (j1 + j2 + cb)
     if shift != shift:
-        shift = 0.0 if a2 == a1 else math.log(a2 / a1)
+        shift = bushing_shift(a1, a2)
     log = math.log(a1 / f)
     for _ in range(60):
         d, c, e = _conforming_log(f, log, j1, a1, j2, a2, cb, shift)
@@ -153,7 +155,7 @@ def log_ratio(x):
         _INV5 - x * (_INV6 - x * (_INV7 - x * _INV8)))))))
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def radial_stiffness(nx, ny, k, force, dist):
     """dS/dr of a force ``force`` along n = r / dist with tangent stiffness ``k``: k n n^T +
     F/dist t t^T (the normal turns with r)."""
@@ -161,7 +163,7 @@ def radial_stiffness(nx, ny, k, force, dist):
     return (k * nx * nx + turn * ny * ny, (k - turn) * nx * ny, k * ny * ny + turn * nx * nx)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def roller_set(rx, ry, vx, vy, count, cage, c, gap, cos_alpha, zeta, mass):
     """Resultant of a rolling bearing's rollers on its inner raceway centre displaced by (rx,
     ry) (velocity (vx, vy)) from the outer raceway centre.

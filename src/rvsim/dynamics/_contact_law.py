@@ -10,6 +10,7 @@ import math
 
 import numba
 
+from ._jit import NO_REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
@@ -37,7 +38,7 @@ def power_ratio(x):
         1.0 + _B5 * x * (1.0 + _B6 * x * (1.0 + _B7 * x * (1.0 + _B8 * x)))))))
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def spring_force(delta, c, cb, guess):
     """Force of a Palmgren contact in series with a linear compliance, for approach ``delta``.
 
@@ -49,7 +50,7 @@ def spring_force(delta, c, cb, guess):
     return f, k, energy
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def spring_force_power(delta, c, cb, guess, guess_power):
     """:func:`spring_force` with ``guess_power`` = guess**0.9 where the caller carries it (0:
     computed here), and F**0.9 returned as well, for the caller to carry to its next call:
@@ -89,7 +90,7 @@ def spring_force_power(delta, c, cb, guess, guess_power):
     return f, stiffness, energy, fe
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def contact(delta, rate, c, cb, zeta, mass, guess):
     """Normal force of a compliant contact with damping that vanishes at first touch.
 
@@ -102,7 +103,7 @@ def contact(delta, rate, c, cb, zeta, mass, guess):
     return fn, energy, power, f, k
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def damped(f, k, rate, zeta, mass):
     """Elastic force ``f`` of tangent stiffness ``k`` plus damping 2 zeta sqrt(k m) at the
     approach rate; the total never pulls.  Returns (force, dissipated power)."""
@@ -112,7 +113,7 @@ def damped(f, k, rate, zeta, mass):
     return fn, (fn - f) * rate
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def add_rank_one(K, index, g, scale):
     """K[index, index] += scale * g g^T (``index``, ``g``: tuples of one length)."""
     for a in range(len(index)):

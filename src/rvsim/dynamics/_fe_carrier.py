@@ -33,15 +33,15 @@ import math
 import numba
 import numpy as np
 
+from ._jit import NO_REFCOUNT, REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
 from ._contact_law import damped  # noqa: E402
 from ._fe_crank import compliance_torque, pair_forces, rotated_table  # noqa: E402
-from ._jit import REFCOUNT  # noqa: E402
 from ._layout import (BORE_DR0, BORE_DT0, CARRIER, CENTRE_DIST, CH_SUP_FL0,  # noqa: E402
-                      CRANK0, CRANK_STRIDE, FE_PLATE_XX1, M_NODE, PLATE_SLOT0, SUP_A1, SUP_A2_L, SUP_A2_U,
+                      CRANK0, CRANK_STRIDE, FE_PLATE_XX1, M_NODE, PLATE_SLOT0, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_SHIFT_L, SUP_SHIFT_U,
                       SUP_CLEAR_L, SUP_CLEAR_U, SUP_J1, SUP_J2, SUP_SLOT0, ZETA)
 
 __all__ = ["COLUMNS", "bore_centre", "support_law", "plate_supports"]
@@ -51,7 +51,7 @@ __all__ = ["COLUMNS", "bore_centre", "support_law", "plate_supports"]
 COLUMNS = 4
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def bore_centre(P, q, crank, crank_angle):
     """Centre of crank ``crank``'s carrier / flange bore in the housing frame (with its
     per-part offsets)."""
@@ -61,16 +61,16 @@ def bore_centre(P, q, crank, crank_angle):
     return radius * c - P[BORE_DT0 + crank] * s, radius * s + P[BORE_DT0 + crank] * c
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def support_law(P, upper):
     """The upper (carrier) or lower (flange) support bushing's law as (clearance, j1, a1, j2,
-    a2, series compliance) (:func:`rvsim.dynamics._fe_crank.arm_law`'s form)."""
+    a2, series compliance, ln(a2 / a1)) (:func:`rvsim.dynamics._fe_crank.arm_law`'s form)."""
     if upper:
-        return P[SUP_CLEAR_U], P[SUP_J1], P[SUP_A1], P[SUP_J2], P[SUP_A2_U], 0.0
-    return P[SUP_CLEAR_L], P[SUP_J1], P[SUP_A1], P[SUP_J2], P[SUP_A2_L], 0.0
+        return P[SUP_CLEAR_U], P[SUP_J1], P[SUP_A1], P[SUP_J2], P[SUP_A2_U], 0.0, P[SUP_SHIFT_U]
+    return P[SUP_CLEAR_L], P[SUP_J1], P[SUP_A1], P[SUP_J2], P[SUP_A2_L], 0.0, P[SUP_SHIFT_L]
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def _stiffness(K, shift, cm, force, bore, sm):
     """K += the plate's stiffness -dQ/dq in its nodes and the carrier angle: dS/dx = Sm,
     dS/dtheta = -Sm a with a = J (b + u) - C J S (the bores turn with the carrier, the table

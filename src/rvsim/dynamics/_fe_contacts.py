@@ -24,6 +24,7 @@ import math
 import numba
 import numpy as np
 
+from ._jit import NO_REFCOUNT, REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
@@ -40,7 +41,7 @@ MAX_NEWTON = 30
 MAX_SWEEPS = 2000
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _segment(u, m):
     """Lower neighbouring segment centre and the weight of the upper one, for foot ``u``."""
     s = (u / (2.0 * math.pi)) % 1.0 * m - 0.5
@@ -49,7 +50,7 @@ def _segment(u, m):
     return i0 % m, (i0 + 1) % m, frac
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _eliminate(a, b, n):
     """Solve a x = b in place (b becomes x; a is overwritten) by Gaussian elimination without
     pivoting: a = I + D C is diagonally dominant (k C summed over a row is below 1), and for
@@ -74,7 +75,7 @@ def _eliminate(a, b, n):
             b[p, j] = total * inv
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _cholesky(a, n):
     """Cholesky factor L (L L^T = a) of a symmetric positive definite ``a`` in place: its
     lower triangle is read and overwritten (half the operations of :func:`_eliminate`).
@@ -96,7 +97,7 @@ def _cholesky(a, n):
     return True
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _forward(a, b, n):
     """b <- L^-1 b in place (b: n x m), L the factor :func:`_cholesky` left in ``a``."""
     for r in range(b.shape[1]):
@@ -107,7 +108,7 @@ def _forward(a, b, n):
             b[i, r] = total / a[i, i]
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _cholesky_solve(a, b, n):
     """Solve L L^T x = b in place (b: n x m), L the factor :func:`_cholesky` left in ``a``."""
     _forward(a, b, n)
@@ -119,7 +120,7 @@ def _cholesky_solve(a, b, n):
             b[i, r] = total / a[i, i]
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _factor_tangent(cm, k, n, active, a):
     """The loaded contacts (k > 0) into ``active`` and the Cholesky factor of C_AA + D_A^-1
     into ``a``: the matrix I + D C restricted to them, made symmetric (D = diag k, C = ``cm``;
@@ -148,7 +149,7 @@ def stretch_column(table, u):
     return (1.0 - frac) * table[i0, m] + frac * table[i1, m]
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def table_compliance(table, ui, uj, same):
     """C(ui, uj) [m/N] from the segment table: linear along the diagonal for a contact with
     itself (``same``), bilinear between segment centres otherwise."""
@@ -161,7 +162,7 @@ def table_compliance(table, ui, uj, same):
             + fi * ((1.0 - fj) * table[i1, j0] + fj * table[i1, j1]))
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance, extra=None):
     """One Gauss-Seidel sweep of the coupled contacts for the dynamic engine (``cb`` (n) the
     contacts' own series compliances): pin i's own law
@@ -202,7 +203,7 @@ def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance, e
     return energy
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _contact_forces(cm, delta, force, n, c, cb, f, k, e, g):
     """Each contact's law at its own approach less the deflection the forces ``force`` cause
     there (compliance ``cm``): force f, stiffness k, energy e and residual g = force - f;
@@ -224,7 +225,7 @@ def _contact_forces(cm, delta, force, n, c, cb, f, k, e, g):
     return largest, worst
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def _solve_coupled(table, delta, foot, guess, n, c, cb, force, cm, k, jac, scratch, index):
     """Newton solve of :func:`coupled_forces` (the forces into ``force``), leaving the
     interpolated compliance in ``cm``, the contacts' tangent stiffnesses at the solution in
@@ -311,7 +312,7 @@ def _solve_coupled(table, delta, foot, guess, n, c, cb, force, cm, k, jac, scrat
     return energy, iterations, converged, na
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
     """Elastic forces of ``n`` coupled contacts with approaches ``delta`` at feet ``foot`` and
     own series compliances ``cb`` (n), Newton from ``guess``.  Fills ``force`` (n) and, if
@@ -336,7 +337,7 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
     return energy, iterations, converged
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _hole_derivatives(table, work, active, jac, y, na, css, scratch, hole):
     """The crank holes' load Q seen from the solved pins (:mod:`rvsim.dynamics._fe_holes`;
     quasi-static engine): into ``hole[3]`` ds/dQ = c_ss - c_A^T S_AA c_A and the pins'
@@ -359,7 +360,7 @@ def _hole_derivatives(table, work, active, jac, y, na, css, scratch, hole):
         hole[4 + p] = -total
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, d, modal,
                   hole, css):
     """Solve the ``count`` touching pins of a disc together and add their forces to ``Q`` (and

@@ -44,13 +44,14 @@ import math
 import numba
 import numpy as np
 
+from ._jit import NO_REFCOUNT, REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
 from ._bearings import conforming_force, radial_stiffness  # noqa: E402
 from ._fe_contacts import _eliminate  # noqa: E402
-from ._layout import (ARM_A1, ARM_A2, ARM_CB, ARM_CLEAR, ARM_J1, ARM_J2,  # noqa: E402
+from ._layout import (ARM_A1, ARM_A2, ARM_CB, ARM_CLEAR, ARM_SHIFT, ARM_J1, ARM_J2,  # noqa: E402
                       FE_CRANK_XX1)
 
 __all__ = ["TABLE_ORDER", "pack_table", "rotated_table", "crank_compliance",
@@ -81,7 +82,7 @@ def _table(P, base, i, j):
     return P[base + 4 * i - i * (i - 1) // 2 + j - i]
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def rotated_table(P, base, phi, A):
     """Fill ``A`` (4 x 4, housing frame, (x1, y1, x2, y2)) with R(phi) C R(phi)^T, C the
     body-frame table held in P from ``base`` (the crank's, or the carrier's:
@@ -101,13 +102,13 @@ def rotated_table(P, base, phi, A):
             A[a + 1, b + 1] = t10 * sp + t11 * cp
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def crank_compliance(P, phi, A):
     """:func:`rotated_table` of the crank's table; phi the direction of eccentric 1."""
     rotated_table(P, FE_CRANK_XX1, phi, A)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def compliance_torque(A, S):
     """-dU/dphi at fixed relative positions: -(J S)^T A S, S (2, 2) the elastic forces on the
     holes, J S = (-S_y, S_x) per eccentric."""
@@ -122,13 +123,13 @@ def compliance_torque(A, S):
     return total
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def arm_law(P):
-    """The arm bushing's law as (clearance, j1, a1, j2, a2, series compliance)."""
-    return P[ARM_CLEAR], P[ARM_J1], P[ARM_A1], P[ARM_J2], P[ARM_A2], P[ARM_CB]
+    """The arm bushing's law as (clearance, j1, a1, j2, a2, series compliance, ln(a2 / a1))."""
+    return P[ARM_CLEAR], P[ARM_J1], P[ARM_A1], P[ARM_J2], P[ARM_A2], P[ARM_CB], P[ARM_SHIFT]
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _law(law, rx, ry, cb, guess):
     """A conforming bushing's law ``law`` (:func:`arm_law`; compliance ``cb`` added in series)
     at the relative position (rx, ry): (Sx, Sy, force, tangent stiffness, energy, distance)."""
@@ -136,11 +137,12 @@ def _law(law, rx, ry, cb, guess):
     delta = dist - law[0]
     if delta <= 0.0 or dist < 1e-15:
         return 0.0, 0.0, 0.0, 0.0, 0.0, dist
-    f, k, e = conforming_force(delta, law[1], law[2], law[3], law[4], law[5] + cb, guess)
+    f, k, e = conforming_force(delta, law[1], law[2], law[3], law[4], law[5] + cb, guess,
+                               law[6])
     return f * rx / dist, f * ry / dist, f, k, e, dist
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _pair_energy(A, S):
     """S^T A S / 2."""
     total = 0.0
@@ -150,13 +152,13 @@ def _pair_energy(A, S):
     return total
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def lagged_arm_forces(P, A, r, guess, force, stiffness):
     """:func:`lagged_pair_forces` of a crank's arm bushings."""
     return lagged_pair_forces(arm_law(P), A, r, guess, force, stiffness)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def lagged_pair_forces(law, A, r, guess, force, stiffness):
     """One Gauss-Seidel sweep (dynamic engine) of two bushings of law ``law`` coupled by
     ``A``: ``r`` (2, 2) the rigid relative positions,
@@ -193,7 +195,7 @@ def lagged_pair_forces(law, A, r, guess, force, stiffness):
     return energy + _pair_energy(A, force)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _evaluate(law, A, r, S, f, D, e):
     """The bushings' laws at r - A S: forces f (2, 2), tangent matrices D (4 x 4, block
     diagonal), energies e (2); returns (largest force, largest |S - f|)."""
@@ -220,7 +222,7 @@ def _evaluate(law, A, r, S, f, D, e):
     return largest, worst
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _jacobian(D, A, jac):
     """jac = I + D A."""
     for i in range(4):
@@ -231,13 +233,13 @@ def _jacobian(D, A, jac):
             jac[i, j] = total
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def coupled_arm_forces(P, A, r, guess, force, stiffness):
     """:func:`coupled_pair_forces` of a crank's arm bushings."""
     return coupled_pair_forces(arm_law(P), A, r, guess, force, stiffness)
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def coupled_pair_forces(law, A, r, guess, force, stiffness):
     """Two bushings of law ``law`` coupled by ``A``, solved to convergence (quasi-static
     engine), semi-smooth Newton
@@ -289,7 +291,7 @@ def coupled_pair_forces(law, A, r, guess, force, stiffness):
     return e[0] + e[1] + _pair_energy(A, force), iterations, converged
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def pair_forces(law, A, r, guess, force, dsdr, series, want):
     """The two coupled bushings for either engine: solved together with the tangent ``dsdr``
     when the stiffness is ``want``ed (quasi-static), else one sweep (dynamic).  Fills

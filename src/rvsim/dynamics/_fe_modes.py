@@ -28,6 +28,7 @@ import math
 import numba
 import numpy as np
 
+from ._jit import NO_REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
@@ -53,7 +54,7 @@ def modal_array(participation: np.ndarray, omega: np.ndarray) -> np.ndarray:
     return modal
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def foot_modes(modal, i0, i1, frac):
     """At a foot parameter u between segment centres i0 and i1 (weight ``frac`` of i1): the
     modes' normal deflection (P eta)(u) [m], and the own compliance that the pin adds to the
@@ -72,7 +73,7 @@ def foot_modes(modal, i0, i1, frac):
     return deflection, frac * (1.0 - frac) * total
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def add_modal_force(modal, i0, i1, frac, force):
     """Add the modal force (P^T f) of an inward normal ``force`` at a foot between segment
     centres i0 and i1 (weight ``frac`` of i1)."""
@@ -84,7 +85,7 @@ def add_modal_force(modal, i0, i1, frac, force):
         modal[m + FORCE, k] += ((1.0 - frac) * modal[i0, k] + frac * modal[i1, k]) * force
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def clear_modal_force(modal):
     """Zero the modal force before the contacts of an evaluation add theirs."""
     m = modal.shape[0] - HEADER
@@ -92,7 +93,7 @@ def clear_modal_force(modal):
         modal[m + FORCE, k] = 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def advance_modes(modal, dt, zeta):
     """One semi-implicit Euler step of the modal coordinates under the modal force of the
     step's evaluation (velocities first, then positions); returns the power the modal damping
@@ -109,7 +110,7 @@ def advance_modes(modal, dt, zeta):
     return power
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def modal_energy(modal):
     """(kinetic, strain) energy of the disc's modes [J] (mass-normalised coordinates)."""
     m = modal.shape[0] - HEADER

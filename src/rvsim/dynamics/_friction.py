@@ -33,7 +33,7 @@ PALMGREN_LOW_SPEED = 2000.0
 _RAD_S_TO_RPM = 30.0 / math.pi
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def bearing_torque(f0, f1, dm, nu, omega, load):
     """Palmgren friction torque of a rolling bearing [N*m] at relative speed ``omega`` [rad/s]
     under the radial ``load`` [N]: M = M0 + M1 with
@@ -54,7 +54,7 @@ def bearing_torque(f0, f1, dm, nu, omega, load):
     return 1e-3 * m0 + f1 * load * dm
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def bearing_friction(P, v, Q, inner, outer, f0, f1, dm, load):
     """Friction torque of a bearing between the rotations ``inner`` and ``outer`` (indices of
     q) under the radial ``load``: -M tanh(w / w_s) on ``inner``, the reaction on ``outer``,

@@ -57,9 +57,12 @@ from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLE
                       ZP)
 
 MAX_SKIP = 64          # longest skip of an open pin contact [force evaluations]
+#: a pin's carried values (:func:`pin_loop`) are computed afresh at every CARRY_REFRESH-th
+#: tick of the pin clock (pins staggered by their index), so their round-off cannot grow
+CARRY_REFRESH = 64
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def step_function(t, t0, t1):
     """ADAMS STEP from 0 to 1 between t0 and t1 (cubic), and its integral from t0."""
     if t <= t0:
@@ -70,21 +73,21 @@ def step_function(t, t0, t1):
     return d * d * (3.0 - 2.0 * d), (t1 - t0) * (d ** 3 - 0.5 * d ** 4)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def input_motion(P, t):
     """Input angle and speed of Eq. (19): speed = STEP(t, 0, 0, T, omega)."""
     s, integral = step_function(t, 0.0, P[RAMP_TIME])
     return P[INPUT_SPEED] * integral, P[INPUT_SPEED] * s
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def load_torque(P, t):
     """Output load of Eqs. (20)/(21)."""
     s, _ = step_function(t, P[LOAD_T0], P[LOAD_T1])
     return P[LOAD] * s + P[FLUCT_AMP] * math.sin(2.0 * math.pi * P[FLUCT_FREQ] * t)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def crank_point(q, v, j, wl, wu):
     """Position and velocity of crank j's axis at the axial station with weights (wl, wu)."""
     b = CRANK0 + CRANK_STRIDE * j
@@ -92,7 +95,7 @@ def crank_point(q, v, j, wl, wu):
             wl * v[b] + wu * v[b + 2], wl * v[b + 1] + wu * v[b + 3])
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def add_crank_force(Q, j, wl, wu, fx, fy):
     b = CRANK0 + CRANK_STRIDE * j
     Q[b] += wl * fx
@@ -184,7 +187,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
             loaded)
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
                  fe, modal, arm_elastic=None, carried=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
@@ -292,6 +295,9 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, 
             continue        # open: its force and elastic force were zeroed when it was skipped
         qx, qy = profile_axes(pins[i, 0], pins[i, 1], ox, oy, cos_t, sin_t, runout_x, runout_y)
         nominal = pin_angle[i] - angle
+        if (clock + i) % CARRY_REFRESH == 0:     # afresh now and then: no round-off grows
+            carried[disc, i, 0] = math.nan
+            carried[disc, i, 5] = math.nan
         gap, ui, nx, ny = pin_gap(qx, qy, nominal, nominal + u[disc, i], rg, a, zp,
                                   clearance + pin_opening(pins, i), clock > 0,
                                   carried[disc, i, 0:5])
@@ -439,7 +445,7 @@ def support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, sx, sy, cx, cy, w_in):
     K[CARRIER, CARRIER] += sx * bx + sy * by
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess, shift):
     """Conforming bushing on the relative position r of journal and bore (``shift``: ln(a2 /
     a1)): returns (Sx, Sy, energy, power, force, elastic force, kxx, kxy, kyy)."""
@@ -454,7 +460,7 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess, s
     return fn * nx, fn * ny, energy, power, fn, f, kxx, kxy, kyy
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def arm_station(P, holes, crank, disc):
     """Station weights (wl, wu) of disc ``disc``'s eccentric on crank ``crank`` and the centre
     of its hole in the disc's axes (with the per-disc hole offsets of per-part errors, and the
@@ -481,7 +487,7 @@ def hole_station(P, holes, crank, disc, elastic):
     return wl, wu, hole_x, hole_y
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def arm_geometry(P, q, v, crank, disc, hole_x, hole_y, wl, wu):
     """Crank ``crank``'s eccentric for disc ``disc`` and that disc's hole: (rx, ry, vx, vy,
     phi, ecc, cos phi, sin phi, hx, hy), r = eccentric centre - hole centre and v its rate,
@@ -504,7 +510,7 @@ def arm_geometry(P, q, v, crank, disc, hole_x, hole_y, wl, wu):
     return ex - hx, ey - hy, evx - hvx, evy - hvy, phi, ecc, cos_p, sin_p, hx, hy
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy):
     """Generalised forces of an arm element's force (sx, sy) on the disc hole (-S on the
     eccentric)."""
@@ -628,7 +634,7 @@ def _arm_rows(q, geo, disc):
             (0.0, wl, 0.0, wu, ecc * cos_p, 0.0, -1.0, -lx), lx, ly)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def arm_pair_stiffness(K, q, crank, geo, dsdr, force, w_in):
     """Stiffness matrix of :func:`arm_pair`: J^T (dS/dr) J over both eccentrics (the crank
     couples them) and each element's S . d2r/dq2 (:func:`arm_stiffness` with no material
@@ -700,7 +706,7 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
     return fn, energy, power
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def kinetic_energy(P, v):
     energy = 0.5 * P[J_CARRIER] * v[CARRIER] ** 2
     for j in range(2):
@@ -768,14 +774,14 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
 
 
 @numba.njit(**REFCOUNT)
-def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, pin_force, pin_elastic,
-              fe, modes, carried):
+def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, pin_force,
+              pin_elastic, fe, modes, carried):
     """Disc ``disc``'s pin contacts with the pin ring as output (single-stage drive): found
     in the ring's axes (:func:`~rvsim.dynamics._single_stage.ring_frame`), their forces and
     stiffness added to ``Q`` and ``K``.  Returns (energy, dissipated power, max
     penetration).  (A function of its own: it allocates, the step loop does not.)"""
     qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
-    e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval, step,
+    e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval, clock,
                               pin_force, pin_elastic, fe, modes, None, carried)
     ring_forces(q, qr, Qr, Kr, Q, K, disc)
     return e, pw, pen
@@ -932,7 +938,7 @@ def impulse_factors(P, h):
 CARRIED = 7
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def nothing_carried(n_pins):
     """What the pins carry before their first evaluation (NaN: nothing; :func:`pin_loop`)."""
     return np.full((2, n_pins, CARRIED), np.nan)

@@ -16,6 +16,7 @@ import math
 
 import numba
 
+from ._jit import NO_REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
@@ -25,7 +26,7 @@ from ._layout import PIN_CB, PIN_FE0, PIN_FE_N, PIN_FE_STEP  # noqa: E402
 __all__ = ["table_value", "pin_series_compliance"]
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def table_value(table, step, cos_psi):
     """c(psi) from ``table`` at psi = 0, step, .. (Catmull-Rom, even in psi, held beyond the
     end) for the cosine ``cos_psi`` of the angle."""
@@ -44,7 +45,7 @@ def table_value(table, step, cos_psi):
                                           + t * (3.0 * (p1 - p2) + p3 - p0)))
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def pin_series_compliance(P, nx, ny, radial):
     """Series compliance [m/N] of a pin contact with normal (nx, ny) (disc axes, towards the
     pin) for a pin whose groove axis is at angle ``radial`` in the same axes."""

@@ -10,6 +10,7 @@ import math
 import numba
 import numpy as np
 
+from ._jit import NO_REFCOUNT, REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 # compiled in: the layout constants and the contact law (the kernel's guard lists this file)
@@ -23,7 +24,7 @@ from ._layout import (CARRIER, CRANK0, DISC0, DISC_STRIDE, J_CRANK, K_INPUT,  # 
 __all__ = ["input_shaft", "output_pin", "output_pin_stiffness", "ring_frame", "ring_forces"]
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def input_shaft(P, q, v, Q, K, theta_in, omega_in):
     """Single-stage drive: the input coupling turns the eccentric shaft (crank 0's rotation)
     through a torsional spring K_INPUT with contact-like damping.  Returns (input torque,
@@ -39,7 +40,7 @@ def input_shaft(P, q, v, Q, K, theta_in, omega_in):
     return torque, 0.5 * k * twist * twist, (torque - k * twist) * rate
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, force, dist, free):
     """Stiffness matrix of an output pin contact (pin (px, py) on the flange, hole centre (lx,
     ly) from the disc centre): k g g^T + F/dist h h^T + F n . d2r/dq2; ``free`` = 0 when the
@@ -52,7 +53,7 @@ def output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, force, dist, free):
     K[d + 2, d + 2] += force * (nx * lx + ny * ly)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def output_pin(P, q, v, Q, K, disc, m, elastic):
     """Single-stage drive: output pin m of the flange (the CARRIER coordinate) in its hole of
     disc ``disc``: a clearance contact that closes when the pin centre is farther than
@@ -95,7 +96,7 @@ def output_pin(P, q, v, Q, K, disc, m, elastic):
     return fn, energy, power
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def ring_frame(q, v, K, disc):
     """Pin ring as output: copies of ``q`` and ``v`` with disc ``disc``'s pose and velocity
     expressed in the axes of the ring (turned by the CARRIER coordinate theta_r), and zeroed
@@ -119,7 +120,7 @@ def ring_frame(q, v, K, disc):
     return qr, vr, np.zeros(N_DOF), np.zeros((n, n))
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def ring_forces(q, qr, Qr, Kr, Q, K, disc):
     """Add the pin contacts' forces ``Qr`` and stiffness ``Kr``, found in the ring's axes by
     :func:`ring_frame`, to ``Q`` and ``K`` of the fixed-frame coordinates: Q = J^T Q' and

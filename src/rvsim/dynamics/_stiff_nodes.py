@@ -34,11 +34,11 @@ import math
 import numba
 import numpy as np
 
+from ._jit import NO_REFCOUNT, REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-from ._jit import REFCOUNT  # noqa: E402
 from ._layout import CRANK0, CRANK_STRIDE, MINV_LL, MINV_LU, MINV_UU  # noqa: E402
 
 #: above ALERT x the limit the next check comes at the next step, not P[NODE_REFRESH] steps
@@ -52,7 +52,7 @@ MAX_SUBSTEPS = 64
 _SWEEPS = 8
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def node_mass(P):
     """(m_ll, m_lu, m_uu): one axis of a crank's node mass matrix (the inverse of P's
     MINV block)."""
@@ -60,7 +60,7 @@ def node_mass(P):
     return P[MINV_UU] / det, -P[MINV_LU] / det, P[MINV_LL] / det
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def largest_eigenvalue(C):
     """Largest eigenvalue of the symmetric 4 x 4 matrix C (cyclic Jacobi; C is overwritten)."""
     n = 4
@@ -122,7 +122,7 @@ def node_omega_dt(P, K, crank, dt):
     return math.sqrt(lam) * dt if lam > 0.0 else 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def node_kinetic(P, v, crank):
     """1/2 v_n^T M_n v_n of crank ``crank``'s nodes."""
     m_ll, m_lu, m_uu = node_mass(P)
@@ -135,7 +135,7 @@ def node_kinetic(P, v, crank):
     return energy
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def substeps_for(omega_dt, limit):
     """Sub-steps per step for the node modes' omega dt: 1 up to ``limit``, above it the
     fewest that bring omega h to ALERT x ``limit`` or below (so that the next check need not

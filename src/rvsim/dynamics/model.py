@@ -300,7 +300,8 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     if r.layout.single_stage:
         _single_stage_constants(r, P)
     # ln(a2 / a1) of each conforming bushing, once per run (_bearings.conforming_force)
-    for shift, a1, a2 in ((L.ARM_SHIFT, L.ARM_A1, L.ARM_A2), (L.SUP_SHIFT_L, L.SUP_A1, L.SUP_A2_L),
+    for shift, a1, a2 in ((L.ARM_SHIFT, L.ARM_A1, L.ARM_A2),
+                          (L.SUP_SHIFT_L, L.SUP_A1, L.SUP_A2_L),
                           (L.SUP_SHIFT_U, L.SUP_A1, L.SUP_A2_U)):
         P[shift] = bushing_shift(P[a1], P[a2])
     crank_angles = np.array([0.0, math.pi])

@@ -30,6 +30,11 @@ import math
 import numba
 import numpy as np
 
+from ..dynamics._cache_guard import invalidate_stale_cache
+from ..dynamics._jit import NO_REFCOUNT, REFCOUNT
+
+# the compile options come from dynamics._jit: clear this module's cached code when they change
+invalidate_stale_cache(__file__)
 __all__ = ["curve_point", "curve_from", "rotated", "foot_point", "nearest_point", "curvature", "profile_points",
            "profile_axes", "pin_gap", "pin_gaps_at", "pin_opening", "profile_deviation", "lever_arms", "curvatures",
            "deviated_gap",
@@ -43,7 +48,7 @@ TRACKING_LIMIT = 1e-4
 ROTATION_LIMIT = 1e-2
 
 
-@numba.njit(cache=True, fastmath=False)
+@numba.njit(**NO_REFCOUNT)
 def curve_point(u, rg, a, zp):
     """Point, first and second derivative of q(u): (x, y, dx, dy, ddx, ddy)."""
     return curve_from(math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u), rg, a, zp)
@@ -75,7 +80,7 @@ def curve_from(cos_u, sin_u, cos_z, sin_z, rg, a, zp):
     return x, y, dx, dy, ddx, ddy
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def foot_point(qx, qy, u0, rg, a, zp, iterations):
     """Parameter of the point of q nearest to (qx, qy), by Newton from ``u0``."""
     u = u0
@@ -99,7 +104,7 @@ def foot_point(qx, qy, u0, rg, a, zp, iterations):
     return u
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def nearest_point(qx, qy, centre, rg, a, zp):
     """Parameter of the point of q nearest to (qx, qy) among one period around ``centre``.
 
@@ -129,7 +134,7 @@ def nearest_point(qx, qy, centre, rg, a, zp):
     return foot_point(qx, qy, best_u, rg, a, zp, 12)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def curvature(u, rg, a, zp):
     """Signed curvature of q at ``u``; positive where the centre of curvature is inside."""
     _, _, dx, dy, ddx, ddy = curve_point(u, rg, a, zp)
@@ -137,7 +142,7 @@ def curvature(u, rg, a, zp):
     return (dx * ddy - dy * ddx) / (speed * speed * speed)
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def profile_points(u, rg, a, zp, offset):
     """Points of the profile (q offset inwards by ``offset``) at parameters ``u``: (n, 2)."""
     n = u.shape[0]
@@ -221,7 +226,7 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track, carried):
     return (qx - x) * nx + (qy - y) * ny + clearance, u, nx, ny
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def curvatures(u, rg, a, zp):
     """:func:`curvature` at each of the parameters ``u``."""
     out = np.empty(u.shape[0])
@@ -230,7 +235,7 @@ def curvatures(u, rg, a, zp):
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def lever_arms(u, rg, a, zp):
     """n x q of the pin-centre curve at parameters ``u`` (n the unit outward normal): the
     gap's derivative with respect to the disc's rotation for a pin on the curve [m]."""
@@ -300,7 +305,7 @@ def deviated_gap(pins, disc, u, gap, nx, ny, rg, a, zp):
     return gap - value, nx + slope * ny / speed, ny - slope * nx / speed
 
 
-@numba.njit(cache=True)
+@numba.njit(**REFCOUNT)
 def pin_gaps_at(pins, ox, oy, angle, shift_x, shift_y, rg, a, zp, clearance, disc):
     """Robust :func:`pin_gap` of every pin (rows of ``pins``, housing axes) to one disc.
 
