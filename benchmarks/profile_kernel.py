@@ -7,7 +7,10 @@ perf cannot name by itself: the script compiles the kernel afresh in a temporary
 the same simulation and prints the shares of the functions, libm's included (``__sincos``,
 ``__ieee754_pow`` / ``log``) and Numba's reference counting (``NRT_incref`` / ``NRT_decref``).
 
-Inlined functions count in their callers (the step loop inlines ``forces_with``).  Shares
+Inlined functions count in their callers (the step loop inlines ``forces_with``), and code
+the script cannot name (a compiled function without a dispatcher of its own) counts in the
+named function below it in memory, since perf's map gives each name the span up to the
+next: the shares by function are approximate, those of libm's functions exact.  Shares
 are of the samples of the whole process over the window (a few % of Python's garbage
 collector can show up: the profiling run itself leaves garbage).  Needs ``perf`` (Debian's
 ``linux-perf``) and permission to sample (root, or ``kernel.perf_event_paranoid`` <= 1).

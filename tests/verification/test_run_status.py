@@ -36,20 +36,22 @@ def test_clearance_larger_than_the_tooth_height_is_a_parameter_error(values, fie
     assert info.value.field == field and "tooth height" in info.value.reason
 
 
-@pytest.mark.parametrize("values, status", [
+@pytest.mark.parametrize("values, statuses", [
     # bushings 10,000x softer than the conforming law: the discs rattle and the output slips
-    # behind the input (with the one-flank mesh the energy residual failed first)
-    ({"contact.bushing_stiffness_factor": 1e-4}, "speed_ratio_off"),
+    # behind the input (speed ratio -2.09 against 121) and the balance fails with it (residual
+    # -3.5 to -8.2 of the input work); which check speaks first follows the rattle, which
+    # round-off decides (2026-11-26: 2 of 4 runs with the step changed by 1e-12 each way)
+    ({"contact.bushing_stiffness_factor": 1e-4}, ("speed_ratio_off", "energy_imbalance")),
     # mu = 1 with the regularised friction: far beyond the explicit step's stability
-    ({"contact.friction_coefficient": 1.0}, "energy_imbalance"),
+    ({"contact.friction_coefficient": 1.0}, ("energy_imbalance",)),
 ])
-def test_absurd_runs_end_with_a_status(values, status):
+def test_absurd_runs_end_with_a_status(values, statuses):
     reducer = with_values(RV40E, {**SHORT, **values})
     with pytest.raises(SimulationError) as info:
         simulate(reducer)
-    assert info.value.status == status
+    assert info.value.status in statuses
     result = simulate(reducer, raise_on_failure=False)
-    assert result.status == status and result.summary()["status"] == status
+    assert result.status == info.value.status == result.summary()["status"]
 
 
 @pytest.mark.parametrize("duration, words", [

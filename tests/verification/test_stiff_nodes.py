@@ -112,7 +112,11 @@ def test_guard_stabilises_1e_5(run_2_quick, monkeypatch):
     # measured: the guard sub-stepped after 745 checks (4 in the steady window), peak omega
     # dt 2.15; residual -9.1e-6 (5e-6 s: -2.4e-6); against 5e-6 s the mean TE -4.8e-7, the
     # peak-to-peak TE +0.69 %, the largest pin force -0.22 % (this shortened schedule; the
-    # paper's 36 runs: docs/benchmarks.md)
+    # paper's 36 runs: docs/benchmarks.md).  The tolerances are those of round-off: with the
+    # step changed by k 1e-12 (k = 0..5, 2026-11-26) the mean TE spreads over 2.3e-6 (5e-6
+    # s) and 2.9e-6 (1e-5 s), the peak-to-peak TE over 1.5 % and 2.0 %, the largest pin
+    # force over 0.11 % and 0.17 %, and the two sets differ by at most 2.8e-6, 1.8 % and
+    # 0.26 %
     assert P[L.NODE_CHECKS] > 0 and P[L.NODE_PEAK] > 1.6
     # what the guard did is in the run's summary (rvsim simulate --json, the study's rows)
     summary = guarded.summary()
@@ -122,9 +126,9 @@ def test_guard_stabilises_1e_5(run_2_quick, monkeypatch):
     assert "guard_substep_checks" not in reference.summary()       # guard off at 5e-6 s
     assert abs(guarded.energy["relative_residual"]) < 3e-5
     a, b = guarded.metrics, reference.metrics
-    assert a["te_mean_arcmin"] == pytest.approx(b["te_mean_arcmin"], rel=1e-6)
-    assert a["te_pp_arcmin"] == pytest.approx(b["te_pp_arcmin"], rel=0.01)
-    assert a["max_pin_force_n"] == pytest.approx(b["max_pin_force_n"], rel=0.003)
+    assert a["te_mean_arcmin"] == pytest.approx(b["te_mean_arcmin"], rel=6e-6)
+    assert a["te_pp_arcmin"] == pytest.approx(b["te_pp_arcmin"], rel=0.035)
+    assert a["max_pin_force_n"] == pytest.approx(b["max_pin_force_n"], rel=0.005)
 
 
 def test_balance_exact_with_guard_acting_in_window(run_2_quick, monkeypatch):
