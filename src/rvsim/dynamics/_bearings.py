@@ -90,12 +90,12 @@ def conforming_approach(f, j1, a1, j2, a2, cb):
 def conforming_curvature(f, a1, j1, a2, j2):
     """d(compliance)/dF of the two conforming interfaces at the force ``f`` > 0: -j / F for an
     interface below F = a / 16, zero on its linear continuation."""
-    slope = 0.0
+    j = 0.0
     if f <= a1 / WRAP_RATIO:
-        slope -= j1 / f
+        j += j1
     if f <= a2 / WRAP_RATIO:
-        slope -= j2 / f
-    return slope
+        j += j2
+    return -j / f
 
 
 @numba.njit(**NO_REFCOUNT)
@@ -129,15 +129,18 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess, shift=math.nan):
     log = math.log(a1 / f)
     for _ in range(60):
         d, c, e = _conforming_log(f, log, j1, a1, j2, a2, cb, shift)
-        step = (d - delta) / c
+        inv_c = 1.0 / c
+        step = (d - delta) * inv_c
         new = f - step
         if new <= 0.0:
             new = 0.01 * f
         elif abs(step) <= NEWTON_CLOSE * new:
             change = new - f
             e += f * c * change
-            c += conforming_curvature(f, a1, j1, a2, j2) * change
-            return new, 1.0 / c, e
+            # the stiffness 1 / (c + dc) to second order in dc / c (at most ~1e-6 here: the
+            # error is of the third order, below 1e-18) instead of a division
+            x = conforming_curvature(f, a1, j1, a2, j2) * change * inv_c
+            return new, inv_c * (1.0 - x * (1.0 - x)), e
         if abs(step) <= SERIES_LIMIT * f:   # ln(a1 / F) by its series: one logarithm per call
             log -= log_ratio(-step / f)
         else:

@@ -68,24 +68,32 @@ def spring_force_power(delta, c, cb, guess, guess_power):
         f = (delta / c) ** _INV_EXPONENT
         f = delta / (c * f ** (EXPONENT - 1.0) + cb)
         fe = f ** EXPONENT
+    inv_f = 0.0
     for _ in range(20):
         # Newton on g(F) = c F^0.9 + cb F - delta (concave, increasing): the error after a
         # step s is at most (|g''| / 2 g') s^2 <= 0.05 s^2 / F, so a step below NEWTON_CLOSE F
-        # leaves a relative error below 1e-13; F^0.9 follows every step by its series
-        step = (c * fe + cb * f - delta) / (EXPONENT * c * fe / f + cb)
+        # leaves a relative error below 1e-13; F^0.9 follows every step by its series (two
+        # divisions per iteration: 1 / F and the step)
+        inv_f = 1.0 / f
+        step = (c * fe + cb * f - delta) / (EXPONENT * c * fe * inv_f + cb)
         new = f - step
+        x = -step * inv_f
         if new <= 0.0:
             new = 1e-3 * f
         elif abs(step) <= NEWTON_CLOSE * new:
-            fe *= power_ratio(-step / f)
+            fe *= power_ratio(x)
             f = new
+            inv_f *= 1.0 - x * (1.0 - x)     # 1 / (F (1 + x)), |x| <= 1e-6: error below 1e-18
             break
-        if abs(step) <= SERIES_LIMIT * f:     # F^0.9 by its series: one power at most
-            fe *= power_ratio(-step / f)
+        if abs(x) <= SERIES_LIMIT:            # F^0.9 by its series: one power at most
+            fe *= power_ratio(x)
         else:
             fe = new ** EXPONENT
         f = new
-    stiffness = 1.0 / (EXPONENT * c * fe / f + cb)
+        inv_f = 0.0
+    if inv_f == 0.0:                          # the iterations ran out (not seen)
+        inv_f = 1.0 / f
+    stiffness = 1.0 / (EXPONENT * c * fe * inv_f + cb)
     energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
     return f, stiffness, energy, fe
 
