@@ -51,7 +51,14 @@ ROTATION_LIMIT = 1e-2
 @numba.njit(**NO_REFCOUNT)
 def curve_point(u, rg, a, zp):
     """Point, first and second derivative of q(u): (x, y, dx, dy, ddx, ddy)."""
-    return curve_from(math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u), rg, a, zp)
+    cu, su, cz, sz = curve_trig(u, zp)
+    return curve_from(cu, su, cz, sz, rg, a, zp)
+
+
+@numba.njit(cache=True, inline="always")
+def curve_trig(u, zp):
+    """cos u, sin u, cos zp u and sin zp u: what :func:`curve_from` takes."""
+    return math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u)
 
 
 @numba.njit(cache=True, inline="always")
@@ -193,7 +200,7 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track, carried):
         cu, su = rotated(carried[1], carried[2], turn)
         cz, sz = rotated(carried[3], carried[4], zp * turn)
     else:
-        cu, su, cz, sz = math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u)
+        cu, su, cz, sz = curve_trig(u, zp)
     x, y, tx, ty, ddx, ddy = curve_from(cu, su, cz, sz, rg, a, zp)
     robust = not track
     if track:
@@ -216,7 +223,7 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track, carried):
                 cz, sz = rotated(cz, sz, zp * du)
     if robust:
         u = nearest_point(qx, qy, nominal, rg, a, zp)
-        cu, su, cz, sz = math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u)
+        cu, su, cz, sz = curve_trig(u, zp)
         x, y, tx, ty, _, _ = curve_from(cu, su, cz, sz, rg, a, zp)
     if keep:
         carried[0], carried[1], carried[2], carried[3], carried[4] = u, cu, su, cz, sz
