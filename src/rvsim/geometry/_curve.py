@@ -46,6 +46,8 @@ TRACKING_LIMIT = 1e-4
 #: largest turn [rad of zp u] by which :func:`pin_gap` carries the foot's cosines and sines
 #: (:func:`rotated`) instead of computing them anew
 ROTATION_LIMIT = 1e-2
+#: 1 / n! of the series of cos and sin (:func:`rotated`)
+_INV6, _INV24, _INV120, _INV720, _INV5040 = (1.0 / n for n in (6, 24, 120, 720, 5040))
 
 
 @numba.njit(**NO_REFCOUNT)
@@ -66,9 +68,9 @@ def rotated(c, s, d):
     """(cos, sin) of an angle d from the angle whose cosine and sine are (c, s), for |d| <=
     :data:`ROTATION_LIMIT`: cos d and sin d by their series (truncation below 3e-21), the pair
     brought back to unit length to first order (so that rounding cannot drift it)."""
-    d2 = d * d
-    cd = 1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0))
-    sd = d * (1.0 - d2 * (1.0 / 6.0 - d2 * (1.0 / 120.0 - d2 / 5040.0)))
+    d2 = d * d         # (the series' coefficients are constants: no division per call)
+    cd = 1.0 - d2 * (0.5 - d2 * (_INV24 - d2 * _INV720))
+    sd = d * (1.0 - d2 * (_INV6 - d2 * (_INV120 - d2 * _INV5040)))
     cn = c * cd - s * sd
     sn = s * cd + c * sd
     scale = 1.5 - 0.5 * (cn * cn + sn * sn)
