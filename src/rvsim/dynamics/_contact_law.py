@@ -68,7 +68,6 @@ def spring_force_power(delta, c, cb, guess, guess_power):
         f = (delta / c) ** _INV_EXPONENT
         f = delta / (c * f ** (EXPONENT - 1.0) + cb)
         fe = f ** EXPONENT
-    inv_f = 0.0
     for _ in range(20):
         # Newton on g(F) = c F^0.9 + cb F - delta (concave, increasing): the error after a
         # step s is at most (|g''| / 2 g') s^2 <= 0.05 s^2 / F, so a step below NEWTON_CLOSE F
@@ -90,8 +89,7 @@ def spring_force_power(delta, c, cb, guess, guess_power):
         else:
             fe = new ** EXPONENT
         f = new
-        inv_f = 0.0
-    if inv_f == 0.0:                          # the iterations ran out (not seen)
+    else:                                     # the iterations ran out (not seen)
         inv_f = 1.0 / f
     stiffness = 1.0 / (EXPONENT * c * fe * inv_f + cb)
     energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
