@@ -17,12 +17,13 @@ __all__ = ["NO_REFCOUNT", "REFCOUNT"]
 #: nothing and reports non-finite states by its status), and compiled without reference
 #: counting where this Numba offers the option (issue 14: 6 % of a run on AMD EPYC, 21 % on
 #: Intel Xeon, where the atomic counts cost more); a Numba that drops the option compiles the
-#: same code with reference counting instead of failing.  Numba's callees inherit both options
-#: from the function that compiles them unless they set them themselves
+#: same code with reference counting instead of failing.  Numba keys compiled code by argument
+#: types only, so a function that set no options would keep those of whichever function
+#: compiled it first: every compiled kernel function that is not inlined states NO_REFCOUNT
+#: or REFCOUNT (tests/unit/test_jit_options.py)
 NO_REFCOUNT = {"cache": True, "error_model": "numpy",
                **({"_nrt": False} if _NRT_OPTION else {})}
 
-#: ``numba.njit`` options of a function that allocates and is called from a function compiled
-#: with NO_REFCOUNT: it would inherit the caller's missing reference counting (and fail to
-#: compile), so it sets it explicitly
+#: ``numba.njit`` options of a kernel function that allocates (it may be called from a
+#: NO_REFCOUNT one: it counts its own references)
 REFCOUNT = {"cache": True, "error_model": "numpy", **({"_nrt": True} if _NRT_OPTION else {})}
