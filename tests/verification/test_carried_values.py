@@ -129,3 +129,45 @@ def test_bushing_shift_given_or_computed_is_the_same_force():
     computed = conforming_force(3e-6, *args)
     assert given == computed          # bit for bit: the same logarithm
     assert bushing_shift(1.0, 1.0) == bushing_shift(0.0, 2.0) == 0.0
+
+
+# Newton started from the previous solution's Taylor expansion (the kernel's bushings and pins
+# carry the approach and stiffness of their last solution): the same root, whatever the change
+CHANGES = [0.0, 1e-7, -3e-5, 2e-3, -8e-3, 0.3, -0.5]
+
+
+@pytest.mark.parametrize("f0", [40.0, 4000.0, 60000.0])     # 60 kN: both interfaces wrapped
+@pytest.mark.parametrize("change", CHANGES)
+def test_conforming_force_from_the_last_solution_finds_the_root(f0, change):
+    from rvsim.dynamics import _layout as L
+    from rvsim.dynamics._bearings import (conforming_approach, conforming_force_carried,
+                                          conforming_force_from)
+    P = build_model(RV40E, 5e-6).P
+    law = (P[L.SUP_J1], P[L.SUP_A1], P[L.SUP_J2], P[L.SUP_A2_U], 0.0)
+    d0, _, _ = conforming_approach(f0, *law)
+    last, k0, _, log0 = conforming_force_carried(d0, *law, 1.01 * f0, P[L.SUP_SHIFT_U])
+    assert log0 == pytest.approx(math.log(law[1] / last), abs=2e-15)
+    root = last * (1 + change)
+    delta, compliance, energy = conforming_approach(root, *law)
+    f, k, e, log = conforming_force_from(delta, *law, P[L.SUP_SHIFT_U], last, d0, k0, log0)
+    assert f == pytest.approx(root, rel=6e-14)                # measured 3.1e-14 at most
+    assert 1.0 / k == pytest.approx(compliance, rel=1e-14)    # measured 4.4e-15
+    assert e == pytest.approx(energy, rel=7e-14)              # measured 3.6e-14
+    assert log == pytest.approx(math.log(law[1] / f), abs=2e-15)   # measured 8.9e-16
+
+
+@pytest.mark.parametrize("cb", [1.7e-10, 1.8e-10])    # the series compliance may have changed
+@pytest.mark.parametrize("change", CHANGES[:-1])
+def test_spring_force_from_the_last_solution_finds_the_root(cb, change):
+    from rvsim.dynamics._contact_law import spring_force_from
+    c = 2.3e-9
+    d0 = c * 850.0 ** EXPONENT + 1.7e-10 * 850.0
+    last, k0, _, fe0 = spring_force_power(d0, c, 1.7e-10, 0.0, 0.0)
+    root = last * (1 + change)
+    delta = c * root ** EXPONENT + cb * root
+    f, k, e, fe = spring_force_from(delta, c, cb, last, fe0, d0, k0)
+    direct = spring_force(delta, c, cb, 0.0)
+    assert f == pytest.approx(root, rel=1e-14)                # measured 4.1e-15 at most
+    assert k == pytest.approx(direct[1], rel=1.5e-15)         # measured 5.6e-16
+    assert e == pytest.approx(direct[2], rel=2e-14)           # measured 8.2e-15
+    assert fe == pytest.approx(f ** EXPONENT, rel=5e-16)      # measured 2.2e-16

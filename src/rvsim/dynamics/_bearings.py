@@ -29,6 +29,7 @@ from ._contact_law import contact
 invalidate_stale_cache(__file__)
 
 __all__ = ["WRAP_RATIO", "johnson_interface", "conforming_approach", "conforming_force",
+           "conforming_force_carried", "conforming_force_from",
            "bushing_shift",
            "radial_stiffness", "roller_set"]
 
@@ -90,12 +91,7 @@ def conforming_approach(f, j1, a1, j2, a2, cb):
 def conforming_curvature(f, a1, j1, a2, j2):
     """d(compliance)/dF of the two conforming interfaces at the force ``f`` > 0: -j / F for an
     interface below F = a / 16, zero on its linear continuation."""
-    j = 0.0
-    if f <= a1 / WRAP_RATIO:
-        j += j1
-    if f <= a2 / WRAP_RATIO:
-        j += j2
-    return -j / f
+    return -_curving(f, a1, j1, a2, j2) / f
 
 
 @numba.njit(**NO_REFCOUNT)
@@ -120,13 +116,80 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess, shift=math.nan):
     last evaluation to the new force to first order (their error is of the same order).
     ``shift``: ln(a2 / a1) (:func:`bushing_shift`; omitted: computed here).
     """
+    f, k, e, _ = conforming_force_carried(delta, j1, a1, j2, a2, cb, guess, shift)
+    return f, k, e
+
+
+@numba.njit(**NO_REFCOUNT)
+def conforming_force_carried(delta, j1, a1, j2, a2, cb, guess, shift=math.nan):
+    """:func:`conforming_force` that returns ln(a1 / F) as well, for the caller to carry to
+    :func:`conforming_force_from`: (F, stiffness, energy, ln(a1 / F))."""
     f = guess
     if not f > 0.0:
         # the secant compliance is at least j1 + j2 + cb: an upper bound of the root
         f = delta / (j1 + j2 + cb)
     if shift != shift:
         shift = bushing_shift(a1, a2)
-    log = math.log(a1 / f)
+    return _conforming_newton(delta, f, math.log(a1 / f), j1, a1, j2, a2, cb, shift)
+
+
+@numba.njit(**NO_REFCOUNT)
+def conforming_force_from(delta, j1, a1, j2, a2, cb, shift, f0, d0, k0, log0):
+    """:func:`conforming_force` started from the previous solution's Taylor expansion: the
+    force ``f0`` > 0 at the approach ``d0``, with the stiffness ``k0`` and ``log0`` = ln(a1 /
+    f0), all four carried by the caller from its last call.
+
+    The predictor f0 + k0 dd + F'' dd^2 / 2 (dd = delta - d0, F'' = j k0^3 / f0 from the law's
+    curvature, j = j1 + j2 below the wrap) is off by the third order of the change, so that
+    where the force changes by up to about 1 % per call Newton's first step is already below
+    NEWTON_CLOSE F: one evaluation of the law per call instead of two or three, ln(a1 / F)
+    by its series from ``log0``, and the divisions off the chain of dependent operations.
+    The same stopping rule as :func:`conforming_force`, so the same accuracy; a change beyond
+    SERIES_LIMIT starts Newton from ``f0`` as that does.  Returns (F, stiffness, energy,
+    ln(a1 / F))."""
+    inv_f0 = 1.0 / f0
+    move = k0 * (delta - d0) * inv_f0                  # first order, relative to f0
+    x = move * (1.0 + 0.5 * _curving(f0, a1, j1, a2, j2) * k0 * move)
+    if not abs(x) <= SERIES_LIMIT:
+        return conforming_force_carried(delta, j1, a1, j2, a2, cb, f0, shift)
+    f = f0 + f0 * x
+    inv_f = 1.0 / f
+    log = log0 - log_ratio(x)
+    d, c, e = _conforming_log(f, log, j1, a1, j2, a2, cb, shift)
+    inv_c = 1.0 / c
+    step = (d - delta) * inv_c
+    new = f - step
+    if abs(step) <= NEWTON_CLOSE * new:
+        e -= f * c * step
+        y = -step * inv_f                               # |y| <= 3e-7
+        # the stiffness 1 / (c + dc) to second order in dc / c, as in _conforming_newton
+        z = _curving(f, a1, j1, a2, j2) * step * inv_f * inv_c
+        return (new, inv_c * (1.0 - z * (1.0 - z)), e,
+                log - y * (1.0 - y * (0.5 - y * _INV3)))
+    if abs(step) <= SERIES_LIMIT * f:
+        log -= log_ratio(-step * inv_f)
+    else:
+        new = f - step if f - step > 0.0 else 0.01 * f
+        log = math.log(a1 / new)
+    return _conforming_newton(delta, new, log, j1, a1, j2, a2, cb, shift)
+
+
+@numba.njit(cache=True, inline="always")
+def _curving(f, a1, j1, a2, j2):
+    """j of the interfaces that follow Johnson's law at the force ``f`` (below F = a / 16):
+    the compliance's slope is -j / F (:func:`conforming_curvature`)."""
+    j = 0.0
+    if f <= a1 / WRAP_RATIO:
+        j += j1
+    if f <= a2 / WRAP_RATIO:
+        j += j2
+    return j
+
+
+@numba.njit(cache=True, inline="always")
+def _conforming_newton(delta, f, log, j1, a1, j2, a2, cb, shift):
+    """Newton on the conforming law from the force ``f`` > 0 with ``log`` = ln(a1 / f) (the
+    stopping rule of :func:`conforming_force`): (F, stiffness, energy, ln(a1 / F))."""
     for _ in range(60):
         d, c, e = _conforming_log(f, log, j1, a1, j2, a2, cb, shift)
         inv_c = 1.0 / c
@@ -140,14 +203,14 @@ def conforming_force(delta, j1, a1, j2, a2, cb, guess, shift=math.nan):
             # the stiffness 1 / (c + dc) to second order in dc / c (at most ~1e-6 here: the
             # error is of the third order, below 1e-18) instead of a division
             x = conforming_curvature(f, a1, j1, a2, j2) * change * inv_c
-            return new, inv_c * (1.0 - x * (1.0 - x)), e
+            return new, inv_c * (1.0 - x * (1.0 - x)), e, log - log_ratio(change / f)
         if abs(step) <= SERIES_LIMIT * f:   # ln(a1 / F) by its series: one logarithm per call
             log -= log_ratio(-step / f)
         else:
             log = math.log(a1 / new)
         f = new
     d, c, e = _conforming(f, j1, a1, j2, a2, cb, shift)
-    return f, 1.0 / c, e
+    return f, 1.0 / c, e, math.log(a1 / f)
 
 
 @numba.njit(cache=True, inline="always")

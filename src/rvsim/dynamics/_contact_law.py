@@ -15,7 +15,7 @@ from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-__all__ = ["EXPONENT", "spring_force", "spring_force_power", "power_ratio", "damped", "contact", "add_rank_one"]
+__all__ = ["EXPONENT", "spring_force", "spring_force_power", "spring_force_from", "power_ratio", "damped", "contact", "add_rank_one"]
 
 EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
 _INV_EXPONENT = 1.0 / EXPONENT
@@ -28,6 +28,8 @@ SERIES_LIMIT = 1e-2
 
 #: the ratios C(p, n) / C(p, n - 1) = (p - n + 1) / n of the binomial series of (1 + x)^p
 _B1, _B2, _B3, _B4, _B5, _B6, _B7, _B8 = ((EXPONENT - n + 1.0) / n for n in range(1, 9))
+#: F'' / 2 of the law in units of c F^0.9 k^3 / F^2: EXPONENT (1 - EXPONENT) / 2
+_HALF_CURVE = 0.5 * EXPONENT * (1.0 - EXPONENT)
 
 
 @numba.njit(cache=True, inline="always")
@@ -94,6 +96,39 @@ def spring_force_power(delta, c, cb, guess, guess_power):
     stiffness = 1.0 / (EXPONENT * c * fe * inv_f + cb)
     energy = EXPONENT / (1.0 + EXPONENT) * c * fe * f + 0.5 * cb * f * f
     return f, stiffness, energy, fe
+
+
+@numba.njit(**NO_REFCOUNT)
+def spring_force_from(delta, c, cb, f0, fe0, d0, k0):
+    """:func:`spring_force_power` started from the previous solution's Taylor expansion: the
+    force ``f0`` > 0 with ``fe0`` = f0**0.9 at the approach ``d0`` and the stiffness ``k0``,
+    all carried by the caller from its last call (``cb`` may have changed since: the
+    predictor is only Newton's start).
+
+    The predictor f0 + k0 dd + F'' dd^2 / 2 (dd = delta - d0; F'' = 0.09 c f0^0.9 k0^3 / f0^2
+    from the law's curvature) is off by the third order of the change, so where the force
+    changes by up to about 1 % per call Newton's first step is already below NEWTON_CLOSE F:
+    one evaluation per call, F**0.9 by its series from ``fe0``.  The same stopping rule as
+    :func:`spring_force_power`, so the same accuracy; a change beyond SERIES_LIMIT (or no
+    series compliance) is left to that function.  Returns (F, stiffness, energy, F**0.9)."""
+    inv_f0 = 1.0 / f0
+    move = k0 * (delta - d0) * inv_f0                   # first order, relative to f0
+    x = move * (1.0 + _HALF_CURVE * c * fe0 * inv_f0 * k0 * move)
+    if cb == 0.0 or not abs(x) <= SERIES_LIMIT:
+        return spring_force_power(delta, c, cb, f0, fe0)
+    f = f0 + f0 * x
+    inv_f = 1.0 / f
+    fe = fe0 * power_ratio(x)
+    step = (c * fe + cb * f - delta) / (EXPONENT * c * fe * inv_f + cb)
+    new = f - step
+    if abs(step) <= NEWTON_CLOSE * new:
+        y = -step * inv_f                                # |y| <= 1e-6
+        fe *= 1.0 + EXPONENT * y * (1.0 + _B2 * y * (1.0 + _B3 * y))
+        inv_f *= 1.0 - y * (1.0 - y)
+        stiffness = 1.0 / (EXPONENT * c * fe * inv_f + cb)
+        energy = EXPONENT / (1.0 + EXPONENT) * c * fe * new + 0.5 * cb * new * new
+        return new, stiffness, energy, fe
+    return spring_force_power(delta, c, cb, f, fe)
 
 
 @numba.njit(**NO_REFCOUNT)

@@ -22,8 +22,9 @@ from ._jit import NO_REFCOUNT, REFCOUNT
 invalidate_stale_cache()
 
 from ..geometry._curve import deviated_gap, pin_gap, pin_opening, profile_axes
-from ._bearings import conforming_force, radial_stiffness, roller_set
-from ._contact_law import add_rank_one, damped, spring_force_power
+from ._bearings import conforming_force_carried, conforming_force_from, radial_stiffness, \
+    roller_set
+from ._contact_law import add_rank_one, damped, spring_force_from, spring_force_power
 from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._pin_compliance import pin_series_compliance
@@ -33,7 +34,7 @@ from ._fe_holes import add_hole_load, begin_arms, end_arms
 from ._fe_holes import free_stretch, hole_css, hole_row, hole_shift, holes_on
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
-from ._layout import (ECC_ERR0, ECC_PHASE0)
+from ._layout import (BUSH_COLUMNS, BUSH_SLOT0, ECC_ERR0, ECC_PHASE0)
 from ._layout import (NODE_ALERT, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_OMEGA_DT,
                       NODE_SUBSTEPS,
                       NODE_PEAK, NODE_REFRESH)
@@ -332,11 +333,16 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, 
             count += 1
             continue
         guess = elastic[disc, i]
-        fel, k, e, power_09 = spring_force_power(
-            delta, P[PIN_C], cb, guess,
-            carried[disc, i, 6] if guess > 0.0 and carried[disc, i, 5] == guess else 0.0)
+        if guess > 0.0 and carried[disc, i, 5] == guess:     # what it carried is its own
+            fel, k, e, power_09 = spring_force_from(
+                delta, P[PIN_C], cb, guess, carried[disc, i, 6], carried[disc, i, 7],
+                carried[disc, i, 8])
+        else:
+            fel, k, e, power_09 = spring_force_power(delta, P[PIN_C], cb, guess, 0.0)
         carried[disc, i, 5] = fel
         carried[disc, i, 6] = power_09
+        carried[disc, i, 7] = delta
+        carried[disc, i, 8] = k
         fn, pw = damped(fel, k, -gap_rate, P[ZETA], P[M_DISC])
         forces[disc, i] = fn
         elastic[disc, i] = fel
@@ -446,18 +452,41 @@ def support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, sx, sy, cx, cy, w_in):
 
 
 @numba.njit(**NO_REFCOUNT)
-def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, guess, shift):
+def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, elastic, row, slot,
+             carry, shift, want):
     """Conforming bushing on the relative position r of journal and bore (``shift``: ln(a2 /
-    a1)): returns (Sx, Sy, energy, power, force, elastic force, kxx, kxy, kyy)."""
+    a1)): returns (Sx, Sy, energy, power, force, elastic force vector (x, y), kxx, kxy, kyy),
+    the stiffness dS/dr of the elastic force only with ``want`` (zero otherwise).
+
+    ``elastic[row, slot]`` holds the bushing's elastic force from step to step and
+    ``elastic[row, carry .. carry + 3]`` what its Newton start needs besides (the force they
+    belong to, the approach, the stiffness, ln(a1 / F): _layout.BUSH_SLOT0): the start is the
+    tangent predictor of :func:`~rvsim.dynamics._bearings.conforming_force_from` where they
+    belong to the force held, the force held otherwise (something else set it)."""
     dist = math.sqrt(rx * rx + ry * ry)
     delta = dist - clearance
     if delta <= 0.0 or dist < 1e-15:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    nx, ny = rx / dist, ry / dist
-    f, k, energy = conforming_force(delta, j1, a1, j2, a2, cb, guess, shift)
+        elastic[row, slot] = 0.0
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    inv_dist = 1.0 / dist
+    nx, ny = rx * inv_dist, ry * inv_dist
+    guess = elastic[row, slot]
+    if guess > 0.0 and elastic[row, carry] == guess:
+        f, k, energy, log = conforming_force_from(
+            delta, j1, a1, j2, a2, cb, shift, guess, elastic[row, carry + 1],
+            elastic[row, carry + 2], elastic[row, carry + 3])
+    else:
+        f, k, energy, log = conforming_force_carried(delta, j1, a1, j2, a2, cb, guess, shift)
+    elastic[row, slot] = f
+    elastic[row, carry] = f
+    elastic[row, carry + 1] = delta
+    elastic[row, carry + 2] = k
+    elastic[row, carry + 3] = log
     fn, power = damped(f, k, nx * vx + ny * vy, zeta, mass)
-    kxx, kxy, kyy = radial_stiffness(nx, ny, k, f, dist)
-    return fn * nx, fn * ny, energy, power, fn, f, kxx, kxy, kyy
+    kxx = kxy = kyy = 0.0
+    if want:
+        kxx, kxy, kyy = radial_stiffness(nx, ny, k, f, dist)
+    return fn * nx, fn * ny, energy, power, fn, f * nx, f * ny, kxx, kxy, kyy
 
 
 @numba.njit(**NO_REFCOUNT)
@@ -549,14 +578,12 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
         if fn == 0.0:
             return 0.0, 0.0, 0.0
     else:
-        sx, sy, energy, power, fn, f_el, kxx, kxy, kyy = _bushing(
+        sx, sy, energy, power, fn, ex_el, ey_el, kxx, kxy, kyy = _bushing(
             rx, ry, rvx, rvy, P[ARM_CLEAR], P[ARM_J1], P[ARM_A1], P[ARM_J2],
-            P[ARM_A2], P[ARM_CB], P[ZETA], P[M_NODE], elastic[crank, disc], P[ARM_SHIFT])
-        elastic[crank, disc] = f_el
-        if fn == 0.0 and f_el == 0.0:
+            P[ARM_A2], P[ARM_CB], P[ZETA], P[M_NODE], elastic, crank, disc,
+            BUSH_SLOT0 + BUSH_COLUMNS * disc, P[ARM_SHIFT], K.shape[0] > 0)
+        if fn == 0.0 and elastic[crank, disc] == 0.0:
             return 0.0, 0.0, 0.0
-        dist = math.sqrt(rx * rx + ry * ry)
-        ex_el, ey_el = f_el * rx / dist, f_el * ry / dist
     add_hole_load(P, q, elastic, crank, disc, ex_el, ey_el)     # the holes' Q (_fe_holes)
     if K.shape[0] > 0:
         arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, hx - q[d], hy - q[d + 1], kxx, kxy,
@@ -661,17 +688,17 @@ def arm_pair_stiffness(K, q, crank, geo, dsdr, force, w_in):
 
 
 @numba.njit(**NO_REFCOUNT)
-def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
+def support_bushing(P, q, v, Q, K, crank, upper, bx, by, elastic):
     """Crank ``crank``'s lower or upper support node in its carrier / flange bore: the paper's
     bushing (conforming contact) or a tapered roller bearing (P[SUP_KIND]).
 
-    ``elastic[crank, SUP_SLOT0 + upper]`` carries the bushing's elastic force from step to step
-    (Newton start, as in :func:`arm_bushing`).
+    (bx, by): the centre of the crank's bores (:func:`~rvsim.dynamics._fe_carrier.bore_centre`,
+    the same for both supports).  ``elastic[crank, SUP_SLOT0 + upper]`` carries the bushing's
+    elastic force from step to step (Newton start, as in :func:`arm_bushing`).
     ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic force (as in
     :func:`arm_bushing`).  Returns (resultant force, energy, dissipated power)."""
     b = CRANK0 + CRANK_STRIDE * crank + (2 if upper else 0)
     phi = CRANK0 + CRANK_STRIDE * crank + 4
-    bx, by = bore_centre(P, q, crank, crank_angle)
     rx, ry = q[b] - bx, q[b + 1] - by
     wc = v[CARRIER]
     vx, vy = v[b] + wc * by, v[b + 1] - wc * bx
@@ -690,14 +717,12 @@ def support_bushing(P, q, v, Q, K, crank, upper, crank_angle, elastic):
     else:
         a2 = P[SUP_A2_U] if upper else P[SUP_A2_L]
         slot = SUP_SLOT0 + (1 if upper else 0)
-        sx, sy, energy, power, fn, f_el, kxx, kxy, kyy = _bushing(
+        sx, sy, energy, power, fn, ex_el, ey_el, kxx, kxy, kyy = _bushing(
             rx, ry, vx, vy, clearance, P[SUP_J1], P[SUP_A1], P[SUP_J2], a2, 0.0, P[ZETA],
-            P[M_NODE], elastic[crank, slot], P[SUP_SHIFT_U] if upper else P[SUP_SHIFT_L])
-        elastic[crank, slot] = f_el
-        if fn == 0.0 and f_el == 0.0:
+            P[M_NODE], elastic, crank, slot, BUSH_SLOT0 + BUSH_COLUMNS * slot,
+            P[SUP_SHIFT_U] if upper else P[SUP_SHIFT_L], K.shape[0] > 0)
+        if fn == 0.0 and elastic[crank, slot] == 0.0:
             return 0.0, 0.0, 0.0
-        dist = math.sqrt(rx * rx + ry * ry)
-        ex_el, ey_el = f_el * rx / dist, f_el * ry / dist
     if K.shape[0] > 0:
         support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, ex_el, ey_el, cx, cy, w_in)
     Q[b] -= sx
@@ -751,9 +776,10 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
             power += pw
             if P[FRICTION_ON] == 1.0:
                 power += arm_bearing_friction(P, v, Q, j, disc, force)
+        # one bore centre for both supports (the closed-form ones: none with the FE plates)
+        bx, by = bore_centre(P, q, j, crank_angles[j]) if P[FE_PLATE_XX1] == 0.0 else (0.0, 0.0)
         for upper in range(2 if P[FE_PLATE_XX1] == 0.0 else 0):
-            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, crank_angles[j],
-                                           arm_elastic)
+            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, bx, by, arm_elastic)
             channel[CH_SUP_FL0 + 2 * j + upper] = force
             energy += e
             power += pw
@@ -934,8 +960,9 @@ def impulse_factors(P, h):
 
 
 #: values each pin's evaluation carries to its next (:func:`pin_loop`): the foot's u, cos u,
-#: sin u, cos zp u, sin zp u, the elastic force and its power 0.9
-CARRIED = 7
+#: sin u, cos zp u, sin zp u, the elastic force, its power 0.9, the approach and the tangent
+#: stiffness it was found at (_contact_law.spring_force_from)
+CARRIED = 9
 
 
 @numba.njit(**REFCOUNT)
