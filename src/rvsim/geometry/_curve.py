@@ -188,10 +188,12 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track, carried):
     :data:`TRACKING_LIMIT` and stays on the lobe: the foot is then exact to ~ zp du^2 and the
     point to ~ a zp^3 du^3, far below a nanometre of gap.
 
-    ``carried`` (5 values, or none): u_c, cos u_c, sin u_c, cos zp u_c, sin zp u_c of the foot
-    found last; where ``previous`` is within :data:`ROTATION_LIMIT` / zp of u_c, the cosines
-    and sines at ``previous`` are turned from them instead of computed (four transcendental
-    calls per pin and step saved), and they are written for the new foot.
+    ``carried`` (5 values, or none): u_c, cos u_c, sin u_c, cos zp u_c, sin zp u_c at a
+    parameter near the foot found last; where ``previous`` is within :data:`ROTATION_LIMIT`
+    / zp of u_c, the cosines and sines at ``previous`` are turned from them instead of
+    computed (four transcendental calls per pin and step saved), and they are written for
+    ``previous`` (tracked: the next call turns them through this call's Newton step too,
+    instead of this call turning them) or for the robust foot.
 
     Returns (gap, u, nx, ny): foot parameter and unit outward normal of q there.
     """
@@ -215,23 +217,24 @@ def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track, carried):
         if abs(du) > TRACKING_LIMIT or abs(u + du - nominal) > math.pi / zp:
             robust = True
         else:
+            # the cosines and sines carried are those at u before this step (the next call
+            # turns them through du as well): no turn here
+            if keep:
+                carried[0], carried[1], carried[2], carried[3], carried[4] = u, cu, su, cz, sz
             x += du * (tx + 0.5 * du * ddx)
             y += du * (ty + 0.5 * du * ddy)
             tx += du * ddx
             ty += du * ddy
             u += du
-            if keep:
-                cu, su = rotated(cu, su, du)
-                cz, sz = rotated(cz, sz, zp * du)
     if robust:
         u = nearest_point(qx, qy, nominal, rg, a, zp)
         cu, su, cz, sz = curve_trig(u, zp)
         x, y, tx, ty, _, _ = curve_from(cu, su, cz, sz, rg, a, zp)
-    if keep:
-        carried[0], carried[1], carried[2], carried[3], carried[4] = u, cu, su, cz, sz
-    norm = math.sqrt(tx * tx + ty * ty)
-    nx = ty / norm
-    ny = -tx / norm
+        if keep:
+            carried[0], carried[1], carried[2], carried[3], carried[4] = u, cu, su, cz, sz
+    inv_norm = 1.0 / math.sqrt(tx * tx + ty * ty)
+    nx = ty * inv_norm
+    ny = -tx * inv_norm
     return (qx - x) * nx + (qy - y) * ny + clearance, u, nx, ny
 
 
