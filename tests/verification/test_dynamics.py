@@ -152,16 +152,17 @@ def test_unstable_step_reports_status():
 # before: 3.374585558284625, 0.17428258572410593, 763.7551172649006 / 8.100119452864666,
 # 0.41565931094815944, 1207.3041158690949 / 12.96111977432062, 0.6755408931098632,
 # 1642.1394311592592), and again for the Newton starts from the last solution's Taylor
-# expansion (the bushings and pins, issue 14, 2026-11-26 second session; before:
+# expansion, the pins' foot trig carried from the Newton step's start and one cosine and sine
+# per angle and force evaluation (issue 14, 2026-11-26 second session; before:
 # 3.3745875804065286, 0.17318310272807969, 768.2609516934006 / 8.100121572273315,
 # 0.4156592871405618, 1207.4976128660169 / 12.96111937030543, 0.6791068291972042,
 # 1642.1394310321145).  The pins hold one machine's arithmetic bit for bit: the kernel with
 # the step changed by 1e-12 relative moves run 1's peak-to-peak TE and largest pin force by up
 # to 3 % and its mean TE by 2.5e-6, run 3's peak-to-peak TE by up to 0.55 % (0.675541-0.679253
 # arcmin; docs/benchmarks.md, issue 14)
-PINNED = {1: (3.3745850917210696, 0.17234229145736757, 757.821199867315),
-          2: (8.100121768722198, 0.4156592858184691, 1207.436191660327),
-          3: (12.961119895162788, 0.675556194960464, 1642.1394311960296)}
+PINNED = {1: (3.374586301421468, 0.17311188590025184, 762.0483755200621),
+          2: (8.1001222486346, 0.41629581935862525, 1207.5537685055992),
+          3: (12.961115515725927, 0.6755408931678755, 1642.1394311253325)}
 
 
 @pytest.mark.parametrize("run", [1, 3])

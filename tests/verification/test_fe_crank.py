@@ -51,7 +51,7 @@ def _crank_state(model, q, crank):
     for disc in range(2):
         wl, wu, hx, hy = Kn.arm_station(model.P, model.holes, crank, disc)
         r[disc] = Kn.arm_geometry(model.P, q, np.zeros(L.N_DOF), crank, disc, hx, hy, wl,
-                                  wu)[:2]
+                                  wu, *Kn.arm_trig(model.P, q, crank, disc))[:2]
     A = np.empty((4, 4))
     crank_compliance(model.P, q[L.CRANK0 + L.CRANK_STRIDE * crank + 4], A)
     return r, A

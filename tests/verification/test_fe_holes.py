@@ -208,7 +208,8 @@ def test_sweep_contraction_and_the_modes_refused():
         for j in range(2):
             for d in range(2):
                 wl, wu, hx, hy = Kn.hole_station(m.P, m.holes, j, d, arm)
-                Kn.arm_bushing(m.P, q, np.zeros(17), Q, K, j, d, hx, hy, wl, wu, arm)
+                Kn.arm_bushing(m.P, q, np.zeros(17), Q, K, j, d, hx, hy, wl, wu, arm,
+                               *Kn.arm_trig(m.P, q, j, d))
         Kn.end_arms(m.P, arm)
         history.append(arm[:, col].copy())
     steps = np.diff(np.array(history), axis=0)

@@ -27,8 +27,10 @@ B = L.CRANK0                       # crank 0
 def _mesh(q, want_stiffness=False):
     Q = np.zeros(L.N_DOF)
     K = np.zeros((L.N_DOF, L.N_DOF) if want_stiffness else (0, 0))
+    line = q[L.CARRIER] + MODEL.crank_angles[0]
     out = gear_mesh(P, q, np.zeros(L.N_DOF), Q, K, 0, MODEL.crank_angles[0],
-                    MODEL.mesh_phase[0], 0.0, 0.0, 1.0, 0.0)   # one tooth pair held
+                    MODEL.mesh_phase[0], 0.0, 0.0, 1.0, 0.0,   # one tooth pair held
+                    math.cos(line), math.sin(line))
     return out, Q, K
 
 

@@ -56,8 +56,13 @@ def bore_centre(P, q, crank, crank_angle):
     """Centre of crank ``crank``'s carrier / flange bore in the housing frame (with its
     per-part offsets)."""
     angle = q[CARRIER] + crank_angle
+    return bore_centre_at(P, crank, math.cos(angle), math.sin(angle))
+
+
+@numba.njit(cache=True, inline="always")
+def bore_centre_at(P, crank, c, s):
+    """:func:`bore_centre` from the cosine and sine of q[carrier] + the crank's angle."""
     radius = P[CENTRE_DIST] + P[BORE_DR0 + crank]
-    c, s = math.cos(angle), math.sin(angle)
     return radius * c - P[BORE_DT0 + crank] * s, radius * s + P[BORE_DT0 + crank] * c
 
 

@@ -29,12 +29,12 @@ from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
 from ._fe_contacts import apply_coupled
 from ._pin_compliance import pin_series_compliance
 from ._fe_modes import advance_modes, clear_modal_force, modal_energy
-from ._fe_carrier import bore_centre, plate_supports
+from ._fe_carrier import bore_centre_at, plate_supports
 from ._fe_holes import add_hole_load, begin_arms, end_arms
 from ._fe_holes import free_stretch, hole_css, hole_row, hole_shift, holes_on
 from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
 from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
-from ._layout import (BUSH_COLUMNS, BUSH_SLOT0, ECC_ERR0, ECC_PHASE0)
+from ._layout import (BUSH_COLUMNS, BUSH_SLOT0, ECC_ERR0, ECC_PHASE0, ECC_TURN0, FRAME_TURN0)
 from ._layout import (NODE_ALERT, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_OMEGA_DT,
                       NODE_SUBSTEPS,
                       NODE_PEAK, NODE_REFRESH)
@@ -105,8 +105,29 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
     Q[b + 3] += wu * fy
 
 
+@numba.njit(cache=True, inline="always")
+def line_trig(q, crank_angle):
+    """Cosine and sine of a crank's nominal angle about the centre, q[carrier] + its assembly
+    angle: the line of centres of its mesh and the direction of its bores."""
+    line = q[CARRIER] + crank_angle
+    return math.cos(line), math.sin(line)
+
+
+@numba.njit(cache=True, inline="always")
+def angle_trig(q, crank_angles):
+    """The cosines and sines one force evaluation shares between its elements (one call per
+    angle, docs/decisions.md): cranks 0 and 1's nominal angles (:func:`line_trig`), discs 0
+    and 1's rotations (:func:`disc_trig`), as (cos, sin, cos, sin, cos, sin, cos, sin)."""
+    c0, s0 = line_trig(q, crank_angles[0])
+    c1, s1 = line_trig(q, crank_angles[1])
+    d0, e0 = disc_trig(q, 0)
+    d1, e1 = disc_trig(q, 1)
+    return c0, s0, c1, s1, d0, e0, d1, e1
+
+
 @numba.njit(**NO_REFCOUNT)
-def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank):
+def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank, cos_l,
+              sin_l):
     """Sun-planet mesh j: returns (normal force, input torque, energy, dissipated power,
     stiffness, deflection, number of tooth pairs at the roll position, loaded flank).
 
@@ -127,13 +148,13 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 
     ``K`` (17 x 17, or 0 x 0: not wanted) accumulates the stiffness matrix -dQ/dq of the
     elastic force (material term k g g^T per flank; the curvature of the line-of-centres angle
-    is left out: docs/model.md, "Quasi-static analysis")."""
+    is left out: docs/model.md, "Quasi-static analysis").  (cos_l, sin_l): of the line of
+    centres' nominal angle q[carrier] + crank_angle (:func:`line_trig`)."""
     px, py, pvx, pvy = crank_point(q, v, j, P[W_G_L], P[W_G_U])
     r2 = px * px + py * py
     r = math.sqrt(r2)
     # angle of the line of centres, kept continuous: carrier angle + assembly angle + deviation
     line = q[CARRIER] + crank_angle
-    cos_l, sin_l = math.cos(line), math.sin(line)
     beta = line + math.atan2(-sin_l * px + cos_l * py, cos_l * px + sin_l * py)
     dbeta_x, dbeta_y = -py / r2, px / r2
     dr_x, dr_y = px / r, py / r
@@ -233,9 +254,10 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
     pin_work = np.empty((n if coupled else 0, 12))
     if coupled:
         clear_modal_force(modal[disc])
+    cos_d, sin_d = disc_trig(q, disc)
     energy, power, worst, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
                                            clock, forces, elastic, coupled, pin_slots,
-                                           pin_work, carry)
+                                           pin_work, carry, cos_d, sin_d)
     if count > 0:
         if arm_elastic is None:
             hole = Q[0:0]
@@ -257,28 +279,38 @@ def _disc_frame(P, q, v, disc):
     """Disc ``disc``'s profile angle: (cos, sin) and the housing velocity seen from the disc
     centre in disc axes (rotation part excluded), and its angular velocity."""
     d = DISC0 + DISC_STRIDE * disc
+    return _disc_frame_at(P, q, v, disc, math.cos(q[d + 2]), math.sin(q[d + 2]))
+
+
+@numba.njit(cache=True, inline="always")
+def _disc_frame_at(P, q, v, disc, cos_d, sin_d):
+    """:func:`_disc_frame` from the cosine and sine of the disc's rotation q[theta] (turned
+    by the constant P[FRAME_TURN0 + 2 disc ..]: no trigonometric call)."""
+    d = DISC0 + DISC_STRIDE * disc
     vx, vy, w = v[d], v[d + 1], v[d + 2]
     angle = q[d + 2] - disc * math.pi / P[ZC] + P[PROFILE_ROT]
-    cos_t, sin_t = math.cos(angle), math.sin(angle)
+    cos_f, sin_f = P[FRAME_TURN0 + 2 * disc], P[FRAME_TURN0 + 2 * disc + 1]
+    cos_t, sin_t = cos_d * cos_f - sin_d * sin_f, sin_d * cos_f + cos_d * sin_f
     return angle, cos_t, sin_t, cos_t * vx + sin_t * vy, -sin_t * vx + cos_t * vy, w
 
 
 @numba.njit(**NO_REFCOUNT)
 def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
-             coupled, slots, work, carried):
+             coupled, slots, work, carried, cos_d, sin_d):
     """The pin loop of :func:`pin_contacts` (compiled without reference counting: it
     allocates nothing): the independent contacts' forces added to ``Q``; with ``coupled``, the
     touching pins written to ``slots`` / ``work`` for :func:`coupled_pins`.  Returns (energy,
     dissipated power, max penetration, number of coupled contacts).  ``carried[disc, i]``:
     what pin i's evaluation carries to its next one, the foot's cosines and sines
     (geometry._curve.pin_gap) and the elastic force with its power 0.9
-    (_contact_law.spring_force_power); NaN: nothing carried."""
+    (_contact_law.spring_force_power); NaN: nothing carried.  (cos_d, sin_d): of the disc's
+    rotation q[theta] (:func:`disc_trig`)."""
     d = DISC0 + DISC_STRIDE * disc
     ox, oy = q[d], q[d + 1]
     vx, vy = v[d], v[d + 1]
     zp = P[ZP]
     # housing velocity seen from the disc centre, in disc axes (rotation part added per pin)
-    angle, cos_t, sin_t, lvx, lvy, w = _disc_frame(P, q, v, disc)
+    angle, cos_t, sin_t, lvx, lvy, w = _disc_frame_at(P, q, v, disc, cos_d, sin_d)
     rg, a = P[RG], P[A_GEN]
     clearance = P[PROFILE_OFFSET] - P[PIN_RADIUS]
     runout_x = P[RUNOUT_X0] if disc == 0 else P[RUNOUT_X1]
@@ -516,22 +548,54 @@ def hole_station(P, holes, crank, disc, elastic):
     return wl, wu, hole_x, hole_y
 
 
+@numba.njit(cache=True, inline="always")
+def eccentric_angle(P, q, crank, disc):
+    """Direction of crank ``crank``'s eccentric for disc ``disc``."""
+    return q[CRANK0 + CRANK_STRIDE * crank + 4] + disc * math.pi + P[ECC_PHASE0 + 2 * crank + disc]
+
+
+@numba.njit(cache=True, inline="always")
+def disc_trig(q, disc):
+    """Cosine and sine of disc ``disc``'s rotation q[theta]."""
+    angle = q[DISC0 + DISC_STRIDE * disc + 2]
+    return math.cos(angle), math.sin(angle)
+
+
+@numba.njit(cache=True, inline="always")
+def eccentric_trig(P, q, crank):
+    """Cosines and sines of crank ``crank``'s two eccentrics (disc 1's turned from disc 0's by
+    the constant P[ECC_TURN0 + 2 crank ..]): (cos, sin disc 0, cos, sin disc 1)."""
+    phi = eccentric_angle(P, q, crank, 0)
+    c0, s0 = math.cos(phi), math.sin(phi)
+    ct, st = P[ECC_TURN0 + 2 * crank], P[ECC_TURN0 + 2 * crank + 1]
+    return c0, s0, c0 * ct - s0 * st, s0 * ct + c0 * st
+
+
 @numba.njit(**NO_REFCOUNT)
-def arm_geometry(P, q, v, crank, disc, hole_x, hole_y, wl, wu):
+def arm_trig(P, q, crank, disc):
+    """(cos, sin) of disc ``disc``'s rotation and of crank ``crank``'s eccentric for it, the
+    trigonometric arguments of :func:`arm_geometry` and :func:`arm_bushing` for a caller
+    that has none at hand (:func:`crank_bearings` shares them between the elements)."""
+    cos_t, sin_t = disc_trig(q, disc)
+    c0, s0, c1, s1 = eccentric_trig(P, q, crank)
+    return (cos_t, sin_t, c0, s0) if disc == 0 else (cos_t, sin_t, c1, s1)
+
+
+@numba.njit(**NO_REFCOUNT)
+def arm_geometry(P, q, v, crank, disc, hole_x, hole_y, wl, wu, cos_t, sin_t, cos_p, sin_p):
     """Crank ``crank``'s eccentric for disc ``disc`` and that disc's hole: (rx, ry, vx, vy,
     phi, ecc, cos phi, sin phi, hx, hy), r = eccentric centre - hole centre and v its rate,
-    phi the eccentric's direction, (hx, hy) the hole centre."""
+    phi the eccentric's direction, (hx, hy) the hole centre.  (cos_t, sin_t) of the disc's
+    rotation, (cos_p, sin_p) of phi: :func:`arm_trig`."""
     ax, ay, avx, avy = crank_point(q, v, crank, wl, wu)
     b = CRANK0 + CRANK_STRIDE * crank
-    phi = q[b + 4] + disc * math.pi + P[ECC_PHASE0 + 2 * crank + disc]
+    phi = eccentric_angle(P, q, crank, disc)
     ecc = P[ECC] + P[ECC_ERR0 + 2 * crank + disc]
-    cos_p, sin_p = math.cos(phi), math.sin(phi)
     ex = ax + ecc * cos_p
     ey = ay + ecc * sin_p
     evx = avx - ecc * sin_p * v[b + 4]
     evy = avy + ecc * cos_p * v[b + 4]
     d = DISC0 + DISC_STRIDE * disc
-    cos_t, sin_t = math.cos(q[d + 2]), math.sin(q[d + 2])
     hx = q[d] + cos_t * hole_x - sin_t * hole_y
     hy = q[d + 1] + sin_t * hole_x + cos_t * hole_y
     hvx = v[d] - v[d + 2] * (hy - q[d + 1])
@@ -554,16 +618,18 @@ def apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy
 
 
 @numba.njit(**NO_REFCOUNT)
-def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic):
+def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic, cos_t, sin_t,
+                cos_p, sin_p):
     """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
     contact, :func:`~rvsim.dynamics._bearings.conforming_force`) or a needle roller bearing
     (:func:`~rvsim.dynamics._bearings.roller_set`; P[ARM_KIND]).
 
     ``elastic[crank, disc]`` carries the bushing's elastic force from step to step (Newton
     start).  ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic
-    force (:func:`arm_stiffness`).  Returns (resultant force, energy, dissipated power)."""
-    rx, ry, rvx, rvy, phi, ecc, cos_p, sin_p, hx, hy = arm_geometry(P, q, v, crank, disc,
-                                                                    hole_x, hole_y, wl, wu)
+    force (:func:`arm_stiffness`).  (cos_t, sin_t, cos_p, sin_p): :func:`arm_trig`.  Returns
+    (resultant force, energy, dissipated power)."""
+    rx, ry, rvx, rvy, phi, ecc, cos_p, sin_p, hx, hy = arm_geometry(
+        P, q, v, crank, disc, hole_x, hole_y, wl, wu, cos_t, sin_t, cos_p, sin_p)
     b = CRANK0 + CRANK_STRIDE * crank
     d = DISC0 + DISC_STRIDE * disc
     cx = cy = 0.0
@@ -607,8 +673,9 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic):
     geo = work[:, 8:16]              # wl, wu, ecc, cos phi, sin phi, hx, hy, series stiffness
     for disc in range(2):
         wl, wu, hole_x, hole_y = hole_station(P, holes, crank, disc, elastic)
+        cos_t, sin_t, cos_p, sin_p = arm_trig(P, q, crank, disc)
         rx, ry, rvx, rvy, _, ecc, cos_p, sin_p, hx, hy = arm_geometry(
-            P, q, v, crank, disc, hole_x, hole_y, wl, wu)
+            P, q, v, crank, disc, hole_x, hole_y, wl, wu, cos_t, sin_t, cos_p, sin_p)
         r[disc, 0], r[disc, 1], rate[disc, 0], rate[disc, 1] = rx, ry, rvx, rvy
         geo[disc, 0], geo[disc, 1], geo[disc, 2] = wl, wu, ecc
         geo[disc, 3], geo[disc, 4], geo[disc, 5], geo[disc, 6] = cos_p, sin_p, hx, hy
@@ -745,18 +812,20 @@ def kinetic_energy(P, v):
 
 
 @numba.njit(**NO_REFCOUNT)
-def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs):
+def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs, trig):
     """The cranks' arm bushings (or the FE crank's pairs) and support bushings (or the FE
     plates), with their friction: adds to ``Q`` (and ``K``) and the force channels; returns
     (potential energy, dissipated power).  One call from :func:`forces_at` (a separate
     function: the calls of the bearing elements from the inlined step loop cost more than
-    their arithmetic, measured in docs/benchmarks.md, issue 14)."""
+    their arithmetic, measured in docs/benchmarks.md, issue 14).  ``trig``: the cosines and
+    sines of :func:`angle_trig`."""
     energy = 0.0
     power = 0.0
     coupled = P[FE_CRANK_XX1] > 0.0     # finite-element crank (RV reducers only)
     begin_arms(P, arm_elastic)          # the FE disc's crank holes (dynamics._fe_holes)
     for j in range(int(P[CRANK_COUNT])):
         pair0 = pair1 = 0.0
+        c0, s0, c1, s1 = eccentric_trig(P, q, j)     # one cosine and sine per crank
         if coupled:     # both bushings together
             e, pw, pair0, pair1 = arm_pair(P, q, v, Q, K, j, holes, arm_elastic)
             energy += e
@@ -769,15 +838,17 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
                     power += arm_bearing_friction(P, v, Q, j, disc, force)
                 continue
             wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
+            cos_p, sin_p = (c0, s0) if disc == 0 else (c1, s1)
             force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
-                                       arm_elastic)
+                                       arm_elastic, trig[4 + 2 * disc], trig[5 + 2 * disc],
+                                       cos_p, sin_p)
             channel[CH_ARM_F00 + 2 * j + disc] = force
             energy += e
             power += pw
             if P[FRICTION_ON] == 1.0:
                 power += arm_bearing_friction(P, v, Q, j, disc, force)
         # one bore centre for both supports (the closed-form ones: none with the FE plates)
-        bx, by = bore_centre(P, q, j, crank_angles[j]) if P[FE_PLATE_XX1] == 0.0 else (0.0, 0.0)
+        bx, by = bore_centre_at(P, j, trig[2 * j], trig[2 * j + 1])
         for upper in range(2 if P[FE_PLATE_XX1] == 0.0 else 0):
             force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, bx, by, arm_elastic)
             channel[CH_SUP_FL0 + 2 * j + upper] = force
@@ -864,6 +935,8 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
     coupled = fe.shape[1] > 0
     for i in range(N_DOF):
         Q[i] = 0.0
+    # one cosine and sine per angle, shared by the elements
+    trig = angle_trig(q, crank_angles)
     energy = 0.0
     power = 0.0
     torque_in = 0.0
@@ -874,7 +947,7 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
         for j in range(2):
             force, torque, e, pw, stiffness, deflection, natural, rule = gear_mesh(
                 P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
-                mesh_hold[j, 0], mesh_hold[j, 1])
+                mesh_hold[j, 0], mesh_hold[j, 1], trig[2 * j], trig[2 * j + 1])
             channel[CH_MESH_F0 + j] = force
             mesh_state[j, 0] = stiffness
             mesh_state[j, 1] = deflection
@@ -903,7 +976,7 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
                 clear_modal_force(modes[disc])
             e, pw, pen, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
                                          step, pin_force, pin_elastic, coupled, slots, work,
-                                         carried)
+                                         carried, trig[4 + 2 * disc], trig[5 + 2 * disc])
             if count > 0:
                 if holes_on(P):     # the FE disc's crank holes as load points (_fe_holes)
                     hole = hole_row(P, arm_elastic, disc)
@@ -921,7 +994,8 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
         power += pw
         if pen > worst:
             worst = pen
-    e, pw = crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs)
+    e, pw = crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs,
+                           trig)
     energy += e
     power += pw
     if single:

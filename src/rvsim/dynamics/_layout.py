@@ -157,6 +157,10 @@ ECC_ERR0       = 100       # eccentric of crank j for disc k larger by P[ECC_ERR
 ECC_PHASE0     = 104       # ... and turned forwards by P[ECC_PHASE0 + 2 j + k] [rad]
 BORE_DR0       = 108       # crank j's carrier bores moved outwards by P[BORE_DR0 + j] ...
 BORE_DT0       = 110       # ... and along the crank circle by P[BORE_DT0 + j] [m]
+FRAME_TURN0    = 112       # cos, sin of disc k's profile angle less its rotation q[theta_k]
+                           # (-k pi / zc + PROFILE_ROT): P[FRAME_TURN0 + 2 k + (0, 1)]
+ECC_TURN0      = 116       # cos, sin of crank j's eccentric for disc 1 less that for disc 0
+                           # (pi + ECC_PHASE[j, 1] - ECC_PHASE[j, 0]): P[ECC_TURN0 + 2 j + (0, 1)]
 
 
 # ---- mesh, variants: 120-129 -------------------------------------------------------------

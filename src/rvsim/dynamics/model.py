@@ -289,6 +289,13 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     size, phase = eccentric_errors(r)
     P[L.ECC_ERR0:L.ECC_ERR0 + 4] = size
     P[L.ECC_PHASE0:L.ECC_PHASE0 + 4] = phase
+    # constant turns of the kernel's angles, so that it takes one cosine and sine per angle
+    for disc in range(2):
+        turn = -disc * math.pi / P[L.ZC] + P[L.PROFILE_ROT]
+        P[L.FRAME_TURN0 + 2 * disc:L.FRAME_TURN0 + 2 * disc + 2] = math.cos(turn), math.sin(turn)
+    for j in range(2):
+        turn = math.pi + phase[2 * j + 1] - phase[2 * j]
+        P[L.ECC_TURN0 + 2 * j:L.ECC_TURN0 + 2 * j + 2] = math.cos(turn), math.sin(turn)
     bores = bore_offsets(r)
     P[L.BORE_DR0:L.BORE_DR0 + 2] = bores[:, 0]
     P[L.BORE_DT0:L.BORE_DT0 + 2] = bores[:, 1]

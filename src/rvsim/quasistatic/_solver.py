@@ -37,7 +37,8 @@ invalidate_stale_cache(__file__)
 
 from ..dynamics._fe_holes import (DF_DQ, DS_DQ, PREDICT, Q_PINS, Q_SUM, SETTLED,  # noqa: E402
                                   STRETCH, hole_css, hole_row, holes_on)
-from ..dynamics._kernel import arm_bushing, arm_pair, forces_at, hole_station  # noqa: E402
+from ..dynamics._kernel import (arm_bushing, arm_pair, arm_trig, forces_at,  # noqa: E402
+                               hole_station)
 from ..dynamics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
                                 DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
                                 FE_DISC, FE_HOLES, PEN_LIMIT, PIN_RADIUS, RING_OUTPUT, STAGES,
@@ -204,7 +205,9 @@ def arm_response(P, q, holes, arm_elastic, c, d):
         else:
             for disc in range(n_discs):
                 wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
-                arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic)
+                cos_t, sin_t, cos_p, sin_p = arm_trig(P, q, j, disc)
+                arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic,
+                            cos_t, sin_t, cos_p, sin_p)
         half = 0.5 if j == 1 else -0.5
         for disc in range(n_discs):
             dd = DISC0 + DISC_STRIDE * disc
