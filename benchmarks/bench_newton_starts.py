@@ -6,7 +6,7 @@ nodes' mode) of a chosen amplitude, sampled at the default step.  For each step 
 counts the law's evaluations Newton needs, with the kernel's stopping rule
 (``_bearings.NEWTON_CLOSE``), from three starts: the previous force (the kernel before the
 second session of 2026-11-26), its first-order tangent prediction, and the second-order
-Taylor expansion that ``_bearings.conforming_force_from`` uses.  Prints one JSON line per
+Taylor expansion that ``_bearings.conforming_force_from`` uses (``conforming_start``).  Prints one JSON line per
 ripple amplitude: the largest relative change of the force per step and, per start, how many
 steps took 1, 2, 3 or more evaluations.
 
@@ -28,13 +28,12 @@ def main() -> None:
     parser.add_argument("--time-step", type=float, default=5e-6)
     args = parser.parse_args()
     from rvsim.dynamics import _layout as L
-    from rvsim.dynamics._bearings import NEWTON_CLOSE, conforming_approach
+    from rvsim.dynamics._bearings import NEWTON_CLOSE, conforming_approach, conforming_start
     from rvsim.dynamics.model import build_model
     from rvsim.parameters import RV40E, paper_run_values, with_values
 
     P = build_model(with_values(RV40E, paper_run_values(3)), args.time_step).P
     law = (P[L.ARM_J1], P[L.ARM_A1], P[L.ARM_J2], P[L.ARM_A2], P[L.ARM_CB])
-    j = law[0] + law[2]      # both interfaces below the wrap at these forces
 
     def evaluations(delta, start):
         f = start
@@ -55,9 +54,9 @@ def main() -> None:
         for i in range(1, len(force)):
             f0, d0, dd = force[i - 1], approach[i - 1], approach[i] - approach[i - 1]
             k0 = 1.0 / conforming_approach(f0, *law)[1]
-            move = k0 * dd / f0
-            starts = {"previous force": f0, "first order": f0 * (1 + move),
-                      "second order": f0 * (1 + move * (1 + 0.5 * j * k0 * move))}
+            starts = {"previous force": f0, "first order": f0 + k0 * dd,
+                      "second order": f0 * (1 + conforming_start(
+                          approach[i], f0, d0, k0, law[1], law[0], law[3], law[2]))}
             for name, start in starts.items():
                 counts[name][min(evaluations(approach[i], start), 4) - 1] += 1
         change = float(np.max(np.abs(np.diff(force) / force[:-1])))

@@ -173,3 +173,79 @@ def test_spring_force_from_the_last_solution_finds_the_root(cb, change):
     assert k == pytest.approx(direct[1], rel=1.5e-15)         # measured 5.6e-16
     assert e == pytest.approx(direct[2], rel=2e-14)           # measured 8.2e-15
     assert fe == pytest.approx(f ** EXPONENT, rel=5e-16)      # measured 2.2e-16
+
+
+# the predictors themselves: third order in the change (what makes one evaluation per call).
+# Measured |F_start / F - 1| / |change|^3 over changes 1e-4..1e-2: conforming law 0.0138 (40
+# N), 0.462 (4 kN), 0 (60 kN, both interfaces on their linear continuation); Palmgren law
+# 0.0123.  A first-order start would be off by about 0.1 change^2: 1e-7 at 1e-3
+@pytest.mark.parametrize("f0, bound", [(40.0, 0.03), (4000.0, 0.9), (60000.0, 1e-9)])
+@pytest.mark.parametrize("change", [1e-4, -1e-3, 1e-3, -1e-2, 1e-2])
+def test_conforming_start_is_third_order(f0, bound, change):
+    from rvsim.dynamics import _layout as L
+    from rvsim.dynamics._bearings import (NEWTON_CLOSE, conforming_approach,
+                                          conforming_force_carried, conforming_start)
+    P = build_model(RV40E, 5e-6).P
+    law = (P[L.SUP_J1], P[L.SUP_A1], P[L.SUP_J2], P[L.SUP_A2_U], 0.0)
+    d0, _, _ = conforming_approach(f0, *law)
+    last, k0, _, _ = conforming_force_carried(d0, *law, 1.01 * f0, P[L.SUP_SHIFT_U])
+    root = last * (1 + change)
+    delta, _, _ = conforming_approach(root, *law)
+    start = last * (1 + conforming_start(delta, last, d0, k0, law[1], law[0], law[3], law[2]))
+    assert abs(start / root - 1) <= bound * abs(change) ** 3 + 4e-16
+    if abs(change) <= 1e-3:       # Newton's first step from there already ends the iteration
+        d, c, _ = conforming_approach(start, *law)
+        assert abs(d - delta) / c <= NEWTON_CLOSE * start
+
+
+@pytest.mark.parametrize("change", [1e-4, -1e-3, 1e-3, -1e-2, 1e-2])
+def test_spring_start_is_third_order(change):
+    from rvsim.dynamics._contact_law import NEWTON_CLOSE, spring_start
+    c, cb = 2.3e-9, 1.7e-10
+    d0 = c * 850.0 ** EXPONENT + cb * 850.0
+    last, k0, _, fe0 = spring_force_power(d0, c, cb, 0.0, 0.0)
+    root = last * (1 + change)
+    delta = c * root ** EXPONENT + cb * root
+    start = last * (1 + spring_start(delta, c, last, fe0, d0, k0))
+    assert abs(start / root - 1) <= 0.025 * abs(change) ** 3 + 4e-16
+    if abs(change) <= 1e-3:
+        step = (c * start ** EXPONENT + cb * start - delta) / (
+            EXPONENT * c * start ** (EXPONENT - 1) + cb)
+        assert abs(step) <= NEWTON_CLOSE * start
+
+
+def test_shared_cosines_equal_the_direct_ones():
+    # one cosine and sine per angle (docs/model.md section 9): the constant turns of
+    # model.fill_turns against the per-element formulas, with per-part eccentric phases and a
+    # rotation modification.  Measured 2.5e-14 (eccentric) and 8e-15 (frame): the round-off
+    # of angles up to 150 rad
+    from rvsim.dynamics import _kernel as Kn
+    from rvsim.dynamics import _layout as L
+    from rvsim.dynamics.model import fill_turns
+    P = build_model(RV40E, 5e-6).P.copy()
+    P[L.ECC_PHASE0:L.ECC_PHASE0 + 4] = 1e-3, -2e-3, 3e-3, 0.5
+    P[L.PROFILE_ROT] = 8.7e-4
+    fill_turns(P)
+    rng = np.random.default_rng(5)
+    worst = 0.0
+    for _ in range(50):
+        q = rng.uniform(-150.0, 150.0, L.N_DOF)
+        crank_angles = np.array([0.0, math.pi])
+        trig = Kn.angle_trig(q, crank_angles)
+        for j in range(2):
+            line = q[L.CARRIER] + crank_angles[j]
+            worst = max(worst, abs(trig[2 * j] - math.cos(line)),
+                        abs(trig[2 * j + 1] - math.sin(line)))
+            ecc = Kn.eccentric_trig(P, q, j)
+            for disc in range(2):
+                phi = q[L.CRANK0 + L.CRANK_STRIDE * j + 4] + disc * math.pi + P[
+                    L.ECC_PHASE0 + 2 * j + disc]
+                worst = max(worst, abs(ecc[2 * disc] - math.cos(phi)),
+                            abs(ecc[2 * disc + 1] - math.sin(phi)))
+        for disc in range(2):
+            theta = q[L.DISC0 + L.DISC_STRIDE * disc + 2]
+            frame = Kn._disc_frame_at(P, q, np.zeros(L.N_DOF), disc, trig[4 + 2 * disc],
+                                      trig[5 + 2 * disc])
+            angle = theta - disc * math.pi / P[L.ZC] + P[L.PROFILE_ROT]
+            worst = max(worst, abs(frame[1] - math.cos(angle)), abs(frame[2] - math.sin(angle)))
+    assert worst < 1e-13

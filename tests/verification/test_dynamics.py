@@ -160,9 +160,9 @@ def test_unstable_step_reports_status():
 # the step changed by 1e-12 relative moves run 1's peak-to-peak TE and largest pin force by up
 # to 3 % and its mean TE by 2.5e-6, run 3's peak-to-peak TE by up to 0.55 % (0.675541-0.679253
 # arcmin; docs/benchmarks.md, issue 14)
-PINNED = {1: (3.374586301421468, 0.17311188590025184, 762.0483755200621),
-          2: (8.1001222486346, 0.41629581935862525, 1207.5537685055992),
-          3: (12.961115515725927, 0.6755408931678755, 1642.1394311253325)}
+PINNED = {1: (3.3745801006857574, 0.17409963561643815, 762.4121843450818),
+          2: (8.100121367155177, 0.4156592919823856, 1207.4023364790394),
+          3: (12.961117917445181, 0.6755408931663496, 1642.1394312353582)}
 
 
 @pytest.mark.parametrize("run", [1, 3])

@@ -104,16 +104,13 @@ def test_guard_idle_at_default_step(run_2_quick, monkeypatch):
 
 
 def test_guard_stabilises_1e_5(run_2_quick, monkeypatch):
-    # the plain scheme at 1e-5 s is at its stability limit (node omega dt up to 2.15 in the
-    # start and the load step): whether a run of it diverges depends on the rounding.  With
-    # the step changed by k 1e-12 (k = 0, 1, 2), 2026-11-26: this kernel 1 of 3 `ok`, 2
-    # `runaway_penetration`; the kernel before the Newton starts of that day 0 of 3 `ok` (on
-    # runs 1 and 3: 3 and 1 of 3 `ok`).  With the guard every one of them ends `ok`.
-    steps = [1e-5 * (1.0 + k * 1e-12) for k in range(3)]
-    plains = [_run(run_2_quick, monkeypatch, h, limit=0.0)[0].status for h in steps]
-    assert set(plains) <= {"ok", "diverged", "runaway_penetration"}
-    assert any(status != "ok" for status in plains)
-    for h in steps[1:]:
+    # the plain scheme at 1e-5 s is beyond its stability limit in the start and the load step
+    # (node omega dt up to 2.15 > 2, NODE_PEAK below) and usually diverges, but whether a run
+    # of it does depends on the rounding (step changed by k 1e-12, k = 0, 1, 2, 2026-11-26:
+    # `runaway_penetration` in 3 of 3 with the kernel before that day's Newton starts, 2 of 3
+    # after; paper runs 1 and 3 on this schedule: 0 and 2 of 3): so the test asks that the
+    # guard found the scheme's limit exceeded, and that every rounding then ends `ok`
+    for h in (1e-5 * (1.0 + 1e-12), 1e-5 * (1.0 + 2e-12)):
         assert _run(run_2_quick, monkeypatch, h)[0].status == "ok"
     guarded, P = _run(run_2_quick, monkeypatch, 1e-5)
     reference, _ = _run(run_2_quick, monkeypatch, 5e-6)
@@ -126,7 +123,7 @@ def test_guard_stabilises_1e_5(run_2_quick, monkeypatch):
     # s) and 2.9e-6 (1e-5 s), the peak-to-peak TE over 1.5 % and 2.0 %, the largest pin
     # force over 0.11 % and 0.17 %, and the two sets differ by at most 2.8e-6, 1.8 % and
     # 0.26 %
-    assert P[L.NODE_CHECKS] > 0 and P[L.NODE_PEAK] > 1.6
+    assert P[L.NODE_CHECKS] > 0 and P[L.NODE_PEAK] > 2.0      # measured 2.15
     # what the guard did is in the run's summary (rvsim simulate --json, the study's rows)
     summary = guarded.summary()
     assert summary["guard_substep_checks"] == P[L.NODE_CHECKS] > 0

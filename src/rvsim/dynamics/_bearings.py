@@ -30,6 +30,7 @@ invalidate_stale_cache(__file__)
 
 __all__ = ["WRAP_RATIO", "johnson_interface", "conforming_approach", "conforming_force",
            "conforming_force_carried", "conforming_force_from",
+           "conforming_start",
            "bushing_shift",
            "radial_stiffness", "roller_set"]
 
@@ -147,9 +148,7 @@ def conforming_force_from(delta, j1, a1, j2, a2, cb, shift, f0, d0, k0, log0):
     The same stopping rule as :func:`conforming_force`, so the same accuracy; a change beyond
     SERIES_LIMIT starts Newton from ``f0`` as that does.  Returns (F, stiffness, energy,
     ln(a1 / F))."""
-    inv_f0 = 1.0 / f0
-    move = k0 * (delta - d0) * inv_f0                  # first order, relative to f0
-    x = move * (1.0 + 0.5 * _curving(f0, a1, j1, a2, j2) * k0 * move)
+    x = conforming_start(delta, f0, d0, k0, a1, j1, a2, j2)
     if not abs(x) <= SERIES_LIMIT:
         return conforming_force_carried(delta, j1, a1, j2, a2, cb, f0, shift)
     f = f0 + f0 * x
@@ -172,6 +171,15 @@ def conforming_force_from(delta, j1, a1, j2, a2, cb, shift, f0, d0, k0, log0):
         new = f - step if f - step > 0.0 else 0.01 * f
         log = math.log(a1 / new)
     return _conforming_newton(delta, new, log, j1, a1, j2, a2, cb, shift)
+
+
+@numba.njit(cache=True, inline="always")
+def conforming_start(delta, f0, d0, k0, a1, j1, a2, j2):
+    """Newton's start of :func:`conforming_force_from` relative to the last solution: F / f0
+    - 1 at the approach ``delta`` by the second-order Taylor expansion of the inverse law
+    (F'' = j k0^3 / f0, :func:`_curving`)."""
+    move = k0 * (delta - d0) * (1.0 / f0)              # first order, relative to f0
+    return move * (1.0 + 0.5 * _curving(f0, a1, j1, a2, j2) * k0 * move)
 
 
 @numba.njit(cache=True, inline="always")

@@ -15,7 +15,7 @@ from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-__all__ = ["EXPONENT", "spring_force", "spring_force_power", "spring_force_from", "power_ratio", "damped", "contact", "add_rank_one"]
+__all__ = ["EXPONENT", "spring_force", "spring_force_power", "spring_force_from", "spring_start", "power_ratio", "damped", "contact", "add_rank_one"]
 
 EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
 _INV_EXPONENT = 1.0 / EXPONENT
@@ -98,6 +98,16 @@ def spring_force_power(delta, c, cb, guess, guess_power):
     return f, stiffness, energy, fe
 
 
+@numba.njit(cache=True, inline="always")
+def spring_start(delta, c, f0, fe0, d0, k0):
+    """Newton's start of :func:`spring_force_from` relative to the last solution: F / f0 - 1
+    at the approach ``delta`` by the second-order Taylor expansion of the inverse law (F'' =
+    0.09 c f0^0.9 k0^3 / f0^2)."""
+    inv_f0 = 1.0 / f0
+    move = k0 * (delta - d0) * inv_f0                   # first order, relative to f0
+    return move * (1.0 + _HALF_CURVE * c * fe0 * inv_f0 * k0 * move)
+
+
 @numba.njit(**NO_REFCOUNT)
 def spring_force_from(delta, c, cb, f0, fe0, d0, k0):
     """:func:`spring_force_power` started from the previous solution's Taylor expansion: the
@@ -111,9 +121,7 @@ def spring_force_from(delta, c, cb, f0, fe0, d0, k0):
     one evaluation per call, F**0.9 by its series from ``fe0``.  The same stopping rule as
     :func:`spring_force_power`, so the same accuracy; a change beyond SERIES_LIMIT (or no
     series compliance) is left to that function.  Returns (F, stiffness, energy, F**0.9)."""
-    inv_f0 = 1.0 / f0
-    move = k0 * (delta - d0) * inv_f0                   # first order, relative to f0
-    x = move * (1.0 + _HALF_CURVE * c * fe0 * inv_f0 * k0 * move)
+    x = spring_start(delta, c, f0, fe0, d0, k0)
     if cb == 0.0 or not abs(x) <= SERIES_LIMIT:
         return spring_force_power(delta, c, cb, f0, fe0)
     f = f0 + f0 * x

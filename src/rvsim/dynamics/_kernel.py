@@ -283,12 +283,19 @@ def _disc_frame(P, q, v, disc):
 
 
 @numba.njit(cache=True, inline="always")
+def profile_turn(P, disc):
+    """Disc ``disc``'s profile angle less its rotation q[theta]: the half-tooth offset of
+    disc 1 and the rotation modification (model.build_model turns it into P[FRAME_TURN0 ..])."""
+    return -disc * math.pi / P[ZC] + P[PROFILE_ROT]
+
+
+@numba.njit(cache=True, inline="always")
 def _disc_frame_at(P, q, v, disc, cos_d, sin_d):
     """:func:`_disc_frame` from the cosine and sine of the disc's rotation q[theta] (turned
     by the constant P[FRAME_TURN0 + 2 disc ..]: no trigonometric call)."""
     d = DISC0 + DISC_STRIDE * disc
     vx, vy, w = v[d], v[d + 1], v[d + 2]
-    angle = q[d + 2] - disc * math.pi / P[ZC] + P[PROFILE_ROT]
+    angle = q[d + 2] + profile_turn(P, disc)
     cos_f, sin_f = P[FRAME_TURN0 + 2 * disc], P[FRAME_TURN0 + 2 * disc + 1]
     cos_t, sin_t = cos_d * cos_f - sin_d * sin_f, sin_d * cos_f + cos_d * sin_f
     return angle, cos_t, sin_t, cos_t * vx + sin_t * vy, -sin_t * vx + cos_t * vy, w
@@ -491,10 +498,13 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, elastic,
     the stiffness dS/dr of the elastic force only with ``want`` (zero otherwise).
 
     ``elastic[row, slot]`` holds the bushing's elastic force from step to step and
-    ``elastic[row, carry .. carry + 3]`` what its Newton start needs besides (the force they
-    belong to, the approach, the stiffness, ln(a1 / F): _layout.BUSH_SLOT0): the start is the
-    tangent predictor of :func:`~rvsim.dynamics._bearings.conforming_force_from` where they
-    belong to the force held, the force held otherwise (something else set it)."""
+    ``elastic[row, carry .. carry + 4]`` what its Newton start needs besides (the force they
+    belong to, the approach, the stiffness, ln(a1 / F), and the calls since the logarithm was
+    last computed afresh: _layout.BUSH_SLOT0): the start is the Taylor predictor of
+    :func:`~rvsim.dynamics._bearings.conforming_force_from` where they belong to the force
+    held, the force held otherwise (something else set it) and at every CARRY_REFRESH-th
+    call (a reviewer measured the carried logarithm's round-off growing by 4e-17 per call
+    without it)."""
     dist = math.sqrt(rx * rx + ry * ry)
     delta = dist - clearance
     if delta <= 0.0 or dist < 1e-15:
@@ -503,11 +513,14 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, elastic,
     inv_dist = 1.0 / dist
     nx, ny = rx * inv_dist, ry * inv_dist
     guess = elastic[row, slot]
-    if guess > 0.0 and elastic[row, carry] == guess:
+    calls = elastic[row, carry + 4]       # since the last start afresh: ln(a1 / F) is carried
+    if guess > 0.0 and elastic[row, carry] == guess and calls < CARRY_REFRESH:
+        elastic[row, carry + 4] = calls + 1.0
         f, k, energy, log = conforming_force_from(
             delta, j1, a1, j2, a2, cb, shift, guess, elastic[row, carry + 1],
             elastic[row, carry + 2], elastic[row, carry + 3])
-    else:
+    else:       # a new logarithm every CARRY_REFRESH calls: its series' round-off cannot grow
+        elastic[row, carry + 4] = 0.0
         f, k, energy, log = conforming_force_carried(delta, j1, a1, j2, a2, cb, guess, shift)
     elastic[row, slot] = f
     elastic[row, carry] = f
@@ -825,11 +838,13 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
     begin_arms(P, arm_elastic)          # the FE disc's crank holes (dynamics._fe_holes)
     for j in range(int(P[CRANK_COUNT])):
         pair0 = pair1 = 0.0
-        c0, s0, c1, s1 = eccentric_trig(P, q, j)     # one cosine and sine per crank
+        c0 = s0 = c1 = s1 = 0.0
         if coupled:     # both bushings together
             e, pw, pair0, pair1 = arm_pair(P, q, v, Q, K, j, holes, arm_elastic)
             energy += e
             power += pw
+        else:
+            c0, s0, c1, s1 = eccentric_trig(P, q, j)     # one cosine and sine per crank
         for disc in range(n_discs):
             if coupled:
                 force = pair0 if disc == 0 else pair1

@@ -22,10 +22,11 @@ N_DOF = 17
 #: arm_elastic[disc, HOLE_SLOT0 + (0 .. HOLE_COLUMNS - 1)] the FE disc's crank-hole state
 #: (rvsim.dynamics._fe_holes: Q, Q summed, stretch and the quasi-static engine's derivatives
 #: and predictor),
-#: arm_elastic[crank, BUSH_SLOT0 + BUSH_COLUMNS b + (0 .. 3)] what conforming bushing b (0, 1:
+#: arm_elastic[crank, BUSH_SLOT0 + BUSH_COLUMNS b + (0 .. 4)] what conforming bushing b (0, 1:
 #: the arm bushings of discs 0 and 1; 2, 3: the lower and upper supports) carries to its next
-#: step's Newton start (the elastic force it belongs to, the approach, the stiffness and
-#: ln(a1 / F); rvsim.dynamics._bearings.conforming_force_from),
+#: step's Newton start (the elastic force it belongs to, the approach, the stiffness,
+#: ln(a1 / F) and the calls since that was computed afresh;
+#: rvsim.dynamics._bearings.conforming_force_from),
 #: arm_elastic[disc, OUT_SLOT0 + m] output pin m's in disc ``disc`` (single-stage drive)
 SUP_SLOT0 = 2
 FE_CRANK_SLOT0 = 4
@@ -33,7 +34,7 @@ PLATE_SLOT0 = 8
 HOLE_SLOT0 = 12
 HOLE_COLUMNS = 9 + N_DOF
 BUSH_SLOT0 = HOLE_SLOT0 + HOLE_COLUMNS
-BUSH_COLUMNS = 4
+BUSH_COLUMNS = 5
 OUT_SLOT0 = BUSH_SLOT0 + 4 * BUSH_COLUMNS
 N_CRANKS = 2
 N_DISCS = 2

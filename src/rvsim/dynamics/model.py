@@ -196,6 +196,20 @@ def _station_weights(r: Reducer, z: float) -> tuple[float, float]:
     return (k.upper_support_z - z) / span, (z - k.lower_support_z) / span
 
 
+def fill_turns(P: np.ndarray) -> None:
+    """The constant turns of the kernel's angles (P[FRAME_TURN0 ..], P[ECC_TURN0 ..]), so that
+    a force evaluation takes one cosine and sine per angle (docs/model.md section 9), from
+    P[ZC], P[PROFILE_ROT] and P[ECC_PHASE0 ..]."""
+    from ._kernel import eccentric_angle, profile_turn
+    for disc in range(2):
+        turn = profile_turn(P, disc)
+        P[L.FRAME_TURN0 + 2 * disc:L.FRAME_TURN0 + 2 * disc + 2] = math.cos(turn), math.sin(turn)
+    at_rest = np.zeros(L.N_DOF)
+    for j in range(2):       # disc 1's eccentric less disc 0's
+        turn = eccentric_angle(P, at_rest, j, 1) - eccentric_angle(P, at_rest, j, 0)
+        P[L.ECC_TURN0 + 2 * j:L.ECC_TURN0 + 2 * j + 2] = math.cos(turn), math.sin(turn)
+
+
 def build_model(r: Reducer, time_step: float) -> KernelModel:
     """Constant vector, pin and hole positions and the initial (assembled) state."""
     c, k, e, cl, m = r.cycloid, r.crank, r.errors, r.clearances, r.materials
@@ -289,13 +303,7 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     size, phase = eccentric_errors(r)
     P[L.ECC_ERR0:L.ECC_ERR0 + 4] = size
     P[L.ECC_PHASE0:L.ECC_PHASE0 + 4] = phase
-    # constant turns of the kernel's angles, so that it takes one cosine and sine per angle
-    for disc in range(2):
-        turn = -disc * math.pi / P[L.ZC] + P[L.PROFILE_ROT]
-        P[L.FRAME_TURN0 + 2 * disc:L.FRAME_TURN0 + 2 * disc + 2] = math.cos(turn), math.sin(turn)
-    for j in range(2):
-        turn = math.pi + phase[2 * j + 1] - phase[2 * j]
-        P[L.ECC_TURN0 + 2 * j:L.ECC_TURN0 + 2 * j + 2] = math.cos(turn), math.sin(turn)
+    fill_turns(P)
     bores = bore_offsets(r)
     P[L.BORE_DR0:L.BORE_DR0 + 2] = bores[:, 0]
     P[L.BORE_DT0:L.BORE_DT0 + 2] = bores[:, 1]

@@ -38,11 +38,11 @@ invalidate_stale_cache(__file__)
 from ..dynamics._fe_holes import (DF_DQ, DS_DQ, PREDICT, Q_PINS, Q_SUM, SETTLED,  # noqa: E402
                                   STRETCH, hole_css, hole_row, holes_on)
 from ..dynamics._kernel import (arm_bushing, arm_pair, arm_trig, forces_at,  # noqa: E402
-                               hole_station)
+                               hole_station, profile_turn)
 from ..dynamics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
                                 DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
                                 FE_DISC, FE_HOLES, PEN_LIMIT, PIN_RADIUS, RING_OUTPUT, STAGES,
-                                PROFILE_OFFSET, PROFILE_ROT, RB1, RB2, RG, ZC, ZP)
+                                PROFILE_OFFSET, RB1, RB2, RG, ZC, ZP)
 from ..dynamics._layout import (CRANK_COUNT, DISC_COUNT, FE_CRANK_XX1, FE_HOLE_EX,  # noqa: E402
                                 FE_HOLE_EY)
 from ..geometry._curve import curvature  # noqa: E402
@@ -893,7 +893,7 @@ def _hertz(P, hertz, q, u, pin_angle, pin_force, out):
     e_star, width = hertz[0], hertz[1]
     offset = P[PROFILE_OFFSET]
     for disc in range(2):
-        angle = q[DISC0 + DISC_STRIDE * disc + 2] - disc * math.pi / P[ZC] + P[PROFILE_ROT]
+        angle = q[DISC0 + DISC_STRIDE * disc + 2] + profile_turn(P, disc)
         if P[STAGES] == 1.0 and P[RING_OUTPUT] == 1.0:
             angle -= q[CARRIER]          # the disc's angle relative to the turning pin ring
         for i in range(pin_force.shape[1]):
