@@ -278,8 +278,8 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
 def _disc_frame(P, q, v, disc):
     """Disc ``disc``'s profile angle: (cos, sin) and the housing velocity seen from the disc
     centre in disc axes (rotation part excluded), and its angular velocity."""
-    d = DISC0 + DISC_STRIDE * disc
-    return _disc_frame_at(P, q, v, disc, math.cos(q[d + 2]), math.sin(q[d + 2]))
+    cos_d, sin_d = disc_trig(q, disc)
+    return _disc_frame_at(P, q, v, disc, cos_d, sin_d)
 
 
 @numba.njit(cache=True, inline="always")
@@ -684,9 +684,11 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic):
     work = np.empty((2, 17))
     r, rate, guess, force = work[:, 0:2], work[:, 2:4], work[:, 4:6], work[:, 6:8]
     geo = work[:, 8:16]              # wl, wu, ecc, cos phi, sin phi, hx, hy, series stiffness
+    c0, s0, c1, s1 = eccentric_trig(P, q, crank)      # both eccentrics: one cosine and sine
     for disc in range(2):
         wl, wu, hole_x, hole_y = hole_station(P, holes, crank, disc, elastic)
-        cos_t, sin_t, cos_p, sin_p = arm_trig(P, q, crank, disc)
+        cos_t, sin_t = disc_trig(q, disc)
+        cos_p, sin_p = (c0, s0) if disc == 0 else (c1, s1)
         rx, ry, rvx, rvy, _, ecc, cos_p, sin_p, hx, hy = arm_geometry(
             P, q, v, crank, disc, hole_x, hole_y, wl, wu, cos_t, sin_t, cos_p, sin_p)
         r[disc, 0], r[disc, 1], rate[disc, 0], rate[disc, 1] = rx, ry, rvx, rvy
