@@ -7,8 +7,11 @@ largest pin force, energy residual, CPU time) and, per run and step, the range o
 The spread under ``--perturb`` is the floor below which a change of the kernel's arithmetic
 cannot be judged (docs/benchmarks.md, issue 14).
 
+``--scheme implicit-bearings`` runs that integration scheme (``--time-step`` then defaults to
+its own step, 2e-5 s).
+
 Usage:  python benchmarks/bench_answers.py [--runs 1-3] [--time-step 5e-6 7.8125e-6]
-                                            [--perturb 4]
+                                            [--perturb 4] [--scheme explicit]
 """
 
 from __future__ import annotations
@@ -33,25 +36,31 @@ def _runs(text: str) -> list[int]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", default="1-3", help="paper L36 runs, e.g. 1-3 or 1,5,28")
-    parser.add_argument("--time-step", type=float, nargs="+", default=[5e-6])
+    parser.add_argument("--time-step", type=float, nargs="+", default=None,
+                        help="steps [s] (default: the scheme's)")
+    parser.add_argument("--scheme", default="explicit",
+                        choices=("explicit", "implicit-bearings"), help="integration scheme")
     parser.add_argument("--perturb", type=int, default=0,
                         help="extra runs with the step changed by k * 1e-12 relative")
     args = parser.parse_args()
 
     from rvsim.dynamics import simulate
+    from rvsim.dynamics.simulate import default_time_step
     from rvsim.parameters import RV40E, paper_run_values, with_values
 
+    steps = args.time_step or [default_time_step(args.scheme)]
     names = ("te_mean_arcmin", "te_pp_arcmin", "max_pin_force_n")
     for run in _runs(args.runs):
         reducer = with_values(RV40E, paper_run_values(run))
-        for step in args.time_step:
+        for step in steps:
             seen: dict[str, list[float]] = {name: [] for name in names}
             for k in range(args.perturb + 1):
                 cpu = time.thread_time()
                 result = simulate(reducer, time_step=step * (1.0 + k * 1e-12),
-                                  raise_on_failure=False)
+                                  raise_on_failure=False, scheme=args.scheme)
                 cpu = time.thread_time() - cpu
-                line = {"run": run, "time_step": step, "k": k, "status": result.status,
+                line = {"run": run, "scheme": args.scheme, "time_step": step, "k": k,
+                        "status": result.status,
                         "energy_relative_residual": result.energy["relative_residual"],
                         "cpu_s": round(cpu, 3)}
                 for name in names:

@@ -11,6 +11,7 @@ but takes the first process's time.
 
 Usage:  python benchmarks/bench_compare.py NAME=TREE/src NAME=TREE/src [--rounds 5]
                                            [--repeat 4] [--run 3] [--time-step 5e-6]
+                                           [--scheme explicit]
 """
 
 from __future__ import annotations
@@ -32,6 +33,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=4, help="runs per process")
     parser.add_argument("--run", type=int, default=3, help="paper L36 run (default 3)")
     parser.add_argument("--time-step", type=float, default=None)
+    parser.add_argument("--scheme", default="explicit",
+                        choices=("explicit", "implicit-bearings"), help="integration scheme")
     args = parser.parse_args()
     trees = []
     for item in args.trees:
@@ -42,6 +45,8 @@ def main() -> None:
     extra = ["--repeat", str(args.repeat), "--run", str(args.run)]
     if args.time_step is not None:
         extra += ["--time-step", str(args.time_step)]
+    if args.scheme != "explicit":
+        extra += ["--scheme", args.scheme]
     cpus: dict[str, list[float]] = {name: [] for name, _ in trees}
     for _ in range(args.rounds):
         for name, path in trees:

@@ -10,7 +10,11 @@ Besides the solver's wall time (``Result.wall_s``) it reports the thread's CPU t
 run (``time.thread_time`` around ``simulate``: the solver plus a few ms of set-up and
 metrics), which other processes on a shared machine disturb far less, and the load average.
 
+``--scheme implicit-bearings``: that integration scheme (at its own step unless
+``--time-step`` says otherwise; a tree without the option runs the explicit scheme).
+
 Usage:  python benchmarks/bench_simulate.py [--repeat 5] [--run 3] [--time-step 5e-6]
+                                            [--scheme explicit]
 """
 
 from __future__ import annotations
@@ -30,6 +34,8 @@ def main() -> None:
     parser.add_argument("--run", type=int, default=3, help="paper L36 run (default 3)")
     parser.add_argument("--time-step", type=float, default=None,
                         help="integration step [s] (default: the model's default)")
+    parser.add_argument("--scheme", default="explicit",
+                        choices=("explicit", "implicit-bearings"), help="integration scheme")
     args = parser.parse_args()
 
     start = time.perf_counter()
@@ -37,6 +43,8 @@ def main() -> None:
     from rvsim.parameters import RV40E, paper_run_values, with_values
 
     options = {} if args.time_step is None else {"time_step": args.time_step}
+    if args.scheme != "explicit":
+        options["scheme"] = args.scheme
     reducer = with_values(RV40E, paper_run_values(args.run))
     first = simulate(reducer, **options)
     first_call = time.perf_counter() - start
@@ -52,6 +60,7 @@ def main() -> None:
         "machine": machine(),
         "date": time.strftime("%Y-%m-%d"),
         "paper_run": args.run,
+        "scheme": args.scheme,
         "first_call_s_including_import_and_jit": round(first_call, 2),
         "median_wall_s": round(wall, 3),
         "runs": [round(w, 3) for w in walls],

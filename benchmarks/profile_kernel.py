@@ -15,7 +15,11 @@ are of the samples of the whole process over the window (a few % of Python's gar
 collector can show up: the profiling run itself leaves garbage).  Needs ``perf`` (Debian's
 ``linux-perf``) and permission to sample (root, or ``kernel.perf_event_paranoid`` <= 1).
 
+``--scheme implicit-bearings`` profiles that integration scheme instead of the explicit one
+(the profiled process repeats the run until the sampled window has passed).
+
 Usage:  python benchmarks/profile_kernel.py [--run 3] [--seconds 2] [--top 25]
+                                            [--scheme explicit]
 """
 
 from __future__ import annotations
@@ -29,13 +33,14 @@ import tempfile
 import time
 
 
-def _child(run: int, ready: str) -> None:
-    """The profiled process: compile, map, signal, simulate."""
+def _child(run: int, ready: str, scheme: str, seconds: float) -> None:
+    """The profiled process: compile, map, signal, simulate (again until ``seconds`` have
+    passed)."""
     from rvsim.dynamics import simulate
     from rvsim.parameters import RV40E, paper_run_values, with_values
 
     reducer = with_values(RV40E, paper_run_values(run))
-    simulate(reducer)
+    simulate(reducer, scheme=scheme)
     entries = {}
     for name, module in list(sys.modules.items()):
         if not (name.startswith("rvsim") or name.startswith("numba.core.runtime")):
@@ -70,9 +75,13 @@ def _child(run: int, ready: str) -> None:
             out.write(f"{address:x} {min(size, 1 << 16):x} {entries[address]}\n")
     with open(ready, "w") as out:
         out.write(str(os.getpid()))
-    cpu = time.thread_time()
-    simulate(reducer)
-    print(f"profiled run: {time.thread_time() - cpu:.3f} s CPU", file=sys.stderr)
+    start = time.perf_counter()
+    while True:
+        cpu = time.thread_time()
+        simulate(reducer, scheme=scheme)
+        print(f"profiled run: {time.thread_time() - cpu:.3f} s CPU", file=sys.stderr)
+        if time.perf_counter() - start > seconds + 0.5:
+            break
 
 
 def main() -> None:
@@ -80,10 +89,12 @@ def main() -> None:
     parser.add_argument("--run", type=int, default=3, help="paper L36 run (default 3)")
     parser.add_argument("--seconds", type=float, default=2.0, help="sampled window [s]")
     parser.add_argument("--top", type=int, default=25, help="functions to list")
+    parser.add_argument("--scheme", default="explicit",
+                        choices=("explicit", "implicit-bearings"), help="integration scheme")
     parser.add_argument("--child", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child:
-        _child(args.run, args.child)
+        _child(args.run, args.child, args.scheme, args.seconds)
         return
     if shutil.which("perf") is None:
         print("profile_kernel: perf is not installed (Debian: apt-get install linux-perf)",
@@ -92,8 +103,9 @@ def main() -> None:
     work = tempfile.mkdtemp(prefix="rvsim_profile_")
     ready = os.path.join(work, "ready")
     env = {**os.environ, "NUMBA_CACHE_DIR": os.path.join(work, "numba")}
-    child = subprocess.Popen([sys.executable, __file__, "--run", str(args.run), "--child",
-                              ready], env=env)
+    child = subprocess.Popen([sys.executable, __file__, "--run", str(args.run), "--scheme",
+                              args.scheme, "--seconds", str(args.seconds), "--child", ready],
+                             env=env)
     while not os.path.exists(ready) and child.poll() is None:
         time.sleep(0.2)
     if child.poll() is not None:
@@ -106,7 +118,8 @@ def main() -> None:
     report = subprocess.run(["perf", "report", "-i", data, "--no-children", "--sort", "sym",
                              "--stdio"], capture_output=True, text=True, check=True).stdout
     rows = [line for line in report.splitlines() if "%" in line and not line.startswith("#")]
-    print(f"paper run {args.run}, {args.seconds:g} s sampled; share of samples, function:")
+    print(f"paper run {args.run} ({args.scheme}), {args.seconds:g} s sampled; share of "
+          "samples, function:")
     for line in rows[:args.top]:
         print(line.strip())
     shutil.rmtree(work, ignore_errors=True)

@@ -51,3 +51,23 @@ def test_failed_simulation_reports_status(cli):
     assert res.code == 1
     assert json.loads(res.out)["status"] in ("diverged", "runaway_penetration")
     assert "simulation failed" in res.err
+
+
+def test_implicit_bearings_scheme(cli):
+    """Issue 14: the scheme that takes the bearings implicitly, at its own 2e-5 s step."""
+    res = cli("simulate", "--duration", "1.6", "--scheme", "implicit-bearings", "--json")
+    assert res.code == 0, res.err
+    data = json.loads(res.out)
+    assert data["status"] == "ok" and data["steps"] == 80_000
+    assert data["implicit_fallbacks"] == 0 and data["implicit_factorisations"] > 0
+
+
+@pytest.mark.parametrize("args, words", [
+    (("--scheme", "implicit"), "invalid choice"),
+    (("--scheme", "implicit-bearings", "--set", "flexibility.model=fe", "--set", "A=true"),
+     "'scheme'"),
+    (("--scheme", "implicit-bearings", "--params", "cycloid-drive"), "'scheme'"),
+])
+def test_scheme_errors(cli, args, words):
+    res = cli("simulate", "--duration", "1.6", *args)
+    assert res.code == 2 and words in res.err and res.err.count("\n") == 1

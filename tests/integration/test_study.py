@@ -188,3 +188,35 @@ def test_run_length_is_checked_before_any_run(tmp_path, cli):
     assert res.code == 2 and len(res.err.strip().splitlines()) == 1
     assert "'duration'" in res.err and "study run 1" in res.err
     assert not (tmp_path / "out").exists()
+
+
+def test_study_with_the_implicit_bearings_scheme(tmp_path, cli):
+    """Issue 14: a study's scheme, from its file or from --scheme, is part of each run's
+    identity: the same rows under the other scheme are new runs, not the stored ones."""
+    path = write_study(tmp_path, extra='scheme = "implicit-bearings"')
+    study = load_study(path)
+    assert study.scheme == "implicit-bearings"
+    out = tmp_path / "out"
+    res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress")
+    assert res.code == 0, res.err
+    table = pd.read_csv(out / "results.csv")
+    assert (table["status"] == "ok").all() and (table["steps"] == 20_000).all()
+    assert (table["implicit_fallbacks"] == 0).all()
+    assert json.loads((out / "study.json").read_text())["scheme"] == "implicit-bearings"
+    # the same file run explicitly into the same folder is another study: refused
+    res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress",
+              "--scheme", "explicit")
+    assert res.code == 2 and res.err.count("\n") == 1
+
+
+@pytest.mark.parametrize("extra, args, words", [
+    ('scheme = "fast"', (), "parameter 'scheme'"),
+    ('engine = "quasi-static"', ("--scheme", "implicit-bearings"), "--scheme"),
+    ("", ("--scheme", "bogus"), "invalid choice"),
+])
+def test_study_scheme_errors(tmp_path, cli, extra, args, words):
+    path = write_study(tmp_path, extra=extra)
+    out = tmp_path / "out"
+    res = cli("study", str(path), "--out", str(out), *args)
+    assert res.code == 2 and words in res.err and res.err.count("\n") == 1
+    assert not out.exists()

@@ -14,7 +14,7 @@ __all__ = ["register"]
 
 
 def _simulate(args: argparse.Namespace) -> int:
-    from ..dynamics import DEFAULT_TIME_STEP, simulate
+    from ..dynamics import simulate
 
     if args.save and not args.save.endswith(".npz"):
         raise ParameterError("--save", "histories are written as .npz (numpy.load reads them)")
@@ -26,9 +26,8 @@ def _simulate(args: argparse.Namespace) -> int:
     reducer = reducer_from_args(args)
     try:
         # a progress bar only for a person watching (stderr is a terminal)
-        result = simulate(reducer, duration=args.duration,
-                          time_step=DEFAULT_TIME_STEP if args.time_step is None
-                          else args.time_step, progress=sys.stderr.isatty())
+        result = simulate(reducer, duration=args.duration, time_step=args.time_step,
+                          scheme=args.scheme, progress=sys.stderr.isatty())
     except SimulationError as exc:
         if args.json:
             print_json({"status": exc.status, "error": str(exc)})
@@ -61,7 +60,8 @@ def register(sub) -> None:
                     "the RV-40E, every error zero, 300 N*m.",
                     ["rvsim simulate --json",
                     "rvsim simulate --paper-run 2 --save run2.npz",
-                    "rvsim simulate --set E=400 --set H=0.02 --json"])
+                    "rvsim simulate --set E=400 --set H=0.02 --json",
+                    "rvsim simulate --paper-run 3 --scheme implicit-bearings --json"])
     add_reducer_options(p, paper_run=True)
     p.add_argument("--save", metavar="FILE.npz", type=path_text,
                    help="write the time histories (numpy .npz)")
@@ -70,6 +70,11 @@ def register(sub) -> None:
     p.add_argument("--duration", type=float, help="simulated time [s] (default: "
                    "operating.duration, 4 s)")
     p.add_argument("--time-step", type=float,
-                   help="integration step [s] (default: the model's, 5e-6 s)")
+                   help="integration step [s] (default: the scheme's, 5e-6 s explicit, 2e-5 s "
+                   "implicit-bearings)")
+    p.add_argument("--scheme", choices=("explicit", "implicit-bearings"), default="explicit",
+                   help="integration scheme: explicit (default), or implicit-bearings: the "
+                   "bearings' stiffness taken implicitly, a 4x larger step, about half the "
+                   "CPU time (closed-form bodies only; docs/model.md section 9)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_simulate)

@@ -34,14 +34,15 @@ class WorkerStartError(RvsimError):
 
 
 def evaluate_task(key: str, reducer, time_step: float, engine: str = "dynamic",
-                  hysteresis: bool = False, positions: int = 360) -> tuple[str, dict]:
+                  hysteresis: bool = False, positions: int = 360,
+                  scheme: str = "explicit") -> tuple[str, dict]:
     """Evaluate one run in a worker (the entry point of local and Dask workers)."""
     from .runner import evaluate
 
     doomed = os.environ.get(TEST_KILL_ENV)
     if doomed and key.startswith(doomed):
         os.kill(os.getpid(), signal.SIGKILL)
-    return key, evaluate(reducer, time_step, engine, hysteresis, positions)
+    return key, evaluate(reducer, time_step, engine, hysteresis, positions, scheme)
 
 
 def _die_with_parent(parent_pid: int) -> None:

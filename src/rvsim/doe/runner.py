@@ -22,7 +22,8 @@ from typing import Callable
 import pandas as pd
 
 from .._files import atomic_write_text
-from ..dynamics import DEFAULT_TIME_STEP
+from ..dynamics.model import EXPLICIT
+from ..dynamics.simulate import default_time_step
 from ..errors import InputFileError, ParameterError
 from ..parameters import Reducer
 from ._workers import evaluate_task, run_workers
@@ -34,10 +35,11 @@ __all__ = ["run", "evaluate", "compact_history", "StudyTerminated"]
 
 
 def evaluate(reducer: Reducer, time_step: float, engine: str = "dynamic",
-             hysteresis: bool = False, positions: int = 360) -> dict:
+             hysteresis: bool = False, positions: int = 360, scheme: str = "explicit") -> dict:
     """Evaluate one run; never raises (the outcome carries status and error).
 
-    ``engine`` is "dynamic" (a simulation at ``time_step``) or "quasi-static"
+    ``engine`` is "dynamic" (a simulation at ``time_step`` with the integration ``scheme``) or
+    "quasi-static"
     (:func:`rvsim.doe.engines.evaluate_quasi_static`, with the torque-reversal test when
     ``hysteresis``).  A simulation that stops (even at step 0) keeps its own status; "error" is
     reserved for an exception of the code itself.  ``engine`` "tolerance" evaluates one
@@ -55,7 +57,7 @@ def evaluate(reducer: Reducer, time_step: float, engine: str = "dynamic",
     from ..dynamics import simulate
 
     try:
-        result = simulate(reducer, time_step=time_step, raise_on_failure=False)
+        result = simulate(reducer, time_step=time_step, raise_on_failure=False, scheme=scheme)
         outcome = {"status": result.status, "wall_s": result.wall_s, "metrics": {}}
         if result.status != "ok":
             outcome["error"] = f"simulation {result.status.replace('_', ' ')} at step " \
@@ -138,13 +140,13 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
     reducers = study.reducers()              # validates every run before any simulation
     if scheduler:
         _check_scheduler(scheduler)          # before anything is written
-    time_step = study.time_step or DEFAULT_TIME_STEP
+    time_step = study.time_step or default_time_step(study.scheme)
     if study.engine == "dynamic":             # run length and step, also before anything runs
         from ..dynamics.simulate import check_run_options
 
         for number, reducer in enumerate(reducers, start=1):
             try:
-                check_run_options(reducer, time_step=time_step)
+                check_run_options(reducer, time_step=time_step, scheme=study.scheme)
             except ParameterError as exc:
                 raise ParameterError(exc.field, f"{exc.reason} (study run {number})") from None
     definition = _definition(study, time_step, reducers[0])
@@ -152,8 +154,10 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
     # reducer are different rows
     tag = time_step if study.engine == "dynamic" else \
         f"{study.engine}{'+hysteresis' if study.hysteresis else ''}"
+    if study.engine == "dynamic" and study.scheme != EXPLICIT:    # (explicit keys as before)
+        tag = f"{time_step} {study.scheme}"
     keys = [run_key(r, tag) for r in reducers]
-    options = (time_step, study.engine, study.hysteresis)
+    options = (time_step, study.engine, study.hysteresis, 360, study.scheme)
     folder.mkdir(parents=True, exist_ok=True)
     with lock_folder(folder), _termination_interrupts():
         store = ResultStore(folder)
@@ -190,7 +194,8 @@ RETRIED_ON_RESUME = "worker_died"
 
 
 def _run_local(todo: dict, options: tuple, workers: int | None, store_result) -> None:
-    """``options``: the (time_step, engine, hysteresis) of :func:`evaluate`."""
+    """``options``: the (time_step, engine, hysteresis, positions, scheme) of
+    :func:`evaluate`."""
     workers = workers or os.cpu_count() or 1
     run_workers({key: (reducer, *options) for key, reducer in todo.items()},
                 min(workers, len(todo)), store_result, held_lock_fds())
@@ -257,6 +262,8 @@ def _definition(study: Study, time_step: float, first: Reducer) -> dict:
         "name": study.name, "design": study.design, "samples": study.samples,
         "seed": study.seed, "time_step": time_step,
         "engine": study.engine, "hysteresis": study.hysteresis,
+        # the scheme only where it is not the default: earlier studies' folders resume
+        **({"scheme": study.scheme} if study.scheme != EXPLICIT else {}),
         "reducer": f"{study.base.name} ({study.base.citation})" if study.base.citation
         else study.base.name,
         "steady_start": first.operating.steady_start,   # fixed settings included

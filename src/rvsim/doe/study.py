@@ -10,6 +10,8 @@ A study is a frozen dataclass; :func:`paper_l36` is the paper's Table 2 / Table 
     params = "my_reducer.toml"   # optional; default: the built-in RV-40E; or a built-in
                                  # set's name ("cycloid-drive")
     engine = "quasi-static"   # optional; default "dynamic" (rvsim.doe.engines)
+    scheme = "implicit-bearings"   # optional, dynamic engine; default "explicit"
+                                   # (rvsim.simulate's integration scheme)
     hysteresis = true         # quasi-static only: add the torque-reversal test
     [set]                     # fixed values for every run (user units)
     "operating.load_torque" = 300
@@ -49,7 +51,9 @@ MAX_RUNS = 100_000
 #: metric column starts with ``te_`` or is listed here
 RESULT_COLUMNS = frozenset({"run", "status", "error", "key", "reducer", "steps", "wall_s",
                             "sim_time_s", "speed_ratio", "guard_substep_checks",
-                            "guard_substep_checks_steady", "guard_peak_omega_dt"})
+                            "guard_substep_checks_steady", "guard_peak_omega_dt",
+                            "implicit_factorisations", "implicit_alerts",
+                            "implicit_fallbacks"})
 
 
 @dataclasses.dataclass(frozen=True)
@@ -78,6 +82,8 @@ class Study:
     # issue 9: the model that evaluates each run (rvsim.doe.engines)
     engine: str = "dynamic"
     hysteresis: bool = False
+    # issue 14: the dynamic engine's integration scheme (rvsim.simulate)
+    scheme: str = "explicit"
 
     def __post_init__(self) -> None:
         seen_labels: set[str] = set()
@@ -111,7 +117,11 @@ class Study:
                 raise ParameterError(f"set.{name}", "set twice (a letter alias and its "
                                      "dotted name name the same parameter)")
             fixed_names.add(name)
-        from ..dynamics.simulate import MAX_TIME_STEP
+        from ..dynamics.simulate import MAX_TIME_STEP, SCHEMES
+
+        if self.scheme not in SCHEMES:
+            raise ParameterError("scheme", f"must be one of {', '.join(SCHEMES)} (got "
+                                 f"{self.scheme!r})")
 
         if self.time_step is not None and not (
                 isinstance(self.time_step, (int, float)) and not isinstance(self.time_step, bool)
@@ -191,7 +201,7 @@ def load_study(path: str | Path) -> Study:
     path = Path(path)
     data = _read_toml(path)
     known = {"name", "design", "samples", "seed", "params", "set", "factors", "time_step",
-             "engine", "hysteresis"}
+             "engine", "hysteresis", "scheme"}
     extra = set(data) - known
     if extra:
         raise InputFileError(f"{path}: unknown key(s) {', '.join(sorted(extra))}")
@@ -230,10 +240,11 @@ def load_study(path: str | Path) -> Study:
     from .engines import engine_options
 
     engine, hysteresis = engine_options(data, path)
+    scheme = _string(data, "scheme", path, "explicit")
     study = Study(name=_string(data, "name", path, path.stem), factors=tuple(factors),
                   design=design, base=base, fixed=tuple(fixed), samples=samples, seed=seed,
                   time_step=None if time_step is None else float(time_step), engine=engine,
-                  hysteresis=hysteresis)
+                  hysteresis=hysteresis, scheme=scheme)
     study.reducers()  # validate every run now
     return study
 

@@ -38,7 +38,11 @@ from ._layout import (BUSH_COLUMNS, BUSH_SLOT0, ECC_ERR0, ECC_PHASE0, ECC_TURN0,
 from ._layout import (NODE_ALERT, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_OMEGA_DT,
                       NODE_SUBSTEPS,
                       NODE_PEAK, NODE_REFRESH)
+from ._layout import (IMPLICIT_ALERTS, IMPLICIT_FACTORS, IMPLICIT_FALLBACKS, IMPLICIT_REFRESH,
+                      IMPLICIT_SINCE, IMPLICIT_THETA)
 from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt, substeps_for
+from ._implicit_bearings import (bearing_forces_risen, factor_effective_mass,
+                                 record_bearing_forces, solve_factored)
 from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
                       ARM_J2, ARM_KIND, ARM_ROLLERS, ARM_SHIFT, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
                       SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, SUP_SHIFT_L, SUP_SHIFT_U, BACKLASH, BASE_PITCH, CARRIER,
@@ -887,6 +891,19 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
     return energy, power
 
 
+@numba.njit(**NO_REFCOUNT)
+def bearing_stiffness(P, q, v, Q_scratch, K, holes, crank_angles, arm_elastic, channel):
+    """The crank bearings' stiffness into ``K`` (zeroed by the caller) at the state (q, v)
+    whose forces were just evaluated (the scheme implicit-bearings, where a bearing's force
+    has risen beyond what its factorisation holds): :func:`crank_bearings` again, its forces
+    into ``Q_scratch`` (the same as the evaluation's, to round-off: every law starts from its
+    carried solution at the same approach)."""
+    for i in range(Q_scratch.shape[0]):
+        Q_scratch[i] = 0.0
+    crank_bearings(P, q, v, Q_scratch, K, holes, crank_angles, arm_elastic, channel,
+                   int(P[DISC_COUNT]), angle_trig(q, crank_angles))
+
+
 @numba.njit(**REFCOUNT)
 def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, pin_force,
               pin_elastic, fe, modes, carried):
@@ -905,7 +922,7 @@ def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, pin_for
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
               channel, mesh_state, mesh_hold, fe, modal=None, pin_slots=None, pin_work=None,
-              pin_carried=None):
+              pin_carried=None, K_bearings=None):
     """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
     ``torque_load``: the one evaluation of the force elements that both engines use.
 
@@ -920,7 +937,9 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     :mod:`rvsim.dynamics._fe_modes`; omitted: none).  ``pin_slots``, ``pin_work``: the pin
     contacts' work arrays (:func:`pin_contacts`; omitted: allocated per call).
     ``pin_carried``: what each pin's evaluation carries to the next (:func:`pin_loop`; omitted:
-    nothing).
+    nothing).  ``K_bearings``: a 17 x 17 matrix (zeroed by the caller) that takes the crank
+    bearings' stiffness instead of ``K`` (the scheme ``implicit-bearings``,
+    :mod:`rvsim.dynamics._implicit_bearings`; omitted: they go to ``K``).
     """
     if modal is None:
         modes = np.zeros((2, 0, 0))
@@ -936,19 +955,23 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         carried = nothing_carried(pins.shape[0])
     else:
         carried = pin_carried
+    if K_bearings is None:
+        bearings = np.zeros((0, 0))
+    else:
+        bearings = K_bearings
     return forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes,
                        crank_angles, mesh_phase, u, next_eval, step, pin_force, pin_elastic,
                        arm_elastic, Q, K, channel, mesh_state, mesh_hold, fe, modes, slots, work,
-                       carried)
+                       carried, bearings)
 
 
 @numba.njit(cache=True, inline="always")
 def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
                 mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-                channel, mesh_state, mesh_hold, fe, modes, slots, work, carried):
+                channel, mesh_state, mesh_hold, fe, modes, slots, work, carried, K_bearings):
     """:func:`forces_at` with every work array given (``modes``, the pin contacts' ``slots``
-    and ``work``): allocates nothing, so that the step loop compiles without reference
-    counting."""
+    and ``work``; ``K_bearings`` 0 x 0 where the bearings' stiffness goes to ``K``): allocates
+    nothing, so that the step loop compiles without reference counting."""
     coupled = fe.shape[1] > 0
     for i in range(N_DOF):
         Q[i] = 0.0
@@ -1011,8 +1034,8 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
         power += pw
         if pen > worst:
             worst = pen
-    e, pw = crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs,
-                           trig)
+    e, pw = crank_bearings(P, q, v, Q, K_bearings if K_bearings.shape[0] > 0 else K, holes,
+                           crank_angles, arm_elastic, channel, n_discs, trig)
     energy += e
     power += pw
     if single:
@@ -1028,16 +1051,16 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
 @numba.njit(cache=True, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe, modal,
-           pin_slots, pin_work, pin_carried):
+           pin_slots, pin_work, pin_carried, K_bearings):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
-    the run's schedule). Returns (potential energy, dissipated power, input torque,
+    the run's schedule; ``K_bearings`` as :func:`forces_with` takes it). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration, input angle, input speed)."""
     theta_in, omega_in = input_motion(P, t)
     torque_load = load_torque(P, t)
     energy, power, torque_in, worst = forces_with(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
         mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-        mesh_state, mesh_hold, fe, modal, pin_slots, pin_work, pin_carried)
+        mesh_state, mesh_hold, fe, modal, pin_slots, pin_work, pin_carried, K_bearings)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
@@ -1083,7 +1106,7 @@ def new_state(n_pins, n_channels, n_output_pins=0):
 def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes, crank_angles,
               mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic,
               mesh_state, channel, counters, channels, pin_forces, energy, fe, modal,
-              pin_carried):
+              pin_carried, implicit, implicit_rows):
     """Advance from step ``first_step`` to ``stop_step`` (exclusive) of a run of ``n_steps``
     steps of size P[DT] that starts at t = 0; returns (status, next step).
 
@@ -1096,7 +1119,9 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     ``modal`` (2, m + HEADER, modes): the discs' modes and their state (``fe`` then the residual
     tables; :mod:`rvsim.dynamics._fe_modes`), (2, m + HEADER, 0) or (2, 0, 0) for none.
     ``pin_carried``: what each pin's evaluation carries to the next (:func:`nothing_carried`
-    at t = 0, then carried between calls like the other state).
+    at t = 0, then carried between calls like the other state).  ``implicit``,
+    ``implicit_rows``: the work of the scheme implicit-bearings, carried between calls
+    (:func:`rvsim.dynamics._implicit_bearings.new_work`; 17 x 0 arrays: the explicit scheme).
     """
     Q = np.zeros(N_DOF)
     K = np.zeros((0, 0))
@@ -1113,22 +1138,32 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
                     crank_angles, mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic,
                     arm_elastic, mesh_state, channel, counters, channels, pin_forces, energy, fe,
                     modal, pin_carried, Q, K, K_node, mesh_hold, previous_stiffness, pin_slots,
-                    pin_work)
+                    pin_work, implicit, implicit_rows)
 
 
 @numba.njit(**NO_REFCOUNT)
 def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes, crank_angles,
              mesh_phase, pin_angle, u, next_eval, pin_force, pin_elastic, arm_elastic,
              mesh_state, channel, counters, channels, pin_forces, energy, fe, modal,
-             pin_carried, Q, K, K_node, mesh_hold, previous_stiffness, pin_slots, pin_work):
+             pin_carried, Q, K, K_node, mesh_hold, previous_stiffness, pin_slots, pin_work,
+             implicit, implicit_rows):
     """The step loop of :func:`integrate` (compiled without reference counting: the work
     arrays are allocated by the caller)."""
     dt = P[DT]
     guard = P[NODE_OMEGA_DT] > 0.0
     refresh = max(1, int(P[NODE_REFRESH]))
     if first_step == 0:
-        for i in (NODE_SUBSTEPS, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_PEAK, NODE_ALERT):
+        for i in (NODE_SUBSTEPS, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_PEAK, NODE_ALERT,
+                  IMPLICIT_FACTORS, IMPLICIT_ALERTS, IMPLICIT_FALLBACKS):
             P[i] = 0.0
+    # the scheme implicit-bearings: M + theta h^2 K_b factored every implicit_refresh steps
+    # (the first step of every call included) and at any step where a bearing's force has
+    # risen beyond what the last factorisation had (dynamics._implicit_bearings)
+    linear_implicit = implicit.shape[1] > 0
+    implicit_refresh = max(1, int(P[IMPLICIT_REFRESH]))
+    since_factor = int(P[IMPLICIT_SINCE]) if first_step > 0 else implicit_refresh
+    M_full, K_bear, factor = implicit[0], implicit[1], implicit[2]
+    dv, bearing_reference, scratch = implicit_rows[0], implicit_rows[1], implicit_rows[2]
     row = counters[COUNT_ROW]
     in_window = counters[COUNT_IN_WINDOW] == 1
     # sub-steps of the step where the guard found the node modes too stiff for it
@@ -1150,11 +1185,33 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
         check = first and guard and (step % refresh == 0 or P[NODE_ALERT] == 1.0)
         if check:
             K_node[:, :] = 0.0
+        refactor = linear_implicit and since_factor >= implicit_refresh
+        if refactor:
+            K_bear[:, :] = 0.0
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, tick,
             pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state,
-            K_node if check else K, mesh_hold, fe, modal, pin_slots, pin_work, pin_carried)
+            K_node if check else K, mesh_hold, fe, modal, pin_slots, pin_work, pin_carried,
+            K_bear if refactor else K)
         tick += 1
+        if linear_implicit and not refactor and bearing_forces_risen(channel,
+                                                                     bearing_reference):
+            # a bearing stiffer than the factor holds: one explicit step of it could grow
+            # its mode manyfold, so its stiffness is assembled now, at this step's state
+            K_bear[:, :] = 0.0
+            bearing_stiffness(P, q, v, scratch, K_bear, holes, crank_angles, arm_elastic,
+                              channel)
+            refactor = True
+            P[IMPLICIT_ALERTS] += 1.0
+        if refactor:
+            P[IMPLICIT_FACTORS] += 1.0
+            if not factor_effective_mass(M_full, K_bear, P[IMPLICIT_THETA] * h * h, factor):
+                P[IMPLICIT_FALLBACKS] += 1.0      # this step explicit: M alone
+                factor_effective_mass(M_full, K_bear, 0.0, factor)
+                since_factor = implicit_refresh   # and factor again at the next step
+            else:
+                since_factor = 0
+            record_bearing_forces(channel, bearing_reference)
         if check:
             # the stiffest node mode of the two cranks sets the sub-steps of this step and of
             # the steps up to the next check (dynamics._stiff_nodes)
@@ -1224,19 +1281,25 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
             energy[E_OUTPUT] += t_load * v[CARRIER] * h
             energy[E_DISSIPATED] += diss * h
         # semi-implicit Euler: velocities first, then positions with the new velocities
-        v[CARRIER] += h_carrier * Q[CARRIER]
-        for j in range(2):
-            b = CRANK0 + CRANK_STRIDE * j
-            for axis in range(2):
-                f_low, f_up = Q[b + axis], Q[b + 2 + axis]
-                v[b + axis] += h_ll * f_low + h_lu * f_up
-                v[b + 2 + axis] += h_lu * f_low + h_uu * f_up
-            v[b + 4] += h_crank * Q[b + 4]
-        for disc in range(2):
-            d = DISC0 + DISC_STRIDE * disc
-            v[d] += h_mass * Q[d]
-            v[d + 1] += h_mass * Q[d + 1]
-            v[d + 2] += h_disc * Q[d + 2]
+        if linear_implicit:     # (M + theta h^2 K_b) dv = h Q
+            solve_factored(factor, Q, h, dv)
+            for i in range(N_DOF):
+                v[i] += dv[i]
+            since_factor += 1
+        else:
+            v[CARRIER] += h_carrier * Q[CARRIER]
+            for j in range(2):
+                b = CRANK0 + CRANK_STRIDE * j
+                for axis in range(2):
+                    f_low, f_up = Q[b + axis], Q[b + 2 + axis]
+                    v[b + axis] += h_ll * f_low + h_lu * f_up
+                    v[b + 2 + axis] += h_lu * f_low + h_uu * f_up
+                v[b + 4] += h_crank * Q[b + 4]
+            for disc in range(2):
+                d = DISC0 + DISC_STRIDE * disc
+                v[d] += h_mass * Q[d]
+                v[d + 1] += h_mass * Q[d + 1]
+                v[d + 2] += h_disc * Q[d + 2]
         for i in range(N_DOF):
             q[i] += h * v[i]
         if modal.shape[2] > 0:
@@ -1250,6 +1313,7 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
             step += 1
     P[NODE_SUBSTEPS] = n_sub
     P[NODE_H] = 0.0
+    P[IMPLICIT_SINCE] = since_factor
     counters[COUNT_TICK] = tick
     counters[COUNT_ROW] = row
     counters[COUNT_IN_WINDOW] = 1 if in_window else 0

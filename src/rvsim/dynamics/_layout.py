@@ -232,11 +232,21 @@ NODE_CHECKS_STEADY = 185   # ... of them in the steady window ...
 NODE_PEAK      = 186       # ... and the largest omega dt (of the whole step) found
 NODE_ALERT     = 187       # state: 1 while the last check found omega h above ALERT x the
                            # limit (then checked every step), else 0
+# the bearings treated linearly implicitly (rvsim.dynamics._implicit_bearings, docs/model.md
+# section 9): v += h (M + theta h^2 K_b)^-1 Q, K_b the bearings' tangent stiffness
+IMPLICIT_THETA = 188       # theta (0: the explicit scheme)
+IMPLICIT_REFRESH = 189     # steps between two factorisations of M + theta h^2 K_b
+# ---- linearly implicit bearings, state and counters (issue 14): 190-199 --------------------
+IMPLICIT_FACTORS = 190     # factorisations in the run ...
+IMPLICIT_ALERTS = 191      # ... of them brought forward by a bearing's rising force ...
+IMPLICIT_FALLBACKS = 192   # ... and steps whose M + theta h^2 K_b was not positive definite
+                           # (taken with M alone, the explicit step)
+IMPLICIT_SINCE = 193       # state carried between calls: steps since the last factorisation
 
 
 _P_INDEX = {name: value for name, value in dict(globals()).items()
             if name not in _BEFORE_P and name.isupper()}
-N_PARAMS = 190
+N_PARAMS = 200
 assert len(set(_P_INDEX.values())) == len(_P_INDEX), "two constants share one slot of P"
 assert all(0 <= value < N_PARAMS for value in _P_INDEX.values()), "raise N_PARAMS"
 _NAME_OF = {value: name for name, value in _P_INDEX.items()}

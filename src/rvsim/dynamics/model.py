@@ -18,6 +18,8 @@ from ..friction import fill_constants as fill_friction_constants
 from ..parameters import Reducer
 from . import _layout as L
 from ._bearings import bushing_shift
+from ._implicit_bearings import REFRESH_STEPS as IMPLICIT_REFRESH_STEPS
+from ._implicit_bearings import THETA as IMPLICIT_THETA
 from .compliance import palmgren_coefficient, pin_compliance, ring_compliance, tooth_compliance
 
 __all__ = ["KernelModel", "build_model", "MassProperties", "mass_properties"]
@@ -32,6 +34,12 @@ REFRESH_STEPS = 8
 #: the guard runs for steps above this [s] only: at and below it the node modes stay at
 #: omega dt <= 1.3 (0.58-1.07 measured at 5e-6 s), and its checks cost about 3 % of the run
 GUARD_FROM_STEP = 6e-6
+#: integration schemes (docs/model.md section 9): the semi-implicit Euler step with the guard
+#: above, or the same step with the bearings taken linearly implicitly (dynamics.
+#: _implicit_bearings), each with its default step [s]
+EXPLICIT = "explicit"
+IMPLICIT_BEARINGS = "implicit-bearings"
+SCHEMES = {EXPLICIT: 5e-6, IMPLICIT_BEARINGS: 2e-5}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -210,8 +218,9 @@ def fill_turns(P: np.ndarray) -> None:
         P[L.ECC_TURN0 + 2 * j:L.ECC_TURN0 + 2 * j + 2] = math.cos(turn), math.sin(turn)
 
 
-def build_model(r: Reducer, time_step: float) -> KernelModel:
-    """Constant vector, pin and hole positions and the initial (assembled) state."""
+def build_model(r: Reducer, time_step: float, scheme: str = EXPLICIT) -> KernelModel:
+    """Constant vector, pin and hole positions and the initial (assembled) state, for the
+    integration ``scheme`` (one of :data:`SCHEMES`)."""
     c, k, e, cl, m = r.cycloid, r.crank, r.errors, r.clearances, r.materials
     gear = None if r.layout.single_stage else gear_geometry(r)
     masses = mass_properties(r)
@@ -295,9 +304,13 @@ def build_model(r: Reducer, time_step: float) -> KernelModel:
     # off with a coupled finite-element body (disc, crank, plates): its stiffness assembly
     # would switch their solves from the dynamic sweep to the converged quasi-static one
     coupled_fe = P[L.FE_DISC] == 1.0 or P[L.FE_CRANK_XX1] > 0.0 or P[L.FE_PLATE_XX1] > 0.0
+    implicit = scheme == IMPLICIT_BEARINGS
     P[L.NODE_OMEGA_DT] = (OMEGA_DT_LIMIT if time_step > GUARD_FROM_STEP and not coupled_fe
-                          else 0.0)
+                          and not implicit else 0.0)
     P[L.NODE_REFRESH] = REFRESH_STEPS
+    # the bearings linearly implicit (dynamics._implicit_bearings): no guard, it needs none
+    P[L.IMPLICIT_THETA] = IMPLICIT_THETA if implicit else 0.0
+    P[L.IMPLICIT_REFRESH] = IMPLICIT_REFRESH_STEPS
 
     pins = pin_table(r)       # pin centres, and per-pin / per-tooth errors when there are any
     size, phase = eccentric_errors(r)

@@ -90,7 +90,10 @@ class Result:
     section 9): ``guard_substep_checks`` (whole run) and ``guard_substep_checks_steady``
     (steady window) count its checks after which the step was divided into sub-steps,
     ``guard_peak_omega_dt`` is the largest omega dt (of the whole step) of the node modes it
-    found; empty when the guard was off"""
+    found; empty when the guard was off.  With the scheme implicit-bearings (which needs no
+    guard) instead: ``implicit_factorisations`` of M + theta h^2 K_b, ``implicit_alerts`` (of
+    them brought forward by a bearing's rising force) and ``implicit_fallbacks`` (steps taken
+    explicitly: that matrix not positive definite)"""
 
     def channel(self, name: str) -> np.ndarray:
         return self.channels[:, L.CHANNEL_NAMES.index(name)]

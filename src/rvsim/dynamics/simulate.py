@@ -11,15 +11,17 @@ from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from . import _layout as L
 from ._kernel import COUNT_ROW, integrate, new_state, nothing_carried
-from .model import build_model
+from ._implicit_bearings import new_work
+from .model import EXPLICIT, IMPLICIT_BEARINGS, SCHEMES, build_model
 from .result import Result
 
 __all__ = ["simulate", "decompose_te", "DEFAULT_TIME_STEP", "DEFAULT_SAMPLE_RATE",
-           "check_run_options", "MAX_TIME_STEP", "CHUNK_STEPS", "MAX_HISTORY_BYTES", "ENERGY_RESIDUAL_LIMIT", "SPEED_RATIO_LIMIT"]
+           "SCHEMES", "default_time_step", "check_run_options", "MAX_TIME_STEP", "CHUNK_STEPS", "MAX_HISTORY_BYTES", "ENERGY_RESIDUAL_LIMIT", "SPEED_RATIO_LIMIT"]
 
-#: integration step [s]; docs/model.md and the convergence test justify it (5e-6 s since the
-#: conforming bushings of issue 10, about 3x stiffer than the Palmgren ones before)
-DEFAULT_TIME_STEP = 5e-6
+#: integration step [s] of the default scheme ("explicit"); docs/model.md and the convergence
+#: test justify it (5e-6 s since the conforming bushings of issue 10, about 3x stiffer than the
+#: Palmgren ones before).  The scheme "implicit-bearings" has its own (model.SCHEMES, 2e-5 s)
+DEFAULT_TIME_STEP = SCHEMES[EXPLICIT]
 #: largest accepted step [s]: far above the stability limit (about 1e-5 s), so a larger value
 #: can only be a typo
 MAX_TIME_STEP = 1e-3
@@ -37,14 +39,34 @@ ENERGY_RESIDUAL_LIMIT = 1e-2
 SPEED_RATIO_LIMIT = 0.05
 
 
+def default_time_step(scheme: str = EXPLICIT) -> float:
+    """The step [s] a run of the integration ``scheme`` takes unless told otherwise
+    (ParameterError for an unknown scheme)."""
+    if scheme not in SCHEMES:
+        raise ParameterError("scheme", f"must be one of {', '.join(SCHEMES)} (got {scheme!r})")
+    return SCHEMES[scheme]
+
+
 def check_run_options(reducer: Reducer, duration: float | None = None,
-                      time_step: float = DEFAULT_TIME_STEP,
-                      sample_rate: float = DEFAULT_SAMPLE_RATE) -> None:
-    """ParameterError unless :func:`simulate` can run ``reducer`` with these options (step,
-    sampling, a finite duration past the steady window whose histories fit in memory); a
-    study checks every run with it before anything is simulated."""
+                      time_step: float | None = None,
+                      sample_rate: float = DEFAULT_SAMPLE_RATE, scheme: str = EXPLICIT) -> None:
+    """ParameterError unless :func:`simulate` can run ``reducer`` with these options (scheme,
+    step, sampling, a finite duration past the steady window whose histories fit in memory);
+    a study checks every run with it before anything is simulated.  ``time_step`` None: the
+    scheme's default."""
     duration = float(reducer.operating.duration if duration is None else duration)
+    time_step = default_time_step(scheme) if time_step is None else time_step
     f = reducer.flexibility
+    if scheme == IMPLICIT_BEARINGS and f.model == "fe":
+        raise ParameterError("scheme", "implicit-bearings takes the closed-form bodies only "
+                             "(flexibility.model = closed-form): the bearings' stiffness it "
+                             "assembles would switch the finite-element bodies' solves to the "
+                             "quasi-static engine's; use the explicit scheme")
+    if scheme == IMPLICIT_BEARINGS and reducer.layout.single_stage:
+        raise ParameterError("scheme", "implicit-bearings is made for the RV reducer's crank "
+                             "bearings; a single-stage drive's step is set by other elements "
+                             "(its output pins and input coupling stay explicit: diverged at "
+                             "2e-5 s), so use the explicit scheme")
     if (f.fe_modes > 0 and f.fe_disc_holes and f.cycloid_disc and f.model == "fe"
             and not reducer.layout.single_stage):
         raise ParameterError("flexibility.fe_modes", "the disc's modes are built with its crank "
@@ -73,9 +95,16 @@ def check_run_options(reducer: Reducer, duration: float | None = None,
 
 
 def simulate(reducer: Reducer, *, duration: float | None = None,
-             time_step: float = DEFAULT_TIME_STEP, sample_rate: float = DEFAULT_SAMPLE_RATE,
-             raise_on_failure: bool = True, progress: bool = False) -> Result:
+             time_step: float | None = None, sample_rate: float = DEFAULT_SAMPLE_RATE,
+             raise_on_failure: bool = True, progress: bool = False,
+             scheme: str = EXPLICIT) -> Result:
     """Simulate ``reducer`` from rest over ``duration`` (default: its operating duration).
+
+    ``scheme``: "explicit" (default; semi-implicit Euler, :data:`DEFAULT_TIME_STEP`) or
+    "implicit-bearings" (the bearings' stiffness taken linearly implicitly, so that the step
+    is no longer set by the crank nodes on their bearings: 2e-5 s by default, about half the
+    CPU time; closed-form bodies only; docs/model.md section 9).  ``time_step`` None: the
+    scheme's default.
 
     Returns a :class:`Result`.  A run that diverges, whose pins penetrate more than 0.2 mm, or
     that ends in a physically absurd state (energy balance off by more than
@@ -88,8 +117,9 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     """
     validate(reducer)
     duration = float(reducer.operating.duration if duration is None else duration)
-    check_run_options(reducer, duration, time_step, sample_rate)
-    model = build_model(reducer, time_step)
+    time_step = default_time_step(scheme) if time_step is None else time_step
+    check_run_options(reducer, duration, time_step, sample_rate, scheme)
+    model = build_model(reducer, time_step, scheme)
     fe, modal = disc_modes(reducer, model, time_step)
     n_steps = int(round(duration / time_step))
     sample_every = max(1, int(round(1.0 / (sample_rate * time_step))))
@@ -101,6 +131,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     v = np.zeros(L.N_DOF)
     state = new_state(reducer.cycloid.pin_count, L.N_CHANNELS, int(model.P[L.OUT_COUNT]))
     carried = nothing_carried(reducer.cycloid.pin_count)
+    implicit = new_work(model.P)        # the scheme implicit-bearings' (empty: explicit)
     bar = _progress_bar(duration) if progress else None
     start = _time.perf_counter()
     step = 0
@@ -110,7 +141,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
             status, step = integrate(model.P, q, v, step, stop, n_steps, sample_every,
                                      model.pins, model.holes, model.crank_angles,
                                      model.mesh_phase, *state, channels, pin_forces, energy,
-                                     fe, modal, carried)
+                                     fe, modal, carried, *implicit)
             if bar is not None:
                 bar.update(min(step, n_steps) * time_step - bar.n)
             if status != L.STATUS_OK or step > n_steps:
@@ -189,7 +220,12 @@ def _check_finished_run(result: Result) -> tuple[int, str]:
 
 def _guard_report(P: np.ndarray) -> dict[str, float]:
     """What the crank nodes' stability guard did in the run just integrated (empty when it was
-    off: steps up to model.GUARD_FROM_STEP)."""
+    off: steps up to model.GUARD_FROM_STEP), or with the scheme implicit-bearings what its
+    factorisations were."""
+    if P[L.IMPLICIT_THETA] > 0.0:
+        return {"implicit_factorisations": int(P[L.IMPLICIT_FACTORS]),
+                "implicit_alerts": int(P[L.IMPLICIT_ALERTS]),
+                "implicit_fallbacks": int(P[L.IMPLICIT_FALLBACKS])}
     if P[L.NODE_OMEGA_DT] <= 0.0:
         return {}
     return {"guard_substep_checks": int(P[L.NODE_CHECKS]),
