@@ -156,13 +156,18 @@ def test_unstable_step_reports_status():
 # per angle and force evaluation (issue 14, 2026-11-26 second session; before:
 # 3.3745875804065286, 0.17318310272807969, 768.2609516934006 / 8.100121572273315,
 # 0.4156592871405618, 1207.4976128660169 / 12.96111937030543, 0.6791068291972042,
-# 1642.1394310321145).  The pins hold one machine's arithmetic bit for bit: the kernel with
+# 1642.1394310321145), and again for the laws' Newton started from the Taylor predictor also
+# beyond the series and the pins' foot cosines turned by series up to 3e-2 rad (issue 14,
+# 2026-11-26 third session; before: 3.3745801006857574, 0.17409963561643815,
+# 762.4121843450818 / 8.100121367155177, 0.4156592919823856, 1207.4023364790394 /
+# 12.961117917445181, 0.6755408931663496, 1642.1394312353582).  The pins hold one machine's
+# arithmetic bit for bit: the kernel with
 # the step changed by 1e-12 relative moves run 1's peak-to-peak TE and largest pin force by up
 # to 3 % and its mean TE by 2.5e-6, run 3's peak-to-peak TE by up to 0.55 % (0.675541-0.679253
 # arcmin; docs/benchmarks.md, issue 14)
-PINNED = {1: (3.3745801006857574, 0.17409963561643815, 762.4121843450818),
-          2: (8.100121367155177, 0.4156592919823856, 1207.4023364790394),
-          3: (12.961117917445181, 0.6755408931663496, 1642.1394312353582)}
+PINNED = {1: (3.3745838618238206, 0.17692377881200283, 775.4986921520194),
+          2: (8.100120794254853, 0.4156592977936411, 1207.4039592136874),
+          3: (12.961119882552872, 0.6755408931068096, 1642.139431107833)}
 
 
 @pytest.mark.parametrize("run", [1, 3])

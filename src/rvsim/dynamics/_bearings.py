@@ -41,6 +41,9 @@ NEWTON_CLOSE = 3e-7
 #: relative Newton steps up to which ln(a1 / F) follows the step by its series
 #: (:func:`log_ratio`) instead of a new logarithm
 SERIES_LIMIT = 1e-2
+#: relative changes up to which Newton starts from the Taylor predictor even beyond the
+#: series (a positive start: Newton converges from any, monotonically once below the root)
+PREDICTOR_LIMIT = 0.5
 _LOG_WRAP = math.log(WRAP_RATIO)
 #: 1 / n of the series of ln(1 + x) (:func:`log_ratio`)
 _INV2, _INV3, _INV4, _INV5, _INV6, _INV7, _INV8 = (1.0 / n for n in range(2, 9))
@@ -150,7 +153,11 @@ def conforming_force_from(delta, j1, a1, j2, a2, cb, shift, f0, d0, k0, log0):
     ln(a1 / F))."""
     x = conforming_start(delta, f0, d0, k0, a1, j1, a2, j2)
     if not abs(x) <= SERIES_LIMIT:
-        return conforming_force_carried(delta, j1, a1, j2, a2, cb, f0, shift)
+        # beyond the series: Newton from the predictor all the same (a fresh logarithm),
+        # which is off by the third order of the change, or from f0 beyond PREDICTOR_LIMIT
+        return conforming_force_carried(delta, j1, a1, j2, a2, cb,
+                                        f0 + f0 * x if abs(x) <= PREDICTOR_LIMIT else f0,
+                                        shift)
     f = f0 + f0 * x
     inv_f = 1.0 / f
     log = log0 - log_ratio(x)

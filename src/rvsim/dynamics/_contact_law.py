@@ -24,6 +24,9 @@ NEWTON_CLOSE = 1e-6
 #: relative Newton steps up to which F**0.9 follows the step by its binomial series
 #: (:func:`power_ratio`: truncation error below 1e-20) instead of a new power
 SERIES_LIMIT = 1e-2
+#: relative changes up to which Newton starts from the Taylor predictor even beyond the
+#: series (:func:`spring_force_from`)
+PREDICTOR_LIMIT = 0.5
 
 
 #: the ratios C(p, n) / C(p, n - 1) = (p - n + 1) / n of the binomial series of (1 + x)^p
@@ -123,6 +126,10 @@ def spring_force_from(delta, c, cb, f0, fe0, d0, k0):
     series compliance) is left to that function.  Returns (F, stiffness, energy, F**0.9)."""
     x = spring_start(delta, c, f0, fe0, d0, k0)
     if cb == 0.0 or not abs(x) <= SERIES_LIMIT:
+        # beyond the series: Newton from the predictor all the same (a fresh power), or
+        # from f0 beyond PREDICTOR_LIMIT
+        if cb != 0.0 and abs(x) <= PREDICTOR_LIMIT:
+            return spring_force_power(delta, c, cb, f0 + f0 * x, 0.0)
         return spring_force_power(delta, c, cb, f0, fe0)
     f = f0 + f0 * x
     inv_f = 1.0 / f

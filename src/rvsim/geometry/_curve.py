@@ -45,7 +45,7 @@ __all__ = ["curve_point", "curve_from", "rotated", "foot_point", "nearest_point"
 TRACKING_LIMIT = 1e-4
 #: largest turn [rad of zp u] by which :func:`pin_gap` carries the foot's cosines and sines
 #: (:func:`rotated`) instead of computing them anew
-ROTATION_LIMIT = 1e-2
+ROTATION_LIMIT = 3e-2
 #: 1 / n! of the series of cos and sin (:func:`rotated`)
 _INV6, _INV24, _INV120, _INV720, _INV5040 = (1.0 / n for n in (6, 24, 120, 720, 5040))
 
@@ -66,7 +66,7 @@ def curve_trig(u, zp):
 @numba.njit(cache=True, inline="always")
 def rotated(c, s, d):
     """(cos, sin) of an angle d from the angle whose cosine and sine are (c, s), for |d| <=
-    :data:`ROTATION_LIMIT`: cos d and sin d by their series (truncation below 3e-21), the pair
+    :data:`ROTATION_LIMIT`: cos d and sin d by their series (truncation below 2e-17), the pair
     brought back to unit length to first order (so that rounding cannot drift it)."""
     d2 = d * d         # (the series' coefficients are constants: no division per call)
     cd = 1.0 - d2 * (0.5 - d2 * (_INV24 - d2 * _INV720))
