@@ -32,8 +32,6 @@ other element (meshes, pins, input shaft, output pins) stays explicit.
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
@@ -45,6 +43,7 @@ invalidate_stale_cache(__file__)
 from ._layout import (CARRIER, CH_ARM_F00, CH_SUP_FU1, CRANK0, CRANK_STRIDE,  # noqa: E402
                       DISC0, DISC_STRIDE, IMPLICIT_THETA, J_CARRIER, J_CRANK, J_DISC, M_DISC,
                       N_DOF)
+from ._fe_contacts import _cholesky  # noqa: E402
 from ._stiff_nodes import node_mass  # noqa: E402
 
 __all__ = ["THETA", "REFRESH_STEPS", "ALERT_RATIO", "FORCE_FLOOR", "new_work",
@@ -103,27 +102,19 @@ def fill_mass_matrix(P, M):
 
 @numba.njit(**NO_REFCOUNT)
 def factor_effective_mass(M, K, c, A):
-    """Cholesky factor L of M + c (K + K^T) / 2 into ``A``: L below the diagonal, 1 / L_kk on
-    it (so that :func:`solve_factored` multiplies instead of dividing); returns False,
-    leaving ``A`` unusable, where that matrix is not positive definite."""
+    """Cholesky factor L of M + c (K + K^T) / 2 into ``A`` (the finite-element contacts'
+    in-place factor, :func:`rvsim.dynamics._fe_contacts._cholesky`): L below the diagonal,
+    1 / L_kk on it (so that :func:`solve_factored` multiplies instead of dividing); returns
+    False, leaving ``A`` unusable, where that matrix is not positive definite."""
     n = M.shape[0]
     half = 0.5 * c
     for i in range(n):
         for k in range(i + 1):
             A[i, k] = M[i, k] + half * (K[i, k] + K[k, i])
+    if not _cholesky(A, n):
+        return False
     for k in range(n):
-        pivot = A[k, k]
-        for m in range(k):
-            pivot -= A[k, m] * A[k, m]
-        if not pivot > 0.0:
-            return False
-        inverse = 1.0 / math.sqrt(pivot)
-        A[k, k] = inverse
-        for i in range(k + 1, n):
-            s = A[i, k]
-            for m in range(k):
-                s -= A[i, m] * A[k, m]
-            A[i, k] = s * inverse
+        A[k, k] = 1.0 / A[k, k]
     return True
 
 
