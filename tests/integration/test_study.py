@@ -191,8 +191,8 @@ def test_run_length_is_checked_before_any_run(tmp_path, cli):
 
 
 def test_study_with_the_implicit_bearings_scheme(tmp_path, cli):
-    """Issue 14: a study's scheme, from its file or from --scheme, is part of each run's
-    identity: the same rows under the other scheme are new runs, not the stored ones."""
+    """Issue 14: a study's scheme, from its file or from --scheme, is part of the study's
+    definition: the same file run with the other scheme into its folder is refused."""
     path = write_study(tmp_path, extra='scheme = "implicit-bearings"')
     study = load_study(path)
     assert study.scheme == "implicit-bearings"
@@ -207,10 +207,13 @@ def test_study_with_the_implicit_bearings_scheme(tmp_path, cli):
     res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress",
               "--scheme", "explicit")
     assert res.code == 2 and res.err.count("\n") == 1
+    assert "study.json differs" in res.err
 
 
 @pytest.mark.parametrize("extra, args, words", [
     ('scheme = "fast"', (), "parameter 'scheme'"),
+    ('scheme = 3', (), "'scheme' must be"),
+    ('engine = "quasi-static"\nscheme = "implicit-bearings"', (), "parameter 'scheme'"),
     ('engine = "quasi-static"', ("--scheme", "implicit-bearings"), "--scheme"),
     ("", ("--scheme", "bogus"), "invalid choice"),
 ])

@@ -117,11 +117,12 @@ class Study:
                 raise ParameterError(f"set.{name}", "set twice (a letter alias and its "
                                      "dotted name name the same parameter)")
             fixed_names.add(name)
-        from ..dynamics.simulate import MAX_TIME_STEP, SCHEMES
+        from ..dynamics.simulate import MAX_TIME_STEP, check_scheme
 
-        if self.scheme not in SCHEMES:
-            raise ParameterError("scheme", f"must be one of {', '.join(SCHEMES)} (got "
-                                 f"{self.scheme!r})")
+        check_scheme(self.scheme)
+        if self.scheme != "explicit" and self.engine != "dynamic":
+            raise ParameterError("scheme", f"the study runs the {self.engine} engine: the "
+                                 "integration scheme is the dynamic engine's")
 
         if self.time_step is not None and not (
                 isinstance(self.time_step, (int, float)) and not isinstance(self.time_step, bool)

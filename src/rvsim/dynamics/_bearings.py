@@ -149,8 +149,9 @@ def conforming_force_from(delta, j1, a1, j2, a2, cb, shift, f0, d0, k0, log0):
     NEWTON_CLOSE F: one evaluation of the law per call instead of two or three, ln(a1 / F)
     by its series from ``log0``, and the divisions off the chain of dependent operations.
     The same stopping rule as :func:`conforming_force`, so the same accuracy; a change beyond
-    SERIES_LIMIT starts Newton from ``f0`` as that does.  Returns (F, stiffness, energy,
-    ln(a1 / F))."""
+    SERIES_LIMIT starts Newton from the predictor with a fresh logarithm (beyond
+    PREDICTOR_LIMIT from ``f0``, as :func:`conforming_force` starts from its guess).
+    Returns (F, stiffness, energy, ln(a1 / F))."""
     x = conforming_start(delta, f0, d0, k0, a1, j1, a2, j2)
     if not abs(x) <= SERIES_LIMIT:
         # beyond the series: Newton from the predictor all the same (a fresh logarithm),

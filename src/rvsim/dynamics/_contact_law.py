@@ -123,7 +123,8 @@ def spring_force_from(delta, c, cb, f0, fe0, d0, k0):
     changes by up to about 1 % per call Newton's first step is already below NEWTON_CLOSE F:
     one evaluation per call, F**0.9 by its series from ``fe0``.  The same stopping rule as
     :func:`spring_force_power`, so the same accuracy; a change beyond SERIES_LIMIT (or no
-    series compliance) is left to that function.  Returns (F, stiffness, energy, F**0.9)."""
+    series compliance) is left to that function, started from the predictor with a fresh
+    power (up to PREDICTOR_LIMIT) or from ``f0``.  Returns (F, stiffness, energy, F**0.9)."""
     x = spring_start(delta, c, f0, fe0, d0, k0)
     if cb == 0.0 or not abs(x) <= SERIES_LIMIT:
         # beyond the series: Newton from the predictor all the same (a fresh power), or

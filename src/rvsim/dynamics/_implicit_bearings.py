@@ -1,10 +1,10 @@
 """The bearings taken linearly implicitly: the integration scheme ``implicit-bearings``
 (issue 14; docs/model.md section 9, docs/decisions.md).
 
-The explicit scheme's step is set by the crank nodes on their bearings (omega up to about
-1.4e5 rad/s at the default 5e-6 s: omega dt up to 1.07), not by the contact physics that
-matters for the TE.  This scheme takes the bearings' stiffness implicitly to first order.
-Each step
+The explicit scheme's step is set by the crank nodes on their bearings (omega 1.4e5 to
+2.2e5 rad/s: omega dt up to 1.07 at the default 5e-6 s, up to 4.5 at 2e-5 s as the guard
+measured it), not by the contact physics that matters for the TE.  This scheme takes the
+bearings' stiffness implicitly to first order.  Each step
 
     (M + theta h^2 K_b) dv = h Q(q_n, v_n),    v_n+1 = v_n + dv,    q_n+1 = q_n + h v_n+1,
 
@@ -12,22 +12,28 @@ with K_b = -dQ/dq of the bearings alone (the arm and support bushings or rolling
 the tangent stiffness that the same element functions assemble for the quasi-static
 engine), symmetrised.  It is the semi-implicit Euler step with the bearings' forces taken
 at the position the step's velocity change moves to, q_n + theta h dv, linearised.  Every
-other element (meshes, pins, input shaft, output pins) stays explicit.
+other element (meshes, pins, input shaft, output pins) and the contacts' damping stay
+explicit.
 
-* Stability: a linear mode of the bearings has omega_eff^2 h^2 = x / (1 + theta x), x =
-  (omega h)^2, below 4 at any step for theta = 1/4.  The next limits are the modes that the
-  explicit elements set (measured: 2.5e-5 s runs the 36 L36 runs).
+* Stability, theta = 1/2: for one linear mode of stiffness k (x = (omega h)^2) integrated
+  against the mass m + theta h^2 k0 of the factorisation, with its damping 2 zeta sqrt(k m)
+  explicit, the step is stable where r x + 4 zeta sqrt(r x) < 4 (1 + theta x), r = k / k0.
+  With theta = 1/2 that holds at every step for r = 1 and zeta < 1, and for r = 1.5 and zeta
+  < 0.58: the factor may lag a stiffening bearing by half its stiffness.  (theta = 1/4, the
+  least that is stable undamped, holds only for omega h < 1 / zeta at r = 1 and fails at
+  omega h > 2.8 for r = 1.5: a reviewer's case, contact.damping_ratio 0.2, diverged.)
 * What it changes: the inertia of a motion that deforms the bearings rises by theta (omega
   h)^2 of its stiffness; a rigid motion of both sides of a bearing (K_b v = 0) none at all,
   so momentum is kept and the slow modes (the drive's torsional mode near 250 Hz, omega h =
-  0.03 at 2e-5 s) see a relative change of 2.5e-4.
+  0.03 at 2e-5 s) see a relative change of 5e-4.
 * Why only the bearings: the meshes' stiffness jumps as tooth pairs enter and leave, and an
   effective mass that jumps with it pumps energy (-1.8e-3 of the input work in paper run 1
   at 2e-5 s with the meshes in K, -2.8e-5 without; docs/benchmarks.md).
-* The factorisation (Cholesky, 17 x 17, in place) is renewed every
-  P[IMPLICIT_REFRESH] steps and at the step after a bearing's force has risen above
-  ALERT_RATIO times its force at the last factorisation plus FORCE_FLOOR (a bushing's
-  stiffness grows with its load; the play is thrown through within a few steps).
+* The factorisation (Cholesky, 17 x 17, in place) is renewed every P[IMPLICIT_REFRESH]
+  steps and, at the same step, wherever a bearing's force has risen above ALERT_RATIO
+  times its force at the last factorisation plus FORCE_FLOOR (a bushing's stiffness grows
+  with its load, more slowly than the force; the play is thrown through within a few
+  steps).
 """
 
 from __future__ import annotations
@@ -51,12 +57,13 @@ __all__ = ["THETA", "REFRESH_STEPS", "ALERT_RATIO", "FORCE_FLOOR", "new_work",
            "factor_effective_mass", "solve_factored", "record_bearing_forces",
            "bearing_forces_risen"]
 
-#: theta of the effective mass: 1/4 makes every linear bearing mode stable at any step
-THETA = 0.25
-#: steps between two factorisations (paper run 3 at 2e-5 s: 8 diverged, 4 and 1 ran)
+#: theta of the effective mass (module docstring: stable at any step with the contacts'
+#: damping and a factor that lags the stiffness; 1/4 was not)
+THETA = 0.5
+#: steps between two factorisations (docs/decisions.md: every 2 cost 13-33 % more CPU)
 REFRESH_STEPS = 8
 #: a bearing force above ALERT_RATIO x its force at the last factorisation (+ FORCE_FLOOR [N])
-#: brings the next factorisation forward to the next step
+#: brings the factorisation forward to that step
 ALERT_RATIO = 1.5
 FORCE_FLOOR = 10.0
 #: the force channels of the bearings (arm bushings, then supports): 8 consecutive columns
@@ -68,7 +75,7 @@ def new_work(P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     (M, K_b, factor) as a (3, 17, 17) array with the mass matrix filled, and (dv, the
     bearings' forces at the last factorisation, a scratch force vector) as (3, 17); empty
     (17 x 0) for the explicit scheme (P[IMPLICIT_THETA] = 0)."""
-    n = N_DOF if P[IMPLICIT_THETA] > 0.0 else 0
+    n = N_DOF if P[IMPLICIT_THETA] != 0.0 else 0
     matrices = np.zeros((3, n, n))
     if n:
         fill_mass_matrix(P, matrices[0])
@@ -109,8 +116,8 @@ def factor_effective_mass(M, K, c, A):
     n = M.shape[0]
     half = 0.5 * c
     for i in range(n):
-        for k in range(i + 1):
-            A[i, k] = M[i, k] + half * (K[i, k] + K[k, i])
+        for k in range(i + 1):     # c = 0: M alone, whatever K holds (NaN included)
+            A[i, k] = M[i, k] + half * (K[i, k] + K[k, i]) if c != 0.0 else M[i, k]
     if not _cholesky(A, n):
         return False
     for k in range(n):

@@ -1156,9 +1156,10 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
         for i in (NODE_SUBSTEPS, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_PEAK, NODE_ALERT,
                   IMPLICIT_FACTORS, IMPLICIT_ALERTS, IMPLICIT_FALLBACKS):
             P[i] = 0.0
-    # the scheme implicit-bearings: M + theta h^2 K_b factored every implicit_refresh steps
-    # (the first step of every call included) and at any step where a bearing's force has
-    # risen beyond what the last factorisation had (dynamics._implicit_bearings)
+    # the scheme implicit-bearings: M + theta h^2 K_b factored at the first step of the run,
+    # every implicit_refresh steps (counted across calls: P[IMPLICIT_SINCE] and the factor
+    # are carried) and at any step where a bearing's force has risen beyond what the last
+    # factorisation had (dynamics._implicit_bearings)
     linear_implicit = implicit.shape[1] > 0
     implicit_refresh = max(1, int(P[IMPLICIT_REFRESH]))
     since_factor = int(P[IMPLICIT_SINCE]) if first_step > 0 else implicit_refresh
