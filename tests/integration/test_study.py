@@ -210,6 +210,17 @@ def test_study_with_the_implicit_bearings_scheme(tmp_path, cli):
     assert "study.json differs" in res.err
 
 
+def test_scheme_belongs_to_the_dynamic_engine():
+    from rvsim.doe import Study, paper_l36
+    import dataclasses
+    study = paper_l36()
+    assert dataclasses.replace(study, scheme="implicit-bearings").scheme == "implicit-bearings"
+    with pytest.raises(ParameterError) as info:
+        dataclasses.replace(study, engine="quasi-static", scheme="implicit-bearings")
+    assert info.value.field == "scheme"
+    assert Study is type(study)
+
+
 @pytest.mark.parametrize("extra, args, words", [
     ('scheme = "fast"', (), "parameter 'scheme'"),
     ('scheme = 3', (), "'scheme' must be"),

@@ -31,7 +31,7 @@ def _study(args: argparse.Namespace) -> int:
                                                     and is_tolerance_file(args.study)):
         from ._tolerance import load_any_tolerance_study, run_tolerance_command
 
-        if args.scheme is not None:
+        if args.scheme not in (None, "explicit"):
             raise ParameterError("--scheme", "a tolerance study runs the quasi-static "
                                  "engine: the integration scheme is the dynamic engine's")
 
@@ -44,10 +44,11 @@ def _study(args: argparse.Namespace) -> int:
         raise InputFileError(f"unknown study '{args.study}' (built in: "
                              f"{', '.join(BUILT_IN_STUDIES)}; or a .toml file)")
     if args.scheme is not None:
-        if study.engine != "dynamic":
+        if study.engine != "dynamic" and args.scheme != "explicit":
             raise ParameterError("--scheme", f"the study runs the {study.engine} engine: the "
                                  "integration scheme is the dynamic engine's")
-        study = dataclasses.replace(study, scheme=args.scheme)
+        if study.engine == "dynamic":
+            study = dataclasses.replace(study, scheme=args.scheme)
     check_output_folder(args.out, "--out")   # before the runs, not after them
     folder = Path(args.out)
     progress = not args.no_progress and sys.stderr.isatty()

@@ -304,7 +304,7 @@ def build_model(r: Reducer, time_step: float, scheme: str = EXPLICIT) -> KernelM
     # off with a coupled finite-element body (disc, crank, plates): its stiffness assembly
     # would switch their solves from the dynamic sweep to the converged quasi-static one
     coupled_fe = P[L.FE_DISC] == 1.0 or P[L.FE_CRANK_XX1] > 0.0 or P[L.FE_PLATE_XX1] > 0.0
-    if scheme not in SCHEMES:
+    if not (isinstance(scheme, str) and scheme in SCHEMES):
         raise ValueError(f"unknown integration scheme {scheme!r} (one of {', '.join(SCHEMES)})")
     implicit = scheme == IMPLICIT_BEARINGS
     P[L.NODE_OMEGA_DT] = (OMEGA_DT_LIMIT if time_step > GUARD_FROM_STEP and not coupled_fe
