@@ -152,9 +152,11 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
     definition = _definition(study, time_step, reducers[0])
     # the engine is part of a run's identity: a dynamic and a quasi-static result of the same
     # reducer are different rows
-    tag = time_step if study.engine == "dynamic" else \
-        f"{study.engine}{'+hysteresis' if study.hysteresis else ''}"
-    if study.engine == "dynamic" and study.scheme != EXPLICIT:    # (explicit keys as before)
+    if study.engine != "dynamic":
+        tag = f"{study.engine}{'+hysteresis' if study.hysteresis else ''}"
+    elif study.scheme == EXPLICIT:      # the keys of the studies before the schemes
+        tag = time_step
+    else:
         tag = f"{time_step} {study.scheme}"
     keys = [run_key(r, tag) for r in reducers]
     options = (time_step, study.engine, study.hysteresis, 360, study.scheme)

@@ -117,10 +117,11 @@ class Study:
                 raise ParameterError(f"set.{name}", "set twice (a letter alias and its "
                                      "dotted name name the same parameter)")
             fixed_names.add(name)
+        from ..dynamics.model import EXPLICIT
         from ..dynamics.simulate import MAX_TIME_STEP, check_scheme
 
         check_scheme(self.scheme)
-        if self.scheme != "explicit" and self.engine != "dynamic":
+        if self.scheme != EXPLICIT and self.engine != "dynamic":
             raise ParameterError("scheme", f"the study runs the {self.engine} engine: the "
                                  "integration scheme is the dynamic engine's")
 

@@ -61,7 +61,7 @@ def check_run_options(reducer: Reducer, duration: float | None = None,
     scheme's default."""
     duration = float(reducer.operating.duration if duration is None else duration)
     check_scheme(scheme)            # also where a step is given
-    time_step = default_time_step(scheme) if time_step is None else time_step
+    time_step = SCHEMES[scheme] if time_step is None else time_step
     f = reducer.flexibility
     if scheme == IMPLICIT_BEARINGS and f.model == "fe":
         raise ParameterError("scheme", "implicit-bearings takes the closed-form bodies only "
@@ -123,9 +123,8 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     """
     validate(reducer)
     duration = float(reducer.operating.duration if duration is None else duration)
-    check_scheme(scheme)
     time_step = default_time_step(scheme) if time_step is None else time_step
-    check_run_options(reducer, duration, time_step, sample_rate, scheme)
+    check_run_options(reducer, duration, time_step, sample_rate, scheme)   # the scheme too
     model = build_model(reducer, time_step, scheme)
     fe, modal = disc_modes(reducer, model, time_step)
     n_steps = int(round(duration / time_step))
