@@ -133,3 +133,18 @@ def test_ring_output_on_the_command_line_and_refused_for_the_rv(capsys):
     assert '"status": "ok"' in capsys.readouterr().out
     with pytest.raises(ParameterError, match="layout.ring_output"):
         with_values(BUILT_IN_SETS["RV-40E"], {"layout.ring_output": True})
+
+
+def test_largest_pin_force_is_every_steps_with_the_ring_turning():
+    # the ring's pins (found in its axes) feed the window's largest pin force at every step:
+    # sampled at every step the histories give the same number to the bit
+    reducer = with_values(_low_speed(150.0), {"operating.steady_start": 0.5,
+                                              "operating.duration": 0.55})
+    every = simulate(reducer, sample_rate=1.0 / 5e-6)
+    default = simulate(reducer)
+    assert every.status == default.status == "ok"
+    peak = every.metrics["max_pin_force_n"]
+    assert peak > 0.0
+    assert peak == every.pin_forces[every.time >= 0.5 - 1e-12].max()
+    assert default.metrics["max_pin_force_n"] == peak
+    assert np.array_equal(every.channel("pin_f_max"), every.pin_forces.max(axis=(1, 2)))

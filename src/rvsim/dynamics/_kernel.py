@@ -47,10 +47,10 @@ from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLE
                       ARM_J2, ARM_KIND, ARM_ROLLERS, ARM_SHIFT, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
                       SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, SUP_SHIFT_L, SUP_SHIFT_U, BACKLASH, BASE_PITCH, CARRIER,
                       CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
-                      CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
+                      CH_PIN_MAX, CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
                       CONTACT_RATIO, CRANK0, CRANK_COUNT, CRANK_STRIDE, DISC0, DISC_COUNT,
                       DISC_STRIDE, DT, E_DISSIPATED, FE_CRANK_SLOT0, FE_CRANK_XX1, FRICTION_ON,
-                      E_INPUT, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
+                      E_INPUT, E_PIN_PEAK, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
                       FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
                       LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
                       MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C,
@@ -259,9 +259,9 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
     if coupled:
         clear_modal_force(modal[disc])
     cos_d, sin_d = disc_trig(q, disc)
-    energy, power, worst, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
-                                           clock, forces, elastic, coupled, pin_slots,
-                                           pin_work, carry, cos_d, sin_d)
+    energy, power, worst, count, _ = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u,
+                                              next_eval, clock, forces, elastic, coupled,
+                                              pin_slots, pin_work, carry, cos_d, sin_d)
     if count > 0:
         if arm_elastic is None:
             hole = Q[0:0]
@@ -269,8 +269,8 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
         else:
             hole = hole_row(P, arm_elastic, disc)
             css = hole_css(P, disc)
-        e, pw = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], pin_slots, pin_work,
-                             count, forces, elastic, hole, css)
+        e, pw, _ = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], pin_slots,
+                                pin_work, count, forces, elastic, hole, css)
         energy += e
         power += pw
     elif arm_elastic is not None and holes_on(P):     # no pin touches: s = c_ss Q
@@ -311,7 +311,8 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, 
     """The pin loop of :func:`pin_contacts` (compiled without reference counting: it
     allocates nothing): the independent contacts' forces added to ``Q``; with ``coupled``, the
     touching pins written to ``slots`` / ``work`` for :func:`coupled_pins`.  Returns (energy,
-    dissipated power, max penetration, number of coupled contacts).  ``carried[disc, i]``:
+    dissipated power, max penetration, number of coupled contacts, largest force of the
+    independent contacts).  ``carried[disc, i]``:
     what pin i's evaluation carries to its next one, the foot's cosines and sines
     (geometry._curve.pin_gap) and the elastic force with its power 0.9
     (_contact_law.spring_force_power); NaN: nothing carried.  (cos_d, sin_d): of the disc's
@@ -334,6 +335,7 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, 
     want = K.shape[0] > 0
     n = pins.shape[0]
     count = 0
+    peak = 0.0
     for i in range(n):
         if clock < next_eval[disc, i]:
             continue        # open: its force and elastic force were zeroed when it was skipped
@@ -389,6 +391,8 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, 
         fn, pw = damped(fel, k, -gap_rate, P[ZETA], P[M_DISC])
         forces[disc, i] = fn
         elastic[disc, i] = fel
+        if fn > peak:
+            peak = fn
         energy += e
         power += pw
         fx = fn * gx
@@ -406,7 +410,7 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, 
         Q[d] += fx
         Q[d + 1] += fy
         Q[d + 2] += torque
-    return energy, power, worst, count
+    return energy, power, worst, count, peak
 
 
 @numba.njit(**REFCOUNT)
@@ -415,7 +419,7 @@ def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, 
     """The touching pins of disc ``disc`` that :func:`pin_loop` collected, solved together with
     the disc's finite-element ``table`` (:func:`rvsim.dynamics._fe_contacts.apply_coupled`),
     and their friction; ``hole``, ``css``: the disc's crank-hole state (0-length, 0: none;
-    :mod:`rvsim.dynamics._fe_holes`).  Returns (energy, dissipated power)."""
+    :mod:`rvsim.dynamics._fe_holes`).  Returns (energy, dissipated power, largest force)."""
     d = DISC0 + DISC_STRIDE * disc
     _, cos_t, sin_t, lvx, lvy, w = _disc_frame(P, q, v, disc)
     energy, power, _ = apply_coupled(table, slots, work, count, P[PIN_C], P[ZETA],
@@ -432,7 +436,11 @@ def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, 
             Q[d + 1] += fy_t
             Q[d + 2] += torque_t
             power += loss
-    return energy, power
+    peak = 0.0
+    for a in range(count):
+        if forces[disc, slots[a]] > peak:
+            peak = forces[disc, slots[a]]
+    return energy, power, peak
 
 
 @numba.njit(cache=True, inline="always")
@@ -910,12 +918,17 @@ def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, pin_for
     """Disc ``disc``'s pin contacts with the pin ring as output (single-stage drive): found
     in the ring's axes (:func:`~rvsim.dynamics._single_stage.ring_frame`), their forces and
     stiffness added to ``Q`` and ``K``.  Returns (energy, dissipated power, max
-    penetration).  (A function of its own: it allocates, the step loop does not.)"""
+    penetration, largest pin force).  (A function of its own: it allocates, the step loop does
+    not.)"""
     qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
     e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval, clock,
                               pin_force, pin_elastic, fe, modes, None, carried)
     ring_forces(q, qr, Qr, Kr, Q, K, disc)
-    return e, pw, pen
+    peak = 0.0
+    for i in range(pin_force.shape[1]):
+        if pin_force[disc, i] > peak:
+            peak = pin_force[disc, i]
+    return e, pw, pen, peak
 
 
 @numba.njit(cache=True, inline="always")
@@ -1005,18 +1018,20 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
                 power += pw
     n_discs = int(P[DISC_COUNT])
     worst = 0.0
+    pin_peak = 0.0
     ring = single and P[RING_OUTPUT] == 1.0
     for disc in range(n_discs):
         if ring:  # the pins turn with the output: contacts found in the ring's axes
-            e, pw, pen = ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
+            e, pw, pen, peak = ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
                                    pin_force, pin_elastic, fe, modes, carried)
         else:   # pin_contacts' parts, called here (no reference counting in the pin loop;
                 # docs/decisions.md): a change to one sequence belongs in the other too
             if coupled:
                 clear_modal_force(modes[disc])
-            e, pw, pen, count = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
-                                         step, pin_force, pin_elastic, coupled, slots, work,
-                                         carried, trig[4 + 2 * disc], trig[5 + 2 * disc])
+            e, pw, pen, count, peak = pin_loop(
+                P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, pin_force,
+                pin_elastic, coupled, slots, work, carried, trig[4 + 2 * disc],
+                trig[5 + 2 * disc])
             if count > 0:
                 if holes_on(P):     # the FE disc's crank holes as load points (_fe_holes)
                     hole = hole_row(P, arm_elastic, disc)
@@ -1024,16 +1039,22 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
                 else:
                     hole = Q[0:0]
                     css = 0.0
-                e_fe, pw_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modes[disc], slots,
-                                           work, count, pin_force, pin_elastic, hole, css)
+                e_fe, pw_fe, peak_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modes[disc],
+                                                    slots, work, count, pin_force,
+                                                    pin_elastic, hole, css)
                 e += e_fe
                 pw += pw_fe
+                if peak_fe > peak:
+                    peak = peak_fe
             elif holes_on(P):       # no pin touches: s = c_ss Q (_fe_holes.free_stretch)
                 e += free_stretch(hole_row(P, arm_elastic, disc), hole_css(P, disc))
         energy += e
         power += pw
         if pen > worst:
             worst = pen
+        if peak > pin_peak:
+            pin_peak = peak
+    channel[CH_PIN_MAX] = pin_peak
     e, pw = crank_bearings(P, q, v, Q, K_bearings if K_bearings.shape[0] > 0 else K, holes,
                            crank_angles, arm_elastic, channel, n_discs, trig)
     energy += e
@@ -1115,9 +1136,10 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     ``energy``.  The last step, ``n_steps``, only evaluates and samples; after it the next step
     is ``n_steps + 1``.  Samples every ``sample_every`` steps into ``channels`` (rows) and
     ``pin_forces`` (rows x 2 discs x zp pins).  ``energy`` accumulates the steady-window
-    balance.  ``fe``: the discs' finite-element compliance tables, (2, 0, 0) for none;
-    ``modal`` (2, m + HEADER, modes): the discs' modes and their state (``fe`` then the residual
-    tables; :mod:`rvsim.dynamics._fe_modes`), (2, m + HEADER, 0) or (2, 0, 0) for none.
+    balance and the window's largest pin force (E_PIN_PEAK, at every (sub-)step).  ``fe``:
+    the discs' finite-element compliance tables, (2, 0, 0) for none; ``modal`` (2, m + HEADER,
+    modes): the discs' modes and their state (``fe`` then the residual tables;
+    :mod:`rvsim.dynamics._fe_modes`), (2, m + HEADER, 0) or (2, 0, 0) for none.
     ``pin_carried``: what each pin's evaluation carries to the next (:func:`nothing_carried`
     at t = 0, then carried between calls like the other state).  ``implicit``,
     ``implicit_rows``: the work of the scheme implicit-bearings, carried between calls
@@ -1251,6 +1273,10 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
         if pen > P[PEN_LIMIT]:
             status = STATUS_PENETRATION
             break
+        if (in_window or t >= P[STEADY_START]) and channel[CH_PIN_MAX] > energy[E_PIN_PEAK]:
+            # the window's largest pin force, at every (sub-)step: samples miss the peaks
+            # between them (paper run 2: 1207.4 N sampled at 2 kHz, 1216.2 N)
+            energy[E_PIN_PEAK] = channel[CH_PIN_MAX]
         if first:
             if step % sample_every == 0 and row < channels.shape[0]:
                 channel[CH_TIME] = t

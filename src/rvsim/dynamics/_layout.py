@@ -275,15 +275,17 @@ CH_SUP_FL0     = 13
 CH_SUP_FU0     = 14
 CH_SUP_FL1     = 15
 CH_SUP_FU1     = 16
-N_CHANNELS = 17
+CH_PIN_MAX     = 17        # the largest pin force of this evaluation (either disc)
+N_CHANNELS = 18
 CHANNEL_NAMES = (
     "time", "theta_in", "omega_in", "theta_out", "omega_out", "torque_in", "torque_load",
     "mesh_f0", "mesh_f1", "arm_f00", "arm_f01", "arm_f10", "arm_f11", "sup_fl0", "sup_fu0",
-    "sup_fl1", "sup_fu1")
+    "sup_fl1", "sup_fu1", "pin_f_max")
 
-# ---- energy accumulators over the steady window ---------------------------------------------
+# ---- accumulators over the steady window ----------------------------------------------------
 E_INPUT, E_OUTPUT, E_DISSIPATED, E_PARAMETRIC, E_KIN0, E_POT0, E_KIN1, E_POT1 = range(8)
-N_ENERGY = 8
+E_PIN_PEAK = 8     # not energy: the window's largest pin force [N], at every (sub-)step
+N_ENERGY = 9
 
 # ---- status codes: the kernel returns the first three ------------------------------------
 STATUS_OK = 0

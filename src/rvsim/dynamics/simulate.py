@@ -163,7 +163,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
                     steady_start=reducer.operating.steady_start,
                     status=L.STATUS_TEXT[status], steps=int(steps), wall_s=wall,
                     energy=_energy_balance(energy), reducer_name=reducer.name,
-                    guard=_guard_report(model.P))
+                    guard=_guard_report(model.P), pin_force_peak=float(energy[L.E_PIN_PEAK]))
     if status != L.STATUS_OK:
         message = (f"simulation stopped at t = {steps * time_step:.4f} s: "
                    f"{result.status.replace('_', ' ')}")
