@@ -1022,8 +1022,8 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
     ring = single and P[RING_OUTPUT] == 1.0
     for disc in range(n_discs):
         if ring:  # the pins turn with the output: contacts found in the ring's axes
-            e, pw, pen, peak = ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step,
-                                   pin_force, pin_elastic, fe, modes, carried)
+            e, pw, pen, peak = ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
+                                         step, pin_force, pin_elastic, fe, modes, carried)
         else:   # pin_contacts' parts, called here (no reference counting in the pin loop;
                 # docs/decisions.md): a change to one sequence belongs in the other too
             if coupled:
