@@ -31,6 +31,18 @@ def test_default_run_and_saved_histories(tmp_path, cli):
     assert json.loads(str(data["summary"]))["status"] == "ok"
 
 
+def test_text_output_names_the_largest_pin_force(tmp_path, cli):
+    # the text lines carry what the JSON does, the largest pin force (every step's) included
+    path = tmp_path / "run.npz"
+    args = ("simulate", "--paper-run", "3", "--set", "operating.duration=1.7", "--save",
+            str(path))
+    text = cli(*args)
+    assert text.code == 0, text.err
+    data = json.loads(str(np.load(path)["summary"]))
+    assert f"largest pin force {data['max_pin_force_n']:.1f} N" in text.out
+    assert data["max_pin_force_n"] >= np.load(path)["pin_f_max"][-100:].max() > 0
+
+
 @pytest.mark.parametrize("args, words", [
     (("--paper-run", "0"), "1 to 36"),
     (("--paper-run", "37"), "1 to 36"),

@@ -48,7 +48,8 @@ def _simulate(args: argparse.Namespace) -> int:
         print(f"mean TE (t >= {reducer.operating.steady_start:g} s): "
               f"{summary['te_mean_arcmin']:.4f} arcmin, peak-to-peak "
               f"{summary['te_pp_arcmin']:.4f}, RMS {summary['te_rms_arcmin']:.4f}; speed ratio "
-              f"{summary['speed_ratio']:.4f}")
+              f"{summary['speed_ratio']:.4f}; largest pin force {summary['max_pin_force_n']:.1f}"
+              f" N")
     return 0
 
 
