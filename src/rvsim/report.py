@@ -23,6 +23,13 @@ from .errors import InputFileError
 __all__ = ["write_study_report", "write_run_report", "write_ltca_report",
            "write_hysteresis_report"]
 
+#: what a reader of a study's answers should know of a scheme other than the default
+#: (measured on the paper's 36 runs, docs/benchmarks.md, issue 14)
+_SCHEME_NOTES = {"implicit-bearings": (
+    ". Its mean TE is within 1e-4 of the default scheme's; its peaks (peak-to-peak TE, "
+    "largest pin force) differ by about 0.3 % (median), up to a few % on some runs, "
+    "because it slows the crank modes (docs/model.md section 9)")}
+
 _CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Roboto,sans-serif;margin:2em auto;
 max-width:1100px;color:#222;padding:0 1em}
@@ -236,7 +243,8 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
             f"{k} = {v}" for k, v in definition["fixed"])) + "</p>")
     if definition.get("scheme"):        # issue 14: only a scheme other than the default
         body.append("<p class='note'>Integration scheme: " + html.escape(
-            f"{definition['scheme']}, step {definition['time_step']:g} s") + "</p>")
+            f"{definition['scheme']}, step {definition['time_step']:g} s") + _SCHEME_NOTES.get(
+                definition["scheme"], "") + "</p>")
 
     histories = {}
     if (folder / "results.sqlite").is_file():   # opening a missing store would create one

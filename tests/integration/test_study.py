@@ -203,6 +203,12 @@ def test_study_with_the_implicit_bearings_scheme(tmp_path, cli):
     assert (table["status"] == "ok").all() and (table["steps"] == 20_000).all()
     assert (table["implicit_fallbacks"] == 0).all()
     assert json.loads((out / "study.json").read_text())["scheme"] == "implicit-bearings"
+    # its report names the scheme and what it does to the peak answers
+    res = cli("report", str(out))
+    assert res.code == 0, res.err
+    page = (out / "report.html").read_text()
+    assert "Integration scheme: implicit-bearings, step 2e-05 s" in page
+    assert "slows the crank modes" in page
     # the same file run explicitly into the same folder is another study: refused
     res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress",
               "--scheme", "explicit")
