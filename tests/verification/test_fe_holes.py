@@ -244,8 +244,8 @@ def test_no_pin_touching_leaves_the_stretch_of_the_holes_load_alone():
     energies = []
     for d in range(2):
         Q, K = np.zeros(17), np.zeros((0, 0))
-        energy, _, _ = Kn.pin_contacts(P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne, 1,
-                                       pf, pe, m.fe, np.zeros((2, 0, 0)), arm)
+        energy, _, _, _ = Kn.pin_contacts(P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne,
+                                          1, pf, pe, m.fe, np.zeros((2, 0, 0)), arm)
         energies.append(energy)
     assert not pf.any()                                # no pin touches
     assert P[L.FE_HOLE_CSS1] == css

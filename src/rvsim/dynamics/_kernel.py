@@ -216,8 +216,8 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
 @numba.njit(**REFCOUNT)
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
                  fe, modal, arm_elastic=None, carried=None):
-    """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration).
-    (``forces_at`` calls the same parts, :func:`pin_loop` and :func:`coupled_pins`, itself for
+    """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration,
+    largest pin force).  (``forces_at`` calls the same parts, :func:`pin_loop` and :func:`coupled_pins`, itself for
     the pins in the housing; a change here belongs there too.)
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
@@ -259,9 +259,9 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
     if coupled:
         clear_modal_force(modal[disc])
     cos_d, sin_d = disc_trig(q, disc)
-    energy, power, worst, count, _ = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u,
-                                              next_eval, clock, forces, elastic, coupled,
-                                              pin_slots, pin_work, carry, cos_d, sin_d)
+    energy, power, worst, count, peak = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u,
+                                                 next_eval, clock, forces, elastic, coupled,
+                                                 pin_slots, pin_work, carry, cos_d, sin_d)
     if count > 0:
         if arm_elastic is None:
             hole = Q[0:0]
@@ -269,13 +269,14 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
         else:
             hole = hole_row(P, arm_elastic, disc)
             css = hole_css(P, disc)
-        e, pw, _ = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], pin_slots,
-                                pin_work, count, forces, elastic, hole, css)
+        e, pw, peak_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], pin_slots,
+                                      pin_work, count, forces, elastic, hole, css)
         energy += e
         power += pw
+        peak = max(peak, peak_fe)
     elif arm_elastic is not None and holes_on(P):     # no pin touches: s = c_ss Q
         energy += free_stretch(hole_row(P, arm_elastic, disc), hole_css(P, disc))
-    return energy, power, worst
+    return energy, power, worst, peak
 
 
 @numba.njit(cache=True, inline="always")
@@ -921,13 +922,9 @@ def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, pin_for
     penetration, largest pin force).  (A function of its own: it allocates, the step loop does
     not.)"""
     qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
-    e, pw, pen = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval, clock,
-                              pin_force, pin_elastic, fe, modes, None, carried)
+    e, pw, pen, peak = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
+                                    clock, pin_force, pin_elastic, fe, modes, None, carried)
     ring_forces(q, qr, Qr, Kr, Q, K, disc)
-    peak = 0.0
-    for i in range(pin_force.shape[1]):
-        if pin_force[disc, i] > peak:
-            peak = pin_force[disc, i]
     return e, pw, pen, peak
 
 
@@ -1044,8 +1041,7 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
                                                     pin_elastic, hole, css)
                 e += e_fe
                 pw += pw_fe
-                if peak_fe > peak:
-                    peak = peak_fe
+                peak = max(peak, peak_fe)
             elif holes_on(P):       # no pin touches: s = c_ss Q (_fe_holes.free_stretch)
                 e += free_stretch(hole_row(P, arm_elastic, disc), hole_css(P, disc))
         energy += e
