@@ -10,11 +10,12 @@ what remains is the runner's own cost per run (processes, dispatch, store), whic
 machine disturbs far less than the full study.
 
 ``--time-step`` sets every run's step (a study's ``time_step``; e.g. 1e-5 with the stability guard).
-``--scheme implicit-bearings`` runs the study with that integration scheme (a study's
-``scheme``; its own 2e-5 s step unless ``--time-step`` says otherwise).
+``--scheme`` runs the study with that integration scheme (a study's ``scheme``, with its own
+step unless ``--time-step`` says otherwise); default: the study's, implicit-bearings since
+2026-11-26 (fifth session; explicit before).
 
 Usage:  python benchmarks/bench_study.py [--repeat 3] [--workers N] [--short] [--time-step S]
-                                          [--scheme explicit]
+                                          [--scheme explicit|implicit-bearings]
 """
 
 from __future__ import annotations
@@ -39,8 +40,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--workers", type=int, default=None)
     parser.add_argument("--short", action="store_true", help="0.05 s runs: runner overhead")
-    parser.add_argument("--scheme", default="explicit",
-                        choices=("explicit", "implicit-bearings"), help="integration scheme")
+    parser.add_argument("--scheme", default=None, choices=("explicit", "implicit-bearings"),
+                        help="integration scheme (default: the study's)")
     parser.add_argument("--time-step", type=float, default=None,
                         help="integration step [s] of every run (default: the model's)")
     args = parser.parse_args()
@@ -55,7 +56,7 @@ def main() -> None:
         study = dataclasses.replace(study, fixed=study.fixed + SHORT_SCHEDULE)
     if args.time_step is not None:
         study = dataclasses.replace(study, time_step=args.time_step)
-    if args.scheme != "explicit":
+    if args.scheme is not None:
         study = dataclasses.replace(study, scheme=args.scheme)
     walls, cpus = [], []
     for _ in range(args.repeat):
@@ -76,7 +77,7 @@ def main() -> None:
         "runs_per_study": 36,
         "schedule": "short (0.05 s)" if args.short else "paper (4 s)",
         "time_step_s": study.time_step,
-        "scheme": args.scheme,
+        "scheme": study.scheme,
         "workers": args.workers or os.cpu_count(),
         "median_study_wall_s": round(statistics.median(walls), 2),
         "studies": [round(w, 2) for w in walls],

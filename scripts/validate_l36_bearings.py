@@ -29,7 +29,7 @@ def main() -> None:
     args = parser.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    study = dataclasses.replace(paper_l36(), name="paper-l36-bearings",
+    study = dataclasses.replace(paper_l36(), name="paper-l36-bearings", scheme="explicit",
                                 base=BUILT_IN_SETS["RV-40E-bearings"])
     results = run(study, out / "study", progress=False)
     table = paper_l36_scheme()[["run"] + LETTERS + ["te_arcmin"]].merge(

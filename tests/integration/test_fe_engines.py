@@ -125,12 +125,16 @@ def test_bad_fe_carrier_value_is_one_line(cli):
     ("flexibility.fe_element_size=50", "flexibility.fe_element_size",
      "between 0.375 and 12 mm"),
 ])
-def test_element_sizes_out_of_range_are_refused_before_meshing(cli, setting, field, bounds):
-    """A 30 mm crank mesh made scikit-fem raise, a 1 um one ran for hours: both one line."""
+def test_element_sizes_out_of_range_are_refused_before_meshing(cli, tmp_path, setting, field,
+                                                               bounds):
+    """A 30 mm crank mesh made scikit-fem raise, a 1 um one ran for hours: both one line, and
+    before any body is meshed (a bad disc size used to be refused after the 3-D crank was
+    meshed: 24 s with an empty cache)."""
     result = cli("ltca", "--set", "flexibility.model=fe", "--set", setting)
     assert result.code == 2
     assert result.err.startswith(f"rvsim: error: parameter '{field}': must lie {bounds}")
     assert result.err.count("\n") == 1
+    assert not any(tmp_path.rglob("*.npz"))        # the private cache: nothing was meshed
 
 
 def test_the_fe_crank_refuses_needle_bearings(cli):

@@ -209,11 +209,42 @@ def test_study_with_the_implicit_bearings_scheme(tmp_path, cli):
     page = (out / "report.html").read_text()
     assert "Integration scheme: implicit-bearings, step 2e-05 s" in page
     assert "slows the crank modes" in page
-    # the same file run explicitly into the same folder is another study: refused
+    # the same file run explicitly into the same folder is another study: refused, with the
+    # way to resume it
     res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress",
               "--scheme", "explicit")
     assert res.code == 2 and res.err.count("\n") == 1
-    assert "study.json differs" in res.err
+    assert "with the implicit-bearings integration scheme (step 2e-05 s), not explicit" \
+        in res.err and "resume it with --scheme implicit-bearings" in res.err
+
+
+def test_paper_l36_runs_implicit_bearings_and_an_explicit_folder_says_how_to_resume(
+        tmp_path, cli):
+    """The paper's study runs implicit-bearings (docs/decisions.md); a folder of its runs
+    made with the explicit scheme (every paper-l36 folder before 2026-11-26) is refused
+    before anything runs, naming the option that resumes it."""
+    import dataclasses
+
+    from rvsim.doe import paper_l36
+    from rvsim.doe.runner import _definition
+    from rvsim.doe.store import ResultStore
+
+    study = paper_l36()
+    assert (study.scheme, study.time_step) == ("implicit-bearings", None)
+    old = dataclasses.replace(study, scheme="explicit")
+    out = tmp_path / "old"
+    out.mkdir()
+    stored = json.dumps(_definition(old, 5e-6, old.reducers()[0]), indent=2, default=str)
+    (out / "study.json").write_text(stored)
+    store = ResultStore(out)
+    store.put("k", {"status": "ok", "metrics": {}})
+    store.close()
+    res = cli("study", "paper-l36", "--out", str(out), "--no-progress")
+    assert res.code == 2 and res.err.count("\n") == 1, res.err
+    assert "holds the runs of study 'paper-l36' with the explicit integration scheme " \
+        "(step 5e-06 s), not implicit-bearings; resume it with --scheme explicit" in res.err
+    assert (out / "study.json").read_text() == stored            # untouched, nothing run
+    assert not (out / "results.csv").exists()
 
 
 def test_scheme_belongs_to_the_dynamic_engine():

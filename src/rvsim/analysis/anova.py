@@ -2,8 +2,8 @@
 
 The model is y = mean + sum of factor main effects (categorical).  Sums of squares are
 Minitab's "Adj SS" (for a balanced orthogonal array they equal the sequential ones).
-statsmodels fits the models; factor columns are renamed before the formula is built because
-patsy reserves C, I and Q.
+statsmodels fits the models on patsy's design matrix; factor columns are renamed before the
+formula is built because patsy reserves C, I and Q.
 """
 
 from __future__ import annotations
@@ -63,7 +63,8 @@ def anova(table: pd.DataFrame, response: str = "te_arcmin", factors=None, *,
     largest response, per run) count as zero, so a constant response, or an exact fit, never
     yields an F value made of round-off.
     """
-    import statsmodels.formula.api as smf
+    import patsy
+    from statsmodels.regression.linear_model import OLS
 
     factors = factor_columns(table, response, factors)
     unknown = [p for p in pool if p not in factors]
@@ -75,9 +76,15 @@ def anova(table: pd.DataFrame, response: str = "te_arcmin", factors=None, *,
     frame = pd.DataFrame({alias[f]: data[f] for f in kept})
     frame["y"] = data[response].to_numpy()
 
+    # the full model's design matrix (intercept, treatment-coded levels); a model without
+    # some factors is the same matrix without their columns, so patsy builds it once
+    design = patsy.dmatrix(" + ".join(f"C({alias[f]})" for f in kept) or "1", frame)
+    columns = design.design_info.term_name_slices
+
     def residual(terms: list[str]) -> tuple[float, float]:
-        rhs = " + ".join(f"C({alias[f]})" for f in terms) or "1"
-        fit = smf.ols(f"y ~ {rhs}", data=frame).fit()
+        names = ["Intercept"] + [f"C({alias[f]})" for f in terms]
+        fit = OLS(frame["y"].to_numpy(), np.column_stack(
+            [np.asarray(design)[:, columns[n]] for n in names])).fit()
         return float(fit.ssr), float(fit.df_resid)
 
     y = frame["y"].to_numpy()

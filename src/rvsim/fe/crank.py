@@ -38,7 +38,8 @@ from . import cache
 from .elasticity import Factor
 from .mesh import check_element_size, drop_unused_nodes, gmsh_elements, gmsh_model
 
-__all__ = ["CRANK_ELEMENT_SIZE", "crank_geometry", "crank_table", "shaft_compliance"]
+__all__ = ["CRANK_ELEMENT_SIZE", "check_crank_element_size", "crank_geometry", "crank_table",
+           "shaft_compliance"]
 
 #: bump when the discretisation changes (part of every cache key)
 CRANK_FE_VERSION = 1
@@ -215,11 +216,17 @@ def shaft_compliance(g: dict) -> tuple[np.ndarray, int, int]:
     return 0.5 * (c + c.T), int(basis.N), int(tets.shape[1])
 
 
+def check_crank_element_size(reducer: Reducer, size: float) -> None:
+    """Refuse a crank element ``size`` [m] outside the admissible range
+    (:func:`rvsim.fe.mesh.check_element_size`)."""
+    check_element_size("flexibility.fe_crank_element_size", size, "journal radius",
+                       reducer.crank.journal_radius, CRANK_FINEST, CRANK_COARSEST)
+
+
 def crank_table(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE
                 ) -> cache.CondensedTable:
     """The crank's compliance table with elements of ``size`` [m] (from the cache when
     there)."""
-    check_element_size("flexibility.fe_crank_element_size", size, "journal radius",
-                       reducer.crank.journal_radius, CRANK_FINEST, CRANK_COARSEST)
+    check_crank_element_size(reducer, size)
     g = crank_geometry(reducer, size)
     return cache.condensed_table("crankshaft", g, lambda: shaft_compliance(g))
