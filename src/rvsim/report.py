@@ -242,10 +242,12 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
     if definition.get("fixed"):
         body.append("<p class='note'>Fixed for every run: " + html.escape(", ".join(
             f"{k} = {v}" for k, v in definition["fixed"])) + "</p>")
-    if definition.get("scheme"):        # issue 14: only a scheme other than the default
+    if definition.get("engine", "dynamic") == "dynamic" and definition.get("time_step"):
+        # issue 14: every dynamic study names its scheme (study.json omits the explicit one)
+        scheme = definition.get("scheme", "explicit")
         body.append("<p class='note'>Integration scheme: " + html.escape(
-            f"{definition['scheme']}, step {definition['time_step']:g} s") + _SCHEME_NOTES.get(
-                definition["scheme"], "") + "</p>")
+            f"{scheme}, step {definition['time_step']:g} s") + _SCHEME_NOTES.get(scheme, "")
+            + "</p>")
 
     histories = {}
     if (folder / "results.sqlite").is_file():   # opening a missing store would create one

@@ -40,6 +40,8 @@ def test_study_cli_writes_outputs_and_rerun_skips(tmp_path, small_study, cli):
     assert list(table["run"]) == [1, 2, 3, 4]
     assert {"H", "I", "E", "te_mean_arcmin", "te_pp_arcmin", "speed_ratio", "status"} <= set(
         table.columns)
+    # the report names the scheme of every dynamic study, the default one too
+    assert "Integration scheme: explicit, step 5e-06 s" in (out / "report.html").read_text()
     first = _stored(out)
     res = cli("study", str(small_study), "--out", str(out), "--no-report")
     assert res.code == 0
@@ -216,13 +218,40 @@ def test_study_with_the_implicit_bearings_scheme(tmp_path, cli):
     assert res.code == 2 and res.err.count("\n") == 1
     assert "with the implicit-bearings integration scheme (step 2e-05 s), not explicit" \
         in res.err and "resume it with --scheme implicit-bearings" in res.err
+    # ... but only where that option resumes it: with another step as well, the folder holds
+    # a different definition, and the refusal says so
+    (tmp_path / "stepped").mkdir()
+    stepped = write_study(tmp_path / "stepped", extra="time_step = 1e-5")
+    res = cli("study", str(stepped), "--out", str(out), "--no-report", "--no-progress",
+              "--scheme", "explicit")
+    assert res.code == 2 and res.err.count("\n") == 1
+    assert "study.json differs" in res.err and "--scheme" not in res.err
+
+
+@pytest.mark.parametrize("stored", ["{corrupt", "", "null", "42", "[1, 2]", '"text"'])
+def test_a_folder_whose_study_json_is_damaged_is_one_line(tmp_path, small_study, cli, stored):
+    """A folder with results but a study.json that is not a study's definition is refused
+    with one line (a review found that the scheme's message raised AttributeError on it)."""
+    from rvsim.doe.store import ResultStore
+
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "study.json").write_text(stored)
+    store = ResultStore(out)
+    store.put("k", {"status": "ok", "metrics": {}})
+    store.close()
+    res = cli("study", str(small_study), "--out", str(out), "--no-progress")
+    assert res.code == 2 and res.err.count("\n") == 1, res.err
+    assert "holds the results of another study" in res.err
+    assert (out / "study.json").read_text() == stored
 
 
 def test_paper_l36_runs_implicit_bearings_and_an_explicit_folder_says_how_to_resume(
         tmp_path, cli):
     """The paper's study runs implicit-bearings (docs/decisions.md); a folder of its runs
-    made with the explicit scheme (every paper-l36 folder before 2026-11-26) is refused
-    before anything runs, naming the option that resumes it."""
+    made with the explicit scheme (a paper-l36 folder from before 2026-11-26, unless run with
+    --scheme implicit-bearings) is refused before anything runs, naming the option that
+    resumes it."""
     import dataclasses
 
     from rvsim.doe import paper_l36
@@ -242,7 +271,8 @@ def test_paper_l36_runs_implicit_bearings_and_an_explicit_folder_says_how_to_res
     res = cli("study", "paper-l36", "--out", str(out), "--no-progress")
     assert res.code == 2 and res.err.count("\n") == 1, res.err
     assert "holds the runs of study 'paper-l36' with the explicit integration scheme " \
-        "(step 5e-06 s), not implicit-bearings; resume it with --scheme explicit" in res.err
+        "(step 5e-06 s), not implicit-bearings; resume it with --scheme explicit " \
+        "(Python: scheme=\"explicit\"), or give a new --out folder" in res.err
     assert (out / "study.json").read_text() == stored            # untouched, nothing run
     assert not (out / "results.csv").exists()
 

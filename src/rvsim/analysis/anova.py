@@ -83,8 +83,9 @@ def anova(table: pd.DataFrame, response: str = "te_arcmin", factors=None, *,
 
     def residual(terms: list[str]) -> tuple[float, float]:
         names = ["Intercept"] + [f"C({alias[f]})" for f in terms]
-        fit = OLS(frame["y"].to_numpy(), np.column_stack(
-            [np.asarray(design)[:, columns[n]] for n in names])).fit()
+        # Fortran order, as patsy's own matrices: the same sums as the formula fits, to the bit
+        fit = OLS(frame["y"].to_numpy(), np.asfortranarray(np.column_stack(
+            [np.asarray(design)[:, columns[n]] for n in names]))).fit()
         return float(fit.ssr), float(fit.df_resid)
 
     y = frame["y"].to_numpy()

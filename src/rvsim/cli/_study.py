@@ -175,8 +175,8 @@ def register(sub) -> None:
                    help="significance level (default 0.1)")
     p.add_argument("--scheme", choices=("explicit", "implicit-bearings"),
                    help="integration scheme of the dynamic runs (default: the study's; "
-                   "paper-l36: implicit-bearings, about 40 %% of the explicit scheme's CPU "
-                   "time, mean TE within 7.2e-5; a study file: explicit unless it names one; "
+                   "paper-l36: implicit-bearings, about half the explicit scheme's time, "
+                   "mean TE within 7.2e-5 relative; a study file: explicit unless it names one; "
                    "docs/model.md section 9)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-report", action="store_true", help="skip report.html")

@@ -65,8 +65,13 @@ def held_lock_fds() -> list[int]:
     return [fd for fd, _ in _HELD.values()]
 
 
-def check_same_study(folder: Path, definition: dict, has_results: bool) -> None:
-    """Refuse a folder whose stored results belong to a study other than ``definition``."""
+def check_same_study(folder: Path, definition: dict, has_results: bool,
+                     other_schemes: dict[str, dict] | None = None) -> None:
+    """Refuse a folder whose stored results belong to a study other than ``definition``.
+
+    ``other_schemes``: the definitions the same study has with each other integration scheme
+    (scheme -> definition); a folder holding one of them is refused with the option that
+    resumes it."""
     path = folder / "study.json"
     if not has_results or not path.exists():
         return
@@ -77,22 +82,18 @@ def check_same_study(folder: Path, definition: dict, has_results: bool) -> None:
     wanted = json.loads(json.dumps(definition, default=str))
     if stored != wanted:
         name = stored.get("name") if isinstance(stored, dict) else None
-        had, want = (d.get("scheme", "explicit") if isinstance(d, dict) else None
-                     for d in (stored, wanted))
-        if had != want and _without_scheme(stored) == _without_scheme(wanted):
-            # e.g. a paper-l36 folder of the explicit scheme, from before the study's scheme
-            # became implicit-bearings: say how to resume it
-            raise InputFileError(f"{folder}: holds the runs of study '{name}' with the {had} "
-                                 f"integration scheme (step {stored.get('time_step')} s), not "
-                                 f"{want}; resume it with --scheme {had}, or give a new --out "
-                                 "folder")
+        for scheme, other in (other_schemes or {}).items():
+            if stored == json.loads(json.dumps(other, default=str)):
+                # e.g. a paper-l36 folder of the explicit scheme, from before the study's
+                # scheme became implicit-bearings: say how to resume it
+                raise InputFileError(
+                    f"{folder}: holds the runs of study '{name}' with the {scheme} integration "
+                    f"scheme (step {stored.get('time_step')} s), not "
+                    f"{definition.get('scheme', 'explicit')}; resume it with --scheme {scheme} "
+                    f"(Python: scheme=\"{scheme}\"), or give a new --out folder")
         which = (f"a different definition of study '{name}' (study.json differs)"
                  if name == definition["name"] else
                  f"study '{name}'" if name else "another study")
         raise InputFileError(f"{folder}: holds the results of {which}, not of this "
                              f"'{definition['name']}'; give a new --out folder")
 
-
-def _without_scheme(definition: dict) -> dict:
-    """A study's definition without its integration scheme (absent: explicit) and step."""
-    return {k: v for k, v in definition.items() if k not in ("scheme", "time_step")}

@@ -12,6 +12,7 @@ finished row.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import json
 import os
 import signal
@@ -22,7 +23,7 @@ from typing import Callable
 import pandas as pd
 
 from .._files import atomic_write_text
-from ..dynamics.model import EXPLICIT
+from ..dynamics.model import EXPLICIT, SCHEMES
 from ..dynamics.simulate import default_time_step
 from ..errors import InputFileError, ParameterError
 from ..parameters import Reducer
@@ -165,7 +166,7 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
         store = ResultStore(folder)
         try:
             done = store.finished()
-            check_same_study(folder, definition, bool(done))
+            check_same_study(folder, definition, bool(done), _other_schemes(study, reducers[0]))
             atomic_write_text(folder / "study.json", json.dumps(definition, indent=2,
                                                                 default=str))
             # a run whose worker died (killed from outside, out of memory) is a fault of the
@@ -257,6 +258,19 @@ def _dask_outcome(future, key: str) -> tuple[str, dict]:
         reason = str(exc).splitlines()[0] if str(exc) else name
         return key, {"status": status, "metrics": {},
                      "error": f"Dask {name}: {reason}"[:500]}
+
+
+def _other_schemes(study: Study, first: Reducer) -> dict[str, dict]:
+    """The definitions ``study`` has with each other integration scheme (its own step, or the
+    other scheme's default), for the refusal of a folder that holds one of them."""
+    if study.engine != "dynamic":
+        return {}
+    out = {}
+    for scheme in SCHEMES:
+        if scheme != study.scheme:
+            other = dataclasses.replace(study, scheme=scheme)
+            out[scheme] = _definition(other, other.time_step or default_time_step(scheme), first)
+    return out
 
 
 def _definition(study: Study, time_step: float, first: Reducer) -> dict:
