@@ -23,7 +23,7 @@ from .errors import InputFileError
 __all__ = ["write_study_report", "write_run_report", "write_ltca_report",
            "write_hysteresis_report"]
 
-#: what a reader of a study's answers should know of a scheme other than the default
+#: what a reader of a study's answers should know of a scheme other than the explicit one
 #: (measured on the paper's 36 runs, docs/benchmarks.md, issue 14)
 _SCHEME_NOTES = {"implicit-bearings": (
     ". Its mean TE is within 1e-4 of the explicit scheme's (7.2e-5 over the paper's 36 "

@@ -96,4 +96,3 @@ def check_same_study(folder: Path, definition: dict, has_results: bool,
                  f"study '{name}'" if name else "another study")
         raise InputFileError(f"{folder}: holds the results of {which}, not of this "
                              f"'{definition['name']}'; give a new --out folder")
-
