@@ -75,7 +75,7 @@ def register(sub) -> None:
                    "implicit-bearings)")
     p.add_argument("--scheme", choices=("explicit", "implicit-bearings"), default="explicit",
                    help="integration scheme: explicit (default), or implicit-bearings: the "
-                   "bearings' stiffness taken implicitly, a 4x larger step, about 40 % of the "
+                   "bearings' stiffness taken implicitly, a 4x larger step, about 40 %% of the "
                    "CPU time (closed-form bodies only; docs/model.md section 9)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_simulate)
