@@ -79,6 +79,10 @@ CLI_ROWS = {
     "study file is a folder": (["study", "{folder}.toml", "--out", "out"], "is a folder"),
     "study file is binary": (["study", "{binary}", "--out", "out"], "not a text file"),
     "simulate --save FOLDER": (["simulate", "--save", "{folder}.npz"], "--save"),
+    # a hostile test's 100 000 modes crashed the eigensolver after meshing the disc
+    "simulate fe_modes 100000": (["simulate", "--set", "flexibility.model=fe", "--set",
+                                  "flexibility.fe_modes=100000", "--save", "m.npz"],
+                                 "'flexibility.fe_modes': must not exceed 100 (got 100000)"),
     "simulate --report no folder": (["simulate", "--report", "nowhere/r.html"], "--report"),
     "profile --out FOLDER": (["profile", "--out", "{folder}"], "--out"),
     "profile --out ''": (["profile", "--out", ""], "--out"),

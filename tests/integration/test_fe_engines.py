@@ -137,6 +137,29 @@ def test_element_sizes_out_of_range_are_refused_before_meshing(cli, tmp_path, se
     assert not any(tmp_path.rglob("*.npz"))        # the private cache: nothing was meshed
 
 
+def test_a_study_level_or_a_set_value_of_an_inadmissible_size_is_refused_at_once(cli, tmp_path):
+    """The sizes are part of the parameters' validation: a study refuses the run whose level
+    is inadmissible before anything runs, and `rvsim params` does not print such a set (a
+    hostile test found the study meshing, then storing the runs as failed)."""
+    study = tmp_path / "fe_sizes.toml"
+    study.write_text('name = "sizes"\ndesign = "L4"\nengine = "quasi-static"\n[set]\n'
+                     '"flexibility.model" = "fe"\n"flexibility.cycloid_disc" = true\n'
+                     '[factors.H]\nparameter = "H"\nlevels = [0.0, 0.01]\n'
+                     '[factors.S]\nparameter = "flexibility.fe_element_size"\n'
+                     'levels = [1.6, 50]\n')
+    res = cli("study", str(study), "--out", str(tmp_path / "out"), "--no-progress")
+    assert res.code == 2 and res.err.count("\n") == 1, res.err
+    assert "'flexibility.fe_element_size': must lie between 0.375 and 12 mm" in res.err
+    assert "(study run 2)" in res.err
+    assert not (tmp_path / "out").exists() and not any(tmp_path.rglob("*.npz"))
+    res = cli("params", "--toml", "--set", "flexibility.model=fe", "--set",
+              "flexibility.fe_element_size=50")
+    assert res.code == 2 and res.out == "" and "flexibility.fe_element_size" in res.err
+    # a size the model does not mesh stays free
+    res = cli("params", "--toml", "--set", "flexibility.fe_element_size=50")
+    assert res.code == 0, res.err
+
+
 def test_the_fe_crank_refuses_needle_bearings(cli):
     result = cli("ltca", "--params", "RV-40E-bearings", "--set", "flexibility.model=fe")
     assert result.code == 2

@@ -14,6 +14,7 @@ import numpy as np
 from ..geometry.cycloid import profile_offset
 from ..geometry.deviations import bore_offsets, eccentric_errors, hole_offsets, pin_table
 from ..geometry.involute import gear_geometry
+from ..fe.sizes import check_element_sizes
 from ..friction import fill_constants as fill_friction_constants
 from ..parameters import Reducer
 from . import _layout as L
@@ -265,7 +266,7 @@ def build_model(r: Reducer, time_step: float, scheme: str = EXPLICIT) -> KernelM
     pin_load = disc_torque / (2.0 * c.eccentricity * c.disc_teeth)
     root_radius = c.pin_circle_radius - c.pin_radius - c.eccentricity
     body = 0.0
-    _check_fe_element_sizes(r)      # before the first mesh: a bad size costs no meshing
+    check_element_sizes(r)          # before the first mesh (validate has, unless bypassed)
     fe_disc = r.flexibility.cycloid_disc and r.flexibility.model == "fe"
     if r.flexibility.cycloid_disc and not fe_disc:
         body += tooth_compliance(2.0 * c.eccentricity, 2.0 * math.pi * root_radius / c.disc_teeth,
@@ -402,24 +403,6 @@ def _fe_plate_constants(r: Reducer, P: np.ndarray) -> None:
                              "support bushings only so far, not bearings.support_rollers "
                              "(set flexibility.fe_carrier = false)")
     P[L.FE_PLATE_XX1:L.FE_PLATE_XX1 + 10] = pack_table(carrier_table(r).compliance)
-
-
-def _check_fe_element_sizes(r: Reducer) -> None:
-    """Refuse an inadmissible element size of any finite-element body the model will mesh
-    (disc, carrier plates, crank), before any of them is meshed: the bodies are built one
-    after the other, and a size checked only when its own body is built came after minutes
-    of meshing the others with an empty cache."""
-    f = r.flexibility
-    if f.model != "fe" or r.layout.single_stage:
-        return
-    if f.cycloid_disc or f.fe_carrier:
-        from ..fe.disc import element_size
-
-        element_size(r)
-    if fe_crank_used(r):
-        from ..fe.crank import check_crank_element_size
-
-        check_crank_element_size(r, f.fe_crank_element_size)
 
 
 def fe_crank_used(r: Reducer) -> bool:

@@ -36,10 +36,10 @@ import scipy.sparse as sp
 from ..parameters import Reducer
 from . import cache
 from .elasticity import Factor
-from .mesh import check_element_size, drop_unused_nodes, gmsh_elements, gmsh_model
+from .mesh import drop_unused_nodes, gmsh_elements, gmsh_model
+from .sizes import check_crank_element_size
 
-__all__ = ["CRANK_ELEMENT_SIZE", "check_crank_element_size", "crank_geometry", "crank_table",
-           "shaft_compliance"]
+__all__ = ["CRANK_ELEMENT_SIZE", "crank_geometry", "crank_table", "shaft_compliance"]
 
 #: bump when the discretisation changes (part of every cache key)
 CRANK_FE_VERSION = 1
@@ -49,9 +49,6 @@ CRANK_FE_VERSION = 1
 #: triangles (RV-40E: 30 500 dofs, 16 s CPU at 3 mm; 80 000 dofs, 95 s at 2 mm)
 CRANK_ELEMENT_SIZE = 3e-3
 
-#: admissible crank element sizes, in journal radii (RV-40E: 1.25-10 mm; 1.25 mm is about
-#: 400 000 dofs, 10 mm two elements across the journal)
-CRANK_FINEST, CRANK_COARSEST = 0.125, 1.0
 
 
 def crank_geometry(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE) -> dict:
@@ -214,13 +211,6 @@ def shaft_compliance(g: dict) -> tuple[np.ndarray, int, int]:
     u = factor.solve(loads[factor.free])
     c = loads[factor.free].T @ u
     return 0.5 * (c + c.T), int(basis.N), int(tets.shape[1])
-
-
-def check_crank_element_size(reducer: Reducer, size: float) -> None:
-    """Refuse a crank element ``size`` [m] outside the admissible range
-    (:func:`rvsim.fe.mesh.check_element_size`)."""
-    check_element_size("flexibility.fe_crank_element_size", size, "journal radius",
-                       reducer.crank.journal_radius, CRANK_FINEST, CRANK_COARSEST)
 
 
 def crank_table(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE

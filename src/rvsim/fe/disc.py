@@ -24,16 +24,14 @@ from ..errors import ParameterError
 from ..parameters import Reducer
 from . import cache
 from .elasticity import PlaneStressBody, edge_load
-from .mesh import Circle, check_element_size, disc_outline, mesh_plane_region
+from .mesh import Circle, disc_outline, mesh_plane_region
+from .sizes import disc_element_size
 
 __all__ = ["DiscTable", "disc_body", "disc_geometry", "disc_table", "disc_tables", "FE_VERSION"]
 
 #: bump when the discretisation changes (part of every cache key)
 FE_VERSION = 1
 
-#: admissible element sizes of the disc and the plates, in eccentricities (RV-40E: 0.375 mm,
-#: about 750 000 dofs, to 12 mm, four elements over a tooth pitch)
-DISC_FINEST, DISC_COARSEST = 0.25, 8.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -50,12 +48,8 @@ class DiscTable:
 
 def element_size(reducer: Reducer) -> float:
     """``flexibility.fe_element_size`` [m] of the disc and the plates, checked against the
-    admissible range (:func:`rvsim.fe.mesh.check_element_size`)."""
-    size = reducer.flexibility.fe_element_size
-    check_element_size("flexibility.fe_element_size", size,
-                       "eccentricity (half the tooth height)", reducer.cycloid.eccentricity,
-                       DISC_FINEST, DISC_COARSEST)
-    return size
+    admissible range (:mod:`rvsim.fe.sizes`)."""
+    return disc_element_size(reducer)
 
 
 def disc_geometry(reducer: Reducer, disc: int = 0) -> dict:

@@ -20,23 +20,10 @@ import math
 import numpy as np
 
 from ..geometry._curve import profile_points
+from .sizes import check_element_size  # noqa: F401 - also this module's name for it
 
 __all__ = ["Circle", "PlaneMesh", "check_element_size", "mesh_plane_region", "disc_outline", "gmsh_model",
            "gmsh_elements", "drop_unused_nodes"]
-
-
-def check_element_size(field: str, size: float, feature: str, length: float,
-                       finest: float, coarsest: float) -> None:
-    """Refuse an element ``size`` [m] outside ``finest``..``coarsest`` times the body's
-    characteristic ``length`` [m] (named ``feature``): a finer mesh takes hours and gigabytes
-    to condense, a coarser one cannot follow the body's curves (docs/decisions.md)."""
-    from ..errors import ParameterError
-
-    if not finest * length <= size <= coarsest * length:
-        raise ParameterError(field, f"must lie between {finest * length * 1e3:.3g} and "
-                                    f"{coarsest * length * 1e3:.3g} mm ({finest:g} to "
-                                    f"{coarsest:g} times the {feature}, "
-                                    f"{length * 1e3:.3g} mm) (got {size * 1e3:.3g} mm)")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -199,8 +199,9 @@ def validate(reducer: Reducer) -> Reducer:
                                      f"must be at least {spec.minimum / unit:g} (got "
                                      f"{value / unit:g})")
         if spec.maximum is not None and value > spec.maximum:
-            raise ParameterError(spec.name, f"must not exceed {spec.maximum / unit:g} "
-                                 f"{spec.unit} (got {value / unit:g})")
+            shown = "" if spec.unit in ("-", "count") else f" {spec.unit}"
+            raise ParameterError(spec.name, f"must not exceed {spec.maximum / unit:g}{shown} "
+                                 f"(got {value / unit:g})")
     _check_consistency(reducer)
     return reducer
 
@@ -236,6 +237,9 @@ def _check_consistency(r: Reducer) -> None:
     else:
         _check_rv_layout(r, hole, root)
     _check_clearances(r)
+    from ..fe.sizes import check_element_sizes
+
+    check_element_sizes(r)   # the meshes' sizes: refused here, not after another body's mesh
     from ..geometry.assembly import check_assembly
 
     check_assembly(r)  # every pin, bushing and mesh at the pose the dynamic model starts from

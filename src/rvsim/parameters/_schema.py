@@ -25,11 +25,11 @@ def quantity(default: float, unit: str, doc: str, *, minimum: float | None = 0.0
         "positive": positive, "maximum": maximum})
 
 
-def count(default: int, doc: str, *, minimum: int = 1) -> Any:
+def count(default: int, doc: str, *, minimum: int = 1, maximum: int | None = None) -> Any:
     """A whole-number field (tooth counts, numbers of parts)."""
     return dataclasses.field(default=default, metadata={
         "kind": "int", "unit": "count", "doc": doc, "minimum": minimum,
-        "positive": False, "maximum": None})
+        "positive": False, "maximum": maximum})
 
 
 def flag(default: bool, doc: str) -> Any:

@@ -205,7 +205,7 @@ class Flexibility:
     fe_modes: int = count(0, "modes of the finite-element disc (held at its crank holes) "
                           "that the dynamic engine integrates; 0: massless condensed disc "
                           "(the quasi-static engine is static: modes do not change it)",
-                          minimum=0)
+                          minimum=0, maximum=100)
     fe_disc_holes: bool = flag(False, "with model = fe and A: the disc's two crank holes are "
                                "load points of its finite-element table (the arm bushings "
                                "stretch the web between them) instead of held edges: the "
