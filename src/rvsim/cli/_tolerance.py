@@ -134,7 +134,7 @@ def register(sub) -> None:
     _common(p)
     p.add_argument("--sobol", type=_whole, metavar="BASE", default=0,
                    help="also compute Sobol indices from BASE x (2 x errors + 2) reducers "
-                        "(BASE a power of 2)")
+                        "(BASE a power of 2; 0, the default: no Sobol indices)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-report", action="store_true", help="skip report.html")
     p.set_defaults(func=_tolerance)
