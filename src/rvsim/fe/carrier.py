@@ -36,7 +36,7 @@ CARRIER_FE_VERSION = 1
 def carrier_geometry(reducer: Reducer, thickness: float | None = None) -> dict:
     """Everything the carrier's mesh depends on, in SI (the cache key's input)."""
     from ..geometry.involute import gear_geometry
-    from .disc import element_size
+    from .sizes import disc_element_size
 
     c, k, m = reducer.cycloid, reducer.crank, reducer.materials.carrier
     return {"radius": c.carrier_radius, "bore": c.disc_bore_radius,
@@ -44,7 +44,7 @@ def carrier_geometry(reducer: Reducer, thickness: float | None = None) -> dict:
             "crank_bore": k.journal_radius + k.arm_bushing_thickness,
             "thickness": c.carrier_thickness / 2 if thickness is None else thickness,
             "E": m.elastic_modulus, "nu": m.poisson_ratio,
-            "size": element_size(reducer), "version": CARRIER_FE_VERSION}
+            "size": disc_element_size(reducer), "version": CARRIER_FE_VERSION}
 
 
 def plate_compliance(g: dict) -> tuple[np.ndarray, int, int]:

@@ -50,7 +50,6 @@ CRANK_FE_VERSION = 1
 CRANK_ELEMENT_SIZE = 3e-3
 
 
-
 def crank_geometry(reducer: Reducer, size: float = CRANK_ELEMENT_SIZE) -> dict:
     """Everything the crank's mesh depends on, in SI (the cache key's input); ``size`` the
     element size [m]."""

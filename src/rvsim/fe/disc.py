@@ -33,7 +33,6 @@ __all__ = ["DiscTable", "disc_body", "disc_geometry", "disc_table", "disc_tables
 FE_VERSION = 1
 
 
-
 @dataclasses.dataclass(frozen=True)
 class DiscTable:
     """Condensed compliance of one disc between its ``segments`` contact segments."""
@@ -44,12 +43,6 @@ class DiscTable:
     n_triangles: int
     seconds: float              # meshing + condensation time (0 when loaded from the cache)
     cached: bool
-
-
-def element_size(reducer: Reducer) -> float:
-    """``flexibility.fe_element_size`` [m] of the disc and the plates, checked against the
-    admissible range (:mod:`rvsim.fe.sizes`)."""
-    return disc_element_size(reducer)
 
 
 def disc_geometry(reducer: Reducer, disc: int = 0) -> dict:
@@ -77,7 +70,7 @@ def disc_geometry(reducer: Reducer, disc: int = 0) -> dict:
     return {"rg": prof.generating_radius, "a": prof.eccentricity, "zp": prof.pin_count,
             "offset": prof.offset, "crank_holes": crank_holes, "pillars": pillars,
             "bore": c.disc_bore_radius, "E": m.elastic_modulus, "nu": m.poisson_ratio,
-            "width": c.disc_width, "size": element_size(reducer),
+            "width": c.disc_width, "size": disc_element_size(reducer),
             "segments": c.disc_teeth * f.fe_segments_per_tooth, "version": FE_VERSION}
 
 

@@ -20,9 +20,8 @@ import math
 import numpy as np
 
 from ..geometry._curve import profile_points
-from .sizes import check_element_size  # noqa: F401 - also this module's name for it
 
-__all__ = ["Circle", "PlaneMesh", "check_element_size", "mesh_plane_region", "disc_outline", "gmsh_model",
+__all__ = ["Circle", "PlaneMesh", "mesh_plane_region", "disc_outline", "gmsh_model",
            "gmsh_elements", "drop_unused_nodes"]
 
 
