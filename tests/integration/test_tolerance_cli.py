@@ -161,6 +161,43 @@ def test_every_reducer_binding_is_reported_without_warnings(tmp_path, small, cli
     assert summary["binds"] == 2 and summary["binding_share"] == 1.0
 
 
+INVALID = """name = "invalid"
+samples = 3
+seed = 4
+positions = 12
+[tolerances."materials.pin.poisson_ratio"]
+tolerance = 5
+distribution = "uniform"
+"""
+
+
+def test_every_reducer_failing_is_an_error_naming_the_reason(tmp_path, cli):
+    """Seed 4 draws Poisson ratios 4.67, 5.04 and 1.36 (over 0.5): no reducer is a result."""
+    path = _bad(tmp_path, INVALID)
+    out = tmp_path / "o"
+    res = cli("tolerance", path, "--out", str(out), "--workers", "1")
+    assert res.code == 1 and res.out == "" and res.err.count("\n") == 1, res.err
+    assert res.err.startswith("rvsim: error: tolerance: all 3 reducers failed: 3 invalid "
+                              "(sample 0, invalid: parameter 'materials.pin.poisson_ratio': "
+                              "must not exceed 0.5 (got 4.67056))"), res.err
+    rows = (out / "results.csv").read_text().splitlines()
+    assert rows[0].split(",")[-2:] == ["error", "key"]
+    assert "must not exceed 0.5 (got 5.03818)" in rows[2]
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["binding_share"] is None
+    assert summary["failures"]["invalid"]["count"] == 3
+    assert "n/a" in (out / "report.html").read_text()
+
+
+def test_some_reducers_failing_are_counted_with_a_note(tmp_path, cli):
+    path = _bad(tmp_path, INVALID)
+    res = cli("tolerance", path, "--out", str(tmp_path / "o"), "--workers", "1",
+              "--samples", "8")
+    assert res.code == 0, res.err
+    assert "8 reducers, 3 analysed, 0 bind on assembly (0.00 %), 5 failed" in res.out
+    assert res.err.startswith("rvsim: note: failed reducers: 5 invalid (sample 0, ")
+
+
 def test_single_stage_tolerance_study(tmp_path):
     import dataclasses
 

@@ -37,6 +37,7 @@ def run_tolerance_command(study, args) -> int:
     """Shared by ``rvsim tolerance`` and ``rvsim study`` given a tolerance study."""
     from ..doe.runner import StudyTerminated
     from ..tolerance.analysis import tolerance_analysis
+    from ..tolerance.montecarlo import failure_line, share_text
 
     check_output_folder(args.out, "--out")
     folder = Path(args.out)
@@ -54,13 +55,22 @@ def run_tolerance_command(study, args) -> int:
     except KeyboardInterrupt:
         print(f"rvsim: interrupted; finished reducers are kept in {folder}", file=sys.stderr)
         return 130
+    failed = failure_line(summary)
+    if summary["samples"] and summary["failed"] == summary["samples"]:
+        # nothing assembled, bound or solved: a failure of the study, not a result
+        print(f"rvsim: error: tolerance: all {summary['samples']} reducers failed: {failed}; "
+              f"their rows are in {folder}/results.csv", file=sys.stderr)
+        return 1
     if args.json:
         print_json({"folder": str(folder), **{k: v for k, v in summary.items()
                                               if k != "tolerances"}})
         return 0
     print(f"{study.name}: {summary['samples']} reducers, {summary['ok']} analysed, "
-          f"{summary['binds']} bind on assembly ({100 * (summary['binding_share'] or 0):.2f} "
-          f"%), {summary['failed']} failed -> {folder}/summary.json, results.csv, report.html")
+          f"{summary['binds']} bind on assembly ({share_text(summary['binding_share'])}), "
+          f"{summary['failed']} failed -> {folder}/summary.json, results.csv, report.html")
+    if failed:
+        print(f"rvsim: note: failed reducers: {failed} (each one's reason: results.csv)",
+              file=sys.stderr)
     for name, m in summary["metrics"].items():
         if m["n"]:
             print(f"  {name}: mean {m['mean']:.4g}, p5 {m['p5']:.4g}, p50 {m['p50']:.4g}, "

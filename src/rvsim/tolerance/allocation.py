@@ -149,7 +149,7 @@ def _evaluate(study, store, folder, samples, tolerances, targets, workers, sched
     keys = run_samples(study, folder, {"allocation": (samples, lambda: monte_carlo_units(
         study, samples))}, workers=workers, scheduler=scheduler, tolerances=rounded,
         store=store)["allocation"]
-    status, values = collect(store, keys, {t.metric for t in targets if t.metric != BINDING})
+    status, values, _ = collect(store, keys, {t.metric for t in targets if t.metric != BINDING})
     binds = int(np.sum(status == "binds"))
     share = binds / max(1, int(np.sum((status == "ok") | (status == "binds"))))
     achieved = {}

@@ -52,14 +52,15 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
                                                                 default=str))
             keys = run_samples(study, folder, designs, workers=workers, scheduler=scheduler,
                                progress=progress, store=store)
-            status, values = collect(store, keys["monte-carlo"])
+            status, values, errors = collect(store, keys["monte-carlo"])
             summary = {"study": study.name, "reducer": study.base.name,
                        "torque_nm": study.nominal.operating.load_torque,
                        "positions": study.positions, "seed": study.seed,
-                       "tolerances": definition["tolerances"], **summarise(status, values)}
-            write_results_csv(folder / "results.csv", status, values, keys["monte-carlo"])
+                       "tolerances": definition["tolerances"], **summarise(status, values, errors)}
+            write_results_csv(folder / "results.csv", status, values, keys["monte-carlo"],
+                              errors)
             if sobol:
-                s_status, s_values = collect(store, keys["sobol"])
+                s_status, s_values, _ = collect(store, keys["sobol"])
                 summary.update(sobol_indices(study, s_values, s_status))
         finally:
             store.close()

@@ -21,7 +21,8 @@ from ..errors import InputFileError
 from .engine import BINDS, METRICS
 from .spec import ToleranceStudy
 
-__all__ = ["run_samples", "monte_carlo_units", "summarise", "CHUNK", "collect"]
+__all__ = ["run_samples", "monte_carlo_units", "summarise", "CHUNK", "collect", "failures",
+           "failure_line", "first_line", "share_text"]
 
 #: samples realised and dispatched at a time
 CHUNK = 2000
@@ -102,21 +103,31 @@ def run_samples(study: ToleranceStudy, folder: Path, designs: dict[str, tuple[in
 
 
 def collect(store, keys: list[str], metrics: Iterable[str] = tuple(METRICS)):
-    """(status array, {metric: array}) of the samples ``keys`` (NaN where not ok)."""
+    """(status array, {metric: array}, error array) of the samples ``keys``: metrics NaN
+    where not ok; the error is the first line of a sample's reason (None where ok)."""
     names = list(metrics)
     status = np.empty(len(keys), dtype=object)
+    errors = np.full(len(keys), None, dtype=object)
     values = {m: np.full(len(keys), np.nan) for m in names}
     for start in range(0, len(keys), CHUNK):
         part = keys[start:start + CHUNK]
         rows = store.get_many(part)
         for k, key in enumerate(part, start=start):
-            row = rows.get(key, {"status": "missing", "metrics": {}})
+            row = rows.get(key, {"status": "missing", "metrics": {},
+                                 "error": "not in the store"})
             status[k] = row["status"]
             if row["status"] == "ok":
                 for m in names:
                     value = row["metrics"].get(m)
                     values[m][k] = np.nan if value is None else float(value)
-    return status, values
+            else:
+                errors[k] = first_line(row.get("error"))
+    return status, values, errors
+
+
+def first_line(error: str | None, limit: int = 300) -> str:
+    """A stored reason's first line, at most ``limit`` characters ('' for none)."""
+    return (error or "").strip().split("\n", 1)[0][:limit]
 
 
 def _stats(x: np.ndarray) -> dict:
@@ -129,26 +140,60 @@ def _stats(x: np.ndarray) -> dict:
             "p5": float(p5), "p50": float(p50), "p95": float(p95)}
 
 
-def summarise(status: np.ndarray, values: dict) -> dict:
+def summarise(status: np.ndarray, values: dict, errors: np.ndarray | None = None) -> dict:
     """summary.json's statistics: per metric mean, std, p5, p50, p95 over the reducers that
-    assemble and solve; the binding share over those that assemble or bind."""
+    assemble and solve; the binding share over those that assemble or bind (None when none
+    does); with ``errors``, each failure status's count and first sample and reason."""
     ok = int(np.sum(status == "ok"))
     binds = int(np.sum(status == BINDS))
     failed = int(len(status) - ok - binds)
-    share = binds / (ok + binds) if ok + binds else math.nan
+    share = binds / (ok + binds) if ok + binds else None
     out = {"samples": int(len(status)), "ok": ok, "binds": binds, "failed": failed,
            "binding_share": share, "metrics": {}}
     for name, x in values.items():
         out["metrics"][name] = {**_stats(x), "binding_share": share,
                                 "description": METRICS.get(name, ("", ""))[1]}
+    if errors is not None:
+        out["failures"] = failures(status, errors)
     return out
 
 
-def write_results_csv(path: Path, status: np.ndarray, values: dict, keys: list[str]) -> None:
+def failures(status: np.ndarray, errors: np.ndarray) -> dict:
+    """status -> {count, first_sample, reason} of the samples neither ok nor binding."""
+    out: dict[str, dict] = {}
+    for k in np.flatnonzero((status != "ok") & (status != BINDS)):
+        entry = out.setdefault(str(status[k]), {"count": 0, "first_sample": int(k),
+                                                "reason": errors[k] or ""})
+        entry["count"] += 1
+    return out
+
+
+def share_text(share: float | None) -> str:
+    """A binding share as text: 'n/a' when no reducer assembled or bound."""
+    return "n/a" if share is None else f"{100 * share:.2f} %"
+
+
+def failure_line(summary: dict) -> str:
+    """One line naming the failures of a summary and the commonest's first reason ('' if
+    none failed)."""
+    found = summary.get("failures") or {}
+    if not found:
+        return ""
+    parts = ", ".join(f"{v['count']} {k}" for k, v in
+                      sorted(found.items(), key=lambda kv: -kv[1]["count"]))
+    status, top = max(found.items(), key=lambda kv: kv[1]["count"])
+    reason = f": {top['reason']}" if top["reason"] else ""
+    return f"{parts} (sample {top['first_sample']}, {status}{reason})"
+
+
+def write_results_csv(path: Path, status: np.ndarray, values: dict, keys: list[str],
+                      errors: np.ndarray | None = None) -> None:
     import pandas as pd
 
-    frame = pd.DataFrame({"sample": np.arange(len(keys)), "status": status, **values,
-                          "key": [k[:16] for k in keys]})
+    columns = {"sample": np.arange(len(keys)), "status": status, **values}
+    if errors is not None:
+        columns["error"] = errors
+    frame = pd.DataFrame({**columns, "key": [k[:16] for k in keys]})
     # pandas writes the file in chunks: no string of the whole table in memory
     atomic_write(path, lambda tmp: frame.to_csv(tmp, index=False))
 

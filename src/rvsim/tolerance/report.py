@@ -10,6 +10,7 @@ import pandas as pd
 
 from .._files import atomic_write_text
 from .engine import METRICS
+from .montecarlo import failure_line, share_text
 
 __all__ = ["write_tolerance_report", "distribution_figure", "sobol_figure",
            "write_allocation_report"]
@@ -66,7 +67,8 @@ def write_tolerance_report(folder: Path, summary: dict, values: dict, status) ->
             f"<p>{summary['samples']} reducers ({html.escape(summary['reducer'])}) drawn from "
             f"the tolerances (seed {summary['seed']}); {summary['ok']} analysed, "
             f"{summary['binds']} bind on assembly (binding share "
-            f"{100 * (summary['binding_share'] or 0):.2f} %), {summary['failed']} failed. "
+            f"{share_text(summary['binding_share'])}), {summary['failed']} failed"
+            f"{html.escape(': ' + failure_line(summary) if summary['failed'] else '')}. "
             f"Transmission error at {summary['torque_nm']:g} N*m over one output revolution "
             f"({summary['positions']} positions); lost motion and rigidity from the "
             "torque-reversal test (quasi-static engine).</p>",
