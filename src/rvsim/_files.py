@@ -3,12 +3,13 @@ one-line errors."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import tempfile
 from pathlib import Path
-from typing import Callable
+from typing import Callable, Iterator
 
-__all__ = ["atomic_write", "atomic_write_text", "read_toml"]
+__all__ = ["atomic_write", "atomic_write_text", "atomic_outputs", "read_toml"]
 
 
 def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
@@ -29,6 +30,32 @@ def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
         Path(tmp).unlink(missing_ok=True)
         raise
     return path
+
+
+@contextlib.contextmanager
+def atomic_outputs(*paths: str | Path | None) -> Iterator[list[Path | None]]:
+    """Temporary paths beside ``paths`` (None stays None) for a command's several outputs,
+    moved into place together when the block ends without an exception, all removed when it
+    raises: an interrupted command leaves every output as it was, never one of a pair."""
+    temps: list[Path | None] = []
+    try:
+        for path in paths:
+            if path is None:
+                temps.append(None)
+                continue
+            path = Path(path)
+            fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
+                                       suffix=path.suffix)
+            os.close(fd)
+            temps.append(Path(tmp))
+        yield temps
+        for tmp, path in zip(temps, paths):
+            if tmp is not None:
+                os.replace(tmp, path)
+    finally:
+        for tmp in temps:
+            if tmp is not None:
+                tmp.unlink(missing_ok=True)
 
 
 def atomic_write_text(path: str | Path, text: str) -> Path:

@@ -46,15 +46,15 @@ def small_study(tmp_path):
     return write_study(tmp_path)
 
 
-def interrupted(args, delay, cwd):
-    """Start ``python -m rvsim ARGS`` in ``cwd``, send it a real SIGINT after ``delay`` s and
-    return (exit code, stdout, stderr)."""
+def interrupted(args, delay, cwd, sig=signal.SIGINT):
+    """Start ``python -m rvsim ARGS`` in ``cwd``, send it a real ``sig`` (SIGINT) after
+    ``delay`` s and return (exit code, stdout, stderr)."""
     proc = subprocess.Popen([sys.executable, "-m", "rvsim", *args], stdin=subprocess.DEVNULL,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=cwd,
                             env={**os.environ, "PYTHONPATH": SRC})
     try:
         time.sleep(delay)
-        proc.send_signal(signal.SIGINT)
+        proc.send_signal(sig)
         out, err = proc.communicate(timeout=120)
     finally:
         if proc.poll() is None:

@@ -83,6 +83,10 @@ CLI_ROWS = {
     "simulate fe_modes 100000": (["simulate", "--set", "flexibility.model=fe", "--set",
                                   "flexibility.fe_modes=100000", "--save", "m.npz"],
                                  "'flexibility.fe_modes': must not exceed 100 (got 100000)"),
+    "simulate fe_segments_per_tooth 100000": (
+        ["simulate", "--set", "flexibility.model=fe", "--set",
+         "flexibility.fe_segments_per_tooth=100000", "--save", "m.npz"],
+        "'flexibility.fe_segments_per_tooth': must not exceed 64 (got 100000)"),
     "simulate --report no folder": (["simulate", "--report", "nowhere/r.html"], "--report"),
     "profile --out FOLDER": (["profile", "--out", "{folder}"], "--out"),
     "profile --out ''": (["profile", "--out", ""], "--out"),

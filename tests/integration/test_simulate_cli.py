@@ -83,3 +83,18 @@ def test_implicit_bearings_scheme(cli):
 def test_scheme_errors(cli, args, words):
     res = cli("simulate", "--duration", "1.6", *args)
     assert res.code == 2 and words in res.err and res.err.count("\n") == 1
+
+
+def test_an_interrupted_report_leaves_neither_file(tmp_path, cli, monkeypatch):
+    """--save and --report are one output: Ctrl-C or SIGTERM between them (here: in the
+    report) leaves no histories without their report."""
+    import rvsim.report
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(rvsim.report, "write_run_report", interrupted)
+    res = cli("simulate", "--duration", "1.6", "--save", str(tmp_path / "r.npz"),
+              "--report", str(tmp_path / "r.html"))
+    assert res.code == 130 and res.err == "rvsim: interrupted\n"
+    assert list(tmp_path.iterdir()) == []

@@ -78,6 +78,25 @@ def test_condensed_compliance_is_spd_and_reproduces_the_full_model():
     assert np.max(np.abs(c @ f - full)) <= 1e-9 * np.max(np.abs(full))
 
 
+def test_compliance_in_blocks_is_the_whole_solve(monkeypatch):
+    """Solving a few load columns at a time (memory bound) changes the numbers by round-off
+    only (measured 2.6e-16 of the largest; the RV-40E disc's 312 columns in blocks of 128:
+    bit-identical)."""
+    import scipy.sparse as sp
+
+    from rvsim.fe import elasticity
+
+    body, supported, _ = _annulus(6e-3)
+    rng = np.random.default_rng(1)
+    loads = sp.csc_matrix(rng.standard_normal((body.n_dofs, 7))
+                          * (rng.random((body.n_dofs, 7)) < 0.01))
+    whole = np.asarray(loads.T @ body.displacements(loads, supported))
+    whole = 0.5 * (whole + whole.T)
+    monkeypatch.setattr(elasticity, "COMPLIANCE_BLOCK", 3)          # blocks 3 + 3 + 1
+    blocks = body.compliance(loads, supported)
+    assert np.max(np.abs(blocks - whole)) <= 1e-15 * np.max(np.abs(whole))
+
+
 def _coarse(**values):
     base = {"flexibility.fe_element_size": 3.0, "flexibility.fe_segments_per_tooth": 2}
     return with_values(RV40E, {**base, **values})

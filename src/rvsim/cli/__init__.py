@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
+import threading
 
 from .. import __version__
 from ..errors import RvsimError
@@ -37,28 +39,53 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run one command; returns the exit code (0 ok, 1 failed run, 2 user error, 130 Ctrl-C)."""
+    """Run one command; returns the exit code (0 ok, 1 failed run, 2 user error, 130 Ctrl-C,
+    143 SIGTERM or SIGHUP)."""
     return _main(argv)[0]
+
+
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM or SIGHUP in a command that starts no processes: unwinds like Ctrl-C, so its
+    temporary files are removed (the study commands handle these signals themselves)."""
+
+
+def _terminate(signum, frame):
+    raise _Terminated(signal.Signals(signum).name)
+
+
+#: commands with worker processes and their own handling of SIGTERM and SIGHUP
+_STARTS_PROCESSES = frozenset({"study", "tolerance", "allocate"})
 
 
 def _main(argv: list[str] | None) -> tuple[int, str | None]:
     parser = build_parser()
     command = None
+    previous = {}
     try:
         args = parser.parse_args(argv)
         command = getattr(args, "command", None)
         if not getattr(args, "func", None):
             parser.print_help()
             return 2, command
+        if command not in _STARTS_PROCESSES and \
+                threading.current_thread() is threading.main_thread():
+            previous = {name: signal.signal(getattr(signal, name), _terminate)
+                        for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)}
         return int(args.func(args) or 0), command
     except RvsimError as exc:
         print(f"rvsim: error: {exc}", file=sys.stderr)
         return 2, command
+    except _Terminated as exc:
+        print(f"rvsim: terminated ({exc})", file=sys.stderr)
+        return 143, command
     except KeyboardInterrupt:
         print("rvsim: interrupted", file=sys.stderr)
         return 130, command
     except BrokenPipeError:
         return 0, command
+    finally:
+        for name, handler in previous.items():
+            signal.signal(getattr(signal, name), handler)
 
 
 # Commands that start no processes of their own.  Once they have returned, every file they
@@ -76,7 +103,7 @@ def run() -> None:
     and numba create functions that way), even though rvsim caught it.
     """
     code, command = _main(sys.argv[1:])
-    if code == 130 or command in _NO_TEARDOWN:
+    if code in (130, 143) or command in _NO_TEARDOWN:
         _flush_and_exit(code)
     sys.exit(code)
 

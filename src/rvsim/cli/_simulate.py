@@ -12,7 +12,6 @@ from ._common import (add_command, add_reducer_options, check_output_file, path_
 __all__ = ["register"]
 
 
-
 def _simulate(args: argparse.Namespace) -> int:
     from ..dynamics import simulate
 
@@ -33,12 +32,15 @@ def _simulate(args: argparse.Namespace) -> int:
             print_json({"status": exc.status, "error": str(exc)})
         print(f"rvsim: simulation failed ({exc.status}): {exc}", file=sys.stderr)
         return 1
-    if args.save:
-        result.save(args.save)
-    if args.report:
-        from ..report import write_run_report
+    from .._files import atomic_outputs
 
-        write_run_report(result, reducer, args.report)
+    with atomic_outputs(args.save, args.report) as (save, report):   # both files or neither
+        if save:
+            result.save(save)
+        if report:
+            from ..report import write_run_report
+
+            write_run_report(result, reducer, report)
     summary = result.summary()
     if args.json:
         print_json(summary)

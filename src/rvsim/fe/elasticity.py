@@ -16,7 +16,10 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["Factor", "PlaneStressBody", "edge_force", "edge_load"]
+__all__ = ["Factor", "PlaneStressBody", "edge_force", "edge_load", "COMPLIANCE_BLOCK"]
+
+#: right-hand sides solved at a time by :meth:`PlaneStressBody.compliance`
+COMPLIANCE_BLOCK = 128
 
 
 class PlaneStressBody:
@@ -92,8 +95,15 @@ class PlaneStressBody:
 
     def compliance(self, loads: np.ndarray, supported: np.ndarray) -> np.ndarray:
         """C = B^T K^-1 B for the columns of ``loads`` (n_dofs, k), ``supported`` dofs held at
-        zero, symmetrised (the asymmetry is round-off)."""
-        c = np.asarray(loads.T @ self.displacements(loads, supported))
+        zero, symmetrised (the asymmetry is round-off).  Solved COMPLIANCE_BLOCK columns at a
+        time: memory of a block of displacements, not of all k."""
+        factor = self.factor(supported)
+        free = loads[factor.free]
+        k = loads.shape[1]
+        c = np.empty((k, k))
+        for start in range(0, k, COMPLIANCE_BLOCK):
+            part = factor.solve(_dense(free[:, start:start + COMPLIANCE_BLOCK]))
+            c[:, start:start + COMPLIANCE_BLOCK] = np.asarray(free.T @ part)
         return 0.5 * (c + c.T)
 
 

@@ -201,7 +201,8 @@ class Flexibility:
                                       "profile and holes (the inside grows to 4x)",
                                       positive=True)
     fe_segments_per_tooth: int = count(8, "contact segments per disc tooth onto which the "
-                                       "finite-element disc is condensed", minimum=2)
+                                       "finite-element disc is condensed", minimum=2,
+                                       maximum=64)
     fe_modes: int = count(0, "modes of the finite-element disc (held at its crank holes) "
                           "that the dynamic engine integrates; 0: massless condensed disc "
                           "(the quasi-static engine is static: modes do not change it)",
