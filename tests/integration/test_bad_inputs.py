@@ -92,6 +92,13 @@ CLI_ROWS = {
     "profile --out ''": (["profile", "--out", ""], "--out"),
     "profile --points 1e12": (["profile", "--out", "p.csv", "--points", "1000000000000"],
                               "--points"),
+    # the least is 3 per tooth: the limit in the message is the one that applies
+    "profile --points 2": (["profile", "--out", "p.csv", "--points", "2"],
+                           "'--points': must be between 117 (3 per tooth of the 39-tooth "
+                           "disc) and 1,000,000 (got 2)"),
+    # the undercut names what was changed, not the pin radius
+    "profile --set I=5": (["profile", "--out", "p.csv", "--set", "I=5"],
+                          "'errors.equidistant_modification': teeth undercut"),
     "--scheduler tcp://": (["study", "{study}", "--out", "out", "--scheduler", "tcp://"],
                            "--scheduler"),
     "--scheduler host:port99999": (["study", "{study}", "--out", "out", "--scheduler",

@@ -51,6 +51,9 @@ def test_text_output_names_the_largest_pin_force(tmp_path, cli):
     (("--report", "run.pdf"), ".html"),
     (("--set", "E=-5"), "operating.load_torque"),
     (("--time-step", "0.1"), "time_step"),
+    # a negative value in exponent form is the value, not an option ("expected one argument")
+    (("--time-step", "-1e-5"), "'time_step': must be in (0, 0.001] s (got -1e-05)"),
+    (("--duration", "-.5"), "(got -0.5 s)"),
     (("--duration", "0"), "duration"),
 ])
 def test_simulate_errors(cli, args, words):

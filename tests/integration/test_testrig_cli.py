@@ -69,6 +69,24 @@ def test_bad_recordings(tmp_path, capsys, change, message):
     assert not report.exists()
 
 
+@pytest.mark.parametrize("column", ["input_angle=nope", "input_angle=input_angle_deg:deg",
+                                    "oil_temperature=temp_c"])
+def test_a_mapped_column_the_file_lacks_is_named(tmp_path, capsys, column):
+    """A typo in --column used to fall through to another reading of the file ("read as a
+    torque reversal recording: ... no increasing branch")."""
+    path = tmp_path / "run.csv"
+    _frame().to_csv(path, index=False)
+    code = main(["testrig", str(path), "--column", column, "--json"])
+    err = capsys.readouterr().err
+    if column.endswith(":deg"):                                # present: read as mapped
+        assert code == 0, err
+        return
+    name, quantity = column.split("=")[1], column.split("=")[0]
+    assert code == 2 and err.count("\n") == 1
+    assert err.startswith(f"rvsim: error: {path}: no column '{name}' (mapped to {quantity}); "
+                          "the file has 'time_s', "), err
+
+
 def test_calibrate_writes_params_the_other_commands_accept(tmp_path, capsys):
     # the example's other uncertain values at their true ones: the stiffness factor alone is
     # then found (0.809 at 128 positions; with the clearance free too the two are correlated
@@ -138,3 +156,14 @@ def test_compare_gives_the_model_efficiency_when_the_set_has_friction(tmp_path, 
     assert main(["testrig", str(path), "--compare", "--points", "256", "--json"]) == 0
     s = json.loads(capsys.readouterr().out)
     assert "efficiency" not in s["simulated"] and "no friction" in s["simulated"]["note"]
+
+
+@pytest.mark.parametrize("name, what", [("gears.sun_teeth", "a whole number"),
+                                        ("flexibility.cycloid_disc", "a yes/no switch"),
+                                        ("flexibility.model", "a choice")])
+def test_calibrate_refuses_what_is_not_continuous(tmp_path, capsys, name, what):
+    assert main(["calibrate", EXAMPLE, "--fit", name, "--out", str(tmp_path / "c")]) == 2
+    err = capsys.readouterr().err
+    assert err == (f"rvsim: error: parameter '{name}': cannot be fitted ({what}; only "
+                   "continuous quantities can be)\n")
+    assert not (tmp_path / "c").exists()

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import sys
 import tempfile
 from pathlib import Path
@@ -26,6 +27,12 @@ class UsageError(RvsimError):
 
 class Parser(argparse.ArgumentParser):
     """ArgumentParser that reports errors as one line (exit code 2 is applied by ``main``)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # "-1e-5" is a value (argparse's own pattern misses exponents and takes it for an
+        # option: "expected one argument"); the option's own check then names the reason
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 
     def error(self, message: str) -> None:  # type: ignore[override]
         raise UsageError(f"{message} (see '{self.prog} --help')")

@@ -40,9 +40,11 @@ def _profile(args: argparse.Namespace) -> int:
     from ..geometry.export import export_profile
 
     reducer = reducer_from_args(args)
-    if not 1 <= args.points <= MAX_PROFILE_POINTS:
-        raise ParameterError("--points", f"must be between 1 and {MAX_PROFILE_POINTS:,} "
-                             f"(got {args.points:,})")
+    least = 3 * reducer.cycloid.disc_teeth                 # three points per tooth
+    if not least <= args.points <= MAX_PROFILE_POINTS:
+        raise ParameterError("--points", f"must be between {least:,} (3 per tooth of the "
+                             f"{reducer.cycloid.disc_teeth}-tooth disc) and "
+                             f"{MAX_PROFILE_POINTS:,} (got {args.points:,})")
     check_output_file(args.out, "--out")
     summary = export_profile(reducer, args.out, points=args.points)
     if args.json:

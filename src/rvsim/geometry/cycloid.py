@@ -184,7 +184,10 @@ def check_profile(reducer: Reducer) -> None:
                              "(the profile would loop)")
     ratio = undercut_ratio(reducer)
     if ratio >= 1.0:
-        raise ParameterError("cycloid.pin_radius",
+        # blame the modification when the pin radius alone leaves the teeth whole
+        pin_alone = ratio * reducer.cycloid.pin_radius / profile_of(reducer).offset
+        field = "cycloid.pin_radius" if pin_alone >= 1.0 else "errors.equidistant_modification"
+        raise ParameterError(field,
                              f"teeth undercut: pin radius + equidistant modification exceeds "
                              f"the smallest radius of curvature of the pin-centre curve by a "
                              f"factor {ratio:.3f}")

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from .._files import atomic_write
-from ..errors import InputFileError
+from ..errors import InputFileError, ParameterError
 from ..parameters import Reducer
 from .cycloid import profile_of
 
@@ -48,8 +48,9 @@ def export_profile(reducer: Reducer, path: str | Path, *, points: int = 36000) -
         raise InputFileError(f"{path}: unsupported profile format '{path.suffix}' "
                              f"(use {' or '.join(SUPPORTED_SUFFIXES)})")
     if points < 3 * reducer.cycloid.disc_teeth:
-        raise InputFileError(f"points: {points} is too few for {reducer.cycloid.disc_teeth} "
-                             "teeth (need at least 3 per tooth)")
+        raise ParameterError("points", f"must be at least {3 * reducer.cycloid.disc_teeth} "
+                             f"(3 per tooth of the {reducer.cycloid.disc_teeth}-tooth disc; "
+                             f"got {points})")
     if not path.parent.exists():
         raise InputFileError(f"{path}: folder {path.parent} does not exist")
     xy_mm = profile_of(reducer).points(points) * 1e3

@@ -158,7 +158,10 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     specs = [SPECS[n] for n in names]
     for spec in specs:
         if spec.kind != "float":
-            raise ParameterError(spec.name, f"cannot be fitted (a {spec.kind}, not a number)")
+            what = {"int": "a whole number", "bool": "a yes/no switch",
+                    "choice": "a choice"}.get(spec.kind, f"of kind {spec.kind}")
+            raise ParameterError(spec.name, f"cannot be fitted ({what}; only continuous "
+                                 "quantities can be)")
     start = np.array([float(get_value(reducer, n)) for n in names])
     scale = np.array([_scale(s, v) for s, v in zip(specs, start)])
     lower = np.array([-np.inf if s.minimum is None else s.minimum / TO_SI[s.unit]

@@ -325,6 +325,11 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None) -> Rec
     headerless = all(c.isdigit() for c in frame.columns)
     if headerless:
         column_map = _headerless_map(frame, column_map)
+    for q, spec in column_map.columns.items():      # a mapped column must be there
+        if spec.column not in frame.columns:
+            found = ", ".join(f"'{c}'" for c in frame.columns[:12])
+            raise InputFileError(f"{path}: no column '{spec.column}' (mapped to {q}); the "
+                                 f"file has {found} (map columns with --column or --map)")
     values = {q: _column(frame, path, q, column_map.spec(q)) for q in QUANTITIES}
     has = {q for q, v in values.items() if v is not None}
     if "te" in has:
