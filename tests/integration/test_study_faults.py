@@ -314,3 +314,26 @@ def test_dask_ctrl_c_cancels_the_queued_runs(tmp_path, dask_cluster):
     while cluster.scheduler.tasks and time.time() < deadline:
         time.sleep(0.05)
     assert not cluster.scheduler.tasks     # nothing left queued or running on the cluster
+
+
+def test_on_idle_runs_once_when_a_core_is_free_and_no_run_waits(monkeypatch):
+    """Two workers, runs of 0.1, 0.8 and 0.1 s: the worker that ends the last short run finds
+    nothing left while the other still works; the parent's preparation then runs, once, before
+    the long run's result, and every result still arrives."""
+    import multiprocessing
+
+    import rvsim.doe.runner
+    from rvsim.doe._workers import run_workers
+
+    if multiprocessing.get_start_method() != "fork":
+        pytest.skip("the stand-in evaluation reaches the workers by fork")
+
+    def stand_in(seconds, *args):
+        time.sleep(seconds)
+        return {"status": "ok", "metrics": {"s": seconds}}
+
+    monkeypatch.setattr(rvsim.doe.runner, "evaluate", stand_in)
+    log = []
+    run_workers({"short1": (0.1, 0.0), "long": (0.8, 0.0), "short2": (0.1, 0.0)}, 2,
+                lambda key, outcome: log.append(key), on_idle=lambda: log.append("idle"))
+    assert log == ["short1", "short2", "idle", "long"]

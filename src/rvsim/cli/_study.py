@@ -65,9 +65,11 @@ def _study(args: argparse.Namespace) -> int:
     from ..doe._workers import WorkerStartError
     from ..doe.runner import StudyTerminated
 
+    from ..doe.outputs import prepare_outputs
+
     try:
         results = run(study, folder, workers=args.workers, scheduler=args.scheduler,
-                      progress=progress, finish=finish)
+                      progress=progress, finish=finish, prepare=prepare_outputs)
     except StudyTerminated as exc:
         print(f"rvsim: terminated ({exc}); finished runs are kept in {folder}",
               file=sys.stderr)

@@ -110,10 +110,14 @@ def _death(code: int | None) -> str:
 
 
 def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str, dict], None],
-                inherited_fds: list[int] = ()) -> None:
+                inherited_fds: list[int] = (), on_idle: Callable[[], None] | None = None
+                ) -> None:
     """Evaluate ``tasks`` (key -> arguments of :func:`evaluate_task` after the key) in ``workers`` processes.
 
-    ``on_result(key, outcome)`` is called in this process as each run finishes.
+    ``on_result(key, outcome)`` is called in this process as each run finishes.  ``on_idle()``
+    is called once, the first time a worker finds no run left while another still works: a
+    core is then free for this process's own preparations (the study's analysis imports), and
+    no worker waits on them.
     """
     context = multiprocessing.get_context()
     fds = list(inherited_fds) if context.get_start_method() == "fork" else []
@@ -189,6 +193,13 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
                     worker.task = None
                     on_result(key, outcome)
                     dispatch(worker)
+                    if on_idle is not None and worker.task is None and \
+                            any(w.task is not None for w in pool):
+                        idle, on_idle = on_idle, None
+                        try:
+                            idle()
+                        except Exception:  # noqa: BLE001 - a preparation only: whatever
+                            pass           # failed here fails again, reported, after the runs
                 elif worker.process.sentinel in ready:
                     replace(worker, worker.task)
         give_up_if_stuck()

@@ -124,11 +124,14 @@ def _termination_interrupts():
 
 def run(study: Study, folder: str | Path, *, workers: int | None = None,
         scheduler: str | None = None, progress: bool = True,
-        finish: Callable[[pd.DataFrame], object] | None = None) -> pd.DataFrame:
+        finish: Callable[[pd.DataFrame], object] | None = None,
+        prepare: Callable[[], object] | None = None) -> pd.DataFrame:
     """Evaluate ``study`` into ``folder``; return the results table (one row per run).
 
     The folder is locked for the study's duration; ``finish(results)``, if given, runs while it
-    still is (the CLI writes the outputs and the report there).  Ctrl-C, SIGTERM and SIGHUP
+    still is (the CLI writes the outputs and the report there); ``prepare()``, if given, runs
+    in the last local runs' time, once a core is free (the CLI imports what ``finish``
+    needs).  Ctrl-C, SIGTERM and SIGHUP
     stop the workers at once and keep every finished row (KeyboardInterrupt, or its subclass
     StudyTerminated, is then raised).
     """
@@ -182,7 +185,7 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
                 if scheduler and todo:
                     _run_dask(todo, options, scheduler, store_result)
                 elif todo:
-                    _run_local(todo, options, workers, store_result)
+                    _run_local(todo, options, workers, store_result, prepare)
             done = store.finished()
         finally:
             store.close()
@@ -196,12 +199,13 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
 RETRIED_ON_RESUME = "worker_died"
 
 
-def _run_local(todo: dict, options: tuple, workers: int | None, store_result) -> None:
+def _run_local(todo: dict, options: tuple, workers: int | None, store_result,
+               on_idle: Callable[[], None] | None = None) -> None:
     """``options``: the (time_step, engine, hysteresis, positions, scheme) of
-    :func:`evaluate`."""
+    :func:`evaluate`; ``on_idle``: see :func:`rvsim.doe._workers.run_workers`."""
     workers = workers or os.cpu_count() or 1
     run_workers({key: (reducer, *options) for key, reducer in todo.items()},
-                min(workers, len(todo)), store_result, held_lock_fds())
+                min(workers, len(todo)), store_result, held_lock_fds(), on_idle)
 
 
 def _scheduler_address(scheduler: str) -> tuple[str, int]:
