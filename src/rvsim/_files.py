@@ -9,7 +9,29 @@ import tempfile
 from pathlib import Path
 from typing import Callable, Iterator
 
-__all__ = ["atomic_write", "atomic_write_text", "atomic_outputs", "read_toml"]
+__all__ = ["atomic_write", "atomic_write_text", "atomic_outputs", "read_toml", "request_stop",
+           "clear_stop", "check_stop"]
+
+#: the interrupt (KeyboardInterrupt or a subclass) that a signal raised in this process, kept
+#: by the command line's handlers: an exception raised in a callback of a C library is
+#: sometimes swallowed there (numba's compiler prints "Exception ignored in: ..." and goes
+#: on), and the command must still stop before it moves an output into place
+_STOP: list[BaseException] = []
+
+
+def request_stop(interrupt: BaseException) -> None:
+    """Remember ``interrupt`` (raised by a signal handler) until :func:`clear_stop`."""
+    _STOP[:] = [interrupt]
+
+
+def clear_stop() -> None:
+    _STOP.clear()
+
+
+def check_stop() -> None:
+    """Raise the remembered interrupt again, if a signal asked this process to stop."""
+    if _STOP:
+        raise _STOP[0]
 
 
 def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
@@ -25,6 +47,7 @@ def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)
+        check_stop()
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
@@ -49,6 +72,7 @@ def atomic_outputs(*paths: str | Path | None) -> Iterator[list[Path | None]]:
             os.close(fd)
             temps.append(Path(tmp))
         yield temps
+        check_stop()
         for tmp, path in zip(temps, paths):
             if tmp is not None:
                 os.replace(tmp, path)

@@ -66,3 +66,25 @@ def test_sighup_during_a_run_ends_with_143_and_no_output(tmp_path):
                           "r.html"], 3.0, tmp_path, signal.SIGHUP)
     assert result == (143, b"", b"rvsim: terminated (SIGHUP)\n")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_signal_swallowed_on_its_way_still_stops_the_command(tmp_path, cli, monkeypatch):
+    """numba's compiler ignores an exception raised in one of its callbacks ("Exception
+    ignored in: ..."): a hostile test's SIGTERM during compilation then let `rvsim profile`
+    write its file and exit 0 (1 try in 20).  The handler also remembers the signal, and no
+    output is moved into place once it came."""
+    import rvsim.geometry.export
+    from rvsim._files import request_stop
+    from rvsim.cli import _Terminated
+
+    def swallowed(reducer, points):              # the handler ran; its exception was lost
+        request_stop(_Terminated("SIGTERM"))
+        return 0.0
+
+    monkeypatch.setattr(rvsim.geometry.export, "chordal_deviation", swallowed)
+    res = cli("profile", "--out", str(tmp_path / "disc.csv"), "--points", "400")
+    assert (res.code, res.out, res.err) == (143, "", "rvsim: terminated (SIGTERM)\n")
+    assert list(tmp_path.iterdir()) == []
+    # the remembered signal ends with the command: the next one runs
+    monkeypatch.undo()
+    assert cli("profile", "--out", str(tmp_path / "disc.csv"), "--points", "400").code == 0

@@ -104,3 +104,17 @@ def test_engine_curve_without_catalogue_quantities_exits_1(cli, standin, monkeyp
     res = cli("hysteresis", "--json")
     assert res.code == 1 and json.loads(res.out)["status"] == "invalid_curve"
     assert "never reaches 412 N*m" in res.err
+
+
+def test_hysteresis_export_and_report_are_written_together(tmp_path, cli, monkeypatch):
+    """A hostile test's SIGTERM near the end left joint.json without its report."""
+    import rvsim.report
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(rvsim.report, "write_hysteresis_report", interrupted)
+    res = cli("hysteresis", "--export", str(tmp_path / "j.json"), "--report",
+              str(tmp_path / "h.html"))
+    assert res.code == 130 and res.err == "rvsim: interrupted\n"
+    assert list(tmp_path.iterdir()) == []

@@ -12,6 +12,7 @@ import sys
 import threading
 
 from .. import __version__
+from .._files import check_stop, clear_stop, request_stop
 from ..errors import RvsimError
 from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig, _tolerance
 from ._common import EXAMPLES, Parser
@@ -50,7 +51,14 @@ class _Terminated(KeyboardInterrupt):
 
 
 def _terminate(signum, frame):
-    raise _Terminated(signal.Signals(signum).name)
+    interrupt = _Terminated(signal.Signals(signum).name)
+    request_stop(interrupt)
+    raise interrupt
+
+
+def _interrupt(signum, frame):
+    request_stop(KeyboardInterrupt())
+    raise KeyboardInterrupt
 
 
 #: commands with worker processes and their own handling of SIGTERM and SIGHUP
@@ -71,7 +79,10 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
                 threading.current_thread() is threading.main_thread():
             previous = {name: signal.signal(getattr(signal, name), _terminate)
                         for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)}
-        return int(args.func(args) or 0), command
+            previous["SIGINT"] = signal.signal(signal.SIGINT, _interrupt)
+        code = int(args.func(args) or 0)
+        check_stop()        # a signal whose exception was swallowed on its way still counts
+        return code, command
     except RvsimError as exc:
         print(f"rvsim: error: {exc}", file=sys.stderr)
         return 2, command
@@ -86,6 +97,7 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
     finally:
         for name, handler in previous.items():
             signal.signal(getattr(signal, name), handler)
+        clear_stop()
 
 
 # Commands that start no processes of their own.  Once they have returned, every file they

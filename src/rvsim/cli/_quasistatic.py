@@ -133,19 +133,27 @@ def _hysteresis(args: argparse.Namespace) -> int:
         if args.json:
             print_json({"status": "invalid_curve", "error": str(exc)})
         return 1
+    model = None
     if export:
-        from ..joint_model import joint_model, write_joint_model
+        from ..joint_model import joint_model
 
         te_run, code = _solve(lambda: ltca(reducer, torque=result.rated_torque), args,
                               "ltca at rated torque (for --export)")
         if te_run is None:
             return code
-        _write("--export", export,
-               lambda: write_joint_model(export, joint_model(result, te_run, reducer)))
-    if report:
-        from ..report import write_hysteresis_report
+        model = joint_model(result, te_run, reducer)
+    from .._files import atomic_outputs
 
-        _write("--report", report, lambda: write_hysteresis_report(result, reducer, report))
+    with atomic_outputs(export, report) as (export_tmp, report_tmp):      # both or neither
+        if export:
+            from ..joint_model import write_joint_model
+
+            _write("--export", export, lambda: write_joint_model(export_tmp, model))
+        if report:
+            from ..report import write_hysteresis_report
+
+            _write("--report", report,
+                   lambda: write_hysteresis_report(result, reducer, report_tmp))
     if args.json:
         print_json(summary)
     else:

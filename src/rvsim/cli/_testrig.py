@@ -124,7 +124,7 @@ def _calibrate(args: argparse.Namespace) -> int:
         resolve_name(name)
     analysed = analyse_path(args.path, reducer, column_map)
     result = calibrate(analysed, reducer, names, positions=args.positions)
-    from .._files import atomic_write_text
+    from .._files import atomic_outputs
 
     out.mkdir(parents=True, exist_ok=True)
     payload = result.to_dict()
@@ -132,10 +132,11 @@ def _calibrate(args: argparse.Namespace) -> int:
     # the fitted set says what it is (its name shows in every report made with it)
     calibrated = dataclasses.replace(result.reducer, name=f"{reducer.name}, calibrated to "
                                      f"{Path(args.path).name}")
-    atomic_write_text(fitted, toml_text(calibrated))
     payload["fitted_params"] = str(fitted)
-    atomic_write_text(out / "calibration.json",
-                      json.dumps(to_json_safe(payload), indent=2, allow_nan=False) + "\n")
+    with atomic_outputs(fitted, out / "calibration.json") as (fitted_tmp, payload_tmp):
+        fitted_tmp.write_text(toml_text(calibrated), encoding="utf-8")      # both or neither
+        payload_tmp.write_text(json.dumps(to_json_safe(payload), indent=2, allow_nan=False)
+                               + "\n", encoding="utf-8")
     if args.json:
         print_json(payload)
     else:

@@ -80,7 +80,8 @@ def export_profile(reducer: Reducer, path: str | Path, *, points: int = 36000) -
                            dxfattribs={"layer": "CONSTRUCTION"})
             msp.add_point((0.0, 0.0), dxfattribs={"layer": "CONSTRUCTION"})
             doc.saveas(tmp)
+    summary = {"file": str(path), "points": points,       # computed before the file is there
+               "chordal_deviation_mm": chordal_deviation(reducer, points) * 1e3,
+               "teeth": reducer.cycloid.disc_teeth}
     atomic_write(path, write)
-    return {"file": str(path), "points": points,
-            "chordal_deviation_mm": chordal_deviation(reducer, points) * 1e3,
-            "teeth": reducer.cycloid.disc_teeth}
+    return summary

@@ -10,7 +10,10 @@ file's ``[cost.NAME]`` tables (weight, exponent, tightest, loosest) edit them.
 The reducers that bind on assembly are scrap: the binding share is a constraint too, at most
 ``binding_share=VALUE`` of ``--target`` or, when not given, at most the share of the study's
 own tolerances (so the allocation never buys its savings with more scrap than the drawing as
-given).  The constraints are Monte Carlo percentiles of ``samples`` reducers with common random
+given).  Reducers the model cannot evaluate (a drawn value outside what it accepts, a solve
+that fails) are left out of the percentiles, so their share is a constraint as well: at most
+the share of the tolerances as given (without it, loosening a tolerance into values the model
+refuses would shrink the percentiles it is judged by).  The constraints are Monte Carlo percentiles of ``samples`` reducers with common random
 numbers (the same uniform numbers, only the tolerances scale them), so they are smooth
 functions of the tolerances; the optimiser is SciPy's COBYLA on the logarithms of the
 tolerances.  Every evaluation is stored in the study store (a repeated point is not re-run).
@@ -38,6 +41,11 @@ _SHORT = {short: name for name, (short, _) in METRICS.items()}
 _LOWER_BOUND = {"torsional_rigidity_nm_per_arcmin"}
 #: the share of reducers that bind on assembly (a target without percentile)
 BINDING = "binding_share"
+#: the share of reducers the model cannot evaluate (a target without percentile, always the
+#: share of the tolerances as given)
+FAILED = "failed_share"
+#: the targets on a share, not a percentile (absolute margins, no optimiser margin)
+_SHARES = (BINDING, FAILED)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -53,7 +61,7 @@ class Target:
 
     def margin(self, achieved: float) -> float:
         """>= 0 when met (relative to the target; the binding share: absolute)."""
-        scale = 1.0 if self.metric == BINDING else (abs(self.value) or 1.0)
+        scale = 1.0 if self.metric in _SHARES else (abs(self.value) or 1.0)
         return ((achieved - self.value) if self.lower_bound else (self.value - achieved)) / scale
 
 
@@ -149,17 +157,19 @@ def _evaluate(study, store, folder, samples, tolerances, targets, workers, sched
     keys = run_samples(study, folder, {"allocation": (samples, lambda: monte_carlo_units(
         study, samples))}, workers=workers, scheduler=scheduler, tolerances=rounded,
         store=store)["allocation"]
-    status, values, _ = collect(store, keys, {t.metric for t in targets if t.metric != BINDING})
+    status, values, _ = collect(store, keys, {t.metric for t in targets
+                                              if t.metric not in _SHARES})
     binds = int(np.sum(status == "binds"))
     share = binds / max(1, int(np.sum((status == "ok") | (status == "binds"))))
+    failed = float(np.mean((status != "ok") & (status != "binds"))) if len(status) else 0.0
     achieved = {}
     for t in targets:
-        if t.metric == BINDING:
-            achieved[t.text] = share
+        if t.metric in _SHARES:
+            achieved[t.text] = share if t.metric == BINDING else failed
             continue
         x = values[t.metric][np.isfinite(values[t.metric])]
         achieved[t.text] = float(np.percentile(x, t.percentile)) if x.size else math.nan
-    return achieved, share
+    return achieved, share, failed
 
 
 def allocate(study: ToleranceStudy, targets: list[Target], folder, *, samples: int = 200,
@@ -216,38 +226,41 @@ def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_eva
 
             def run(x):
                 tol = dict(zip(names, np.exp(np.clip(x, low, high))))
-                achieved, share = _evaluate(study, store, folder, samples, tol, targets,
-                                            workers, scheduler)
-                for t in targets:
-                    if t.metric == BINDING:
-                        achieved[t.text] = share
+                achieved, share, failed = _evaluate(study, store, folder, samples, tol,
+                                                    targets, workers, scheduler)
                 history.append({"tolerances": tol, "achieved": achieved,
-                                "binding_share": share, "cost": cost.cost(tol)})
+                                "binding_share": share, "failed_share": failed,
+                                "cost": cost.cost(tol)})
                 return achieved
 
             start = np.clip(np.log([cost.reference[n] for n in names]), low, high)
+            run(start)                                      # the tolerances as given
+            added = []
             if not any(t.metric == BINDING for t in targets):
                 # no more scrap than the tolerances as given
-                run(start)
                 given = history[-1]["binding_share"]
-                targets = [*targets, Target(BINDING, math.nan, given,
-                                            f"{BINDING}<={given:.4g} (as given)")]
-                for h in history:
-                    h["achieved"][targets[-1].text] = h["binding_share"]
+                added.append(Target(BINDING, math.nan, given,
+                                    f"{BINDING}<={given:.4g} (as given)"))
+            given = history[-1]["failed_share"]
+            added.append(Target(FAILED, math.nan, given, f"{FAILED}<={given:.4g} (as given)"))
+            targets = [*targets, *added]
+            for t in added:
+                history[-1]["achieved"][t.text] = history[-1][t.metric]
             tight = run(low)
-            for t in sorted(targets, key=lambda t: t.metric != BINDING):
+            for t in sorted(targets, key=lambda t: t.metric not in _SHARES):
                 if not t.margin(tight[t.text]) >= 0:
                     if t.metric == BINDING:
                         there = f"there the binding share is {tight[t.text]:.4g}"
+                    elif t.metric == FAILED:
+                        there = (f"there {tight[t.text]:.4g} of the reducers cannot be "
+                                 "evaluated")
                     elif math.isnan(tight[t.text]):
                         there = "there no reducer assembles and solves"
                     else:
                         there = f"there p{t.percentile:g} = {tight[t.text]:.4g}"
                     raise ParameterError("--target", f"{t.text} cannot be met even at the "
                                          f"tightest tolerances ({there})")
-            cache = {}
-            if len(history) == 2:                  # the start point is evaluated already
-                cache[tuple(np.round(start, 9))] = history[0]["achieved"]
+            cache = {tuple(np.round(start, 9)): history[0]["achieved"]}   # evaluated already
 
             def achieved_at(x):
                 key = tuple(np.round(x, 9))
@@ -263,7 +276,7 @@ def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_eva
             # (the binding share moves in steps of 1 / samples: no margin)
             constraints = [{"type": "ineq",
                             "fun": (lambda x, t=t: t.margin(achieved_at(x)[t.text])
-                                    - (0.0 if t.metric == BINDING else MARGIN))}
+                                    - (0.0 if t.metric in _SHARES else MARGIN))}
                            for t in targets]
             constraints += [{"type": "ineq", "fun": (lambda x, i=i: x[i] - low[i])}
                             for i in range(len(names))]
@@ -282,13 +295,14 @@ def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_eva
         "status": "ok" if result.success else f"stopped: {result.message}",
         "cost": best["cost"], "cost_start": cost.cost(dict(zip(names, np.exp(start)))),
         "binding_share": best["binding_share"],
+        "failed_share": best["failed_share"],
         "tolerances": [{"name": n, "unit": t.unit, "given": t.tolerance,
                         "allocated": float(best["tolerances"][n]),
                         "tightest": cost.tightest[n], "loosest": cost.loosest[n],
                         "weight": cost.weight[n], "exponent": cost.exponent[n]}
                        for n, t in zip(names, study.tolerances)],
         "targets": [{"target": t.text, "metric": t.metric,
-                     "percentile": None if t.metric == BINDING else t.percentile,
+                     "percentile": None if t.metric in _SHARES else t.percentile,
                      "limit": t.value, "achieved": best["achieved"][t.text],
                      "at_tightest": tight[t.text]} for t in targets],
         "history": history,
