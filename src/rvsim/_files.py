@@ -87,6 +87,10 @@ def atomic_write_text(path: str | Path, text: str) -> Path:
     return atomic_write(path, lambda tmp: tmp.write_text(text, encoding="utf-8"))
 
 
+#: the largest TOML file read (parameter sets, studies and maps are a few kilobytes)
+MAX_TOML_BYTES = 16 * 2 ** 20
+
+
 def read_toml(path: str | Path, what: str = "TOML file") -> dict:
     """The TOML table of ``path``; every way of failing is one :class:`InputFileError` line."""
     import tomllib
@@ -95,7 +99,12 @@ def read_toml(path: str | Path, what: str = "TOML file") -> dict:
 
     path = Path(path)
     try:
-        return tomllib.loads(path.read_text(encoding="utf-8"))
+        with open(path, "rb") as handle:      # bounded: a device or a pipe may never end
+            data = handle.read(MAX_TOML_BYTES + 1)
+        if len(data) > MAX_TOML_BYTES:
+            raise InputFileError(f"{path}: larger than {MAX_TOML_BYTES // 2 ** 20} MiB: not a "
+                                 f"{what}")
+        return tomllib.loads(data.decode("utf-8"))
     except FileNotFoundError:
         raise InputFileError(f"{path}: file not found") from None
     except IsADirectoryError:

@@ -108,10 +108,17 @@ CLI_ROWS = {
     "--params ''": (["params", "--params", ""], "--params"),
     "simulate --save ''": (["simulate", "--save", ""], "--save"),
     "analyze ''": (["analyze", ""], "table"),
+    # an empty list fell back to the default factors; a blank name was "given twice"
+    "analyze --factors ''": (["analyze", "{file}", "--factors", ""],
+                             "'--factors': '': expected comma-separated column names"),
+    "analyze --factors ','": (["analyze", "{file}", "--factors", ","], "'--factors': ','"),
     "analyze a folder": (["analyze", "{folder}"], "a_folder"),
     "--params a folder": (["params", "--params", "{folder}"], "a_folder"),
     "sun_teeth = 1e20": (["params", "--set", "gears.sun_teeth=1e20"], "gears.sun_teeth"),
 }
+if Path("/dev/zero").exists():   # endless: read until memory ran out (a hostile test)
+    CLI_ROWS["--params /dev/zero"] = (["sensitivity", "--params", "/dev/zero"],
+                                      "/dev/zero: larger than 16 MiB")
 if Path("/proc").is_dir():   # a folder nobody can write in, even root
     CLI_ROWS["study --out unwritable"] = (["study", "{study}", "--out", "/proc/rvsim-out"],
                                           "--out")

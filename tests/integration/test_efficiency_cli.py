@@ -41,6 +41,9 @@ def test_zero_friction_says_so(cli):
     (("--speeds", "fast"), "--speeds"),
     (("--speeds", "1e9"), "--speeds"),
     (("--torques", "-5"), "--torques"),
+    # a list starting with a negative value is the option's value, not an option
+    (("--torques", "-20,40"), "'--torques': every value must be a positive number (got -20)"),
+    (("--speeds", "-5, 10"), "'--speeds': every value must be a positive number (got -5)"),
     (("--torques", "inf"), "--torques"),
     (("--torques", "100,100"), "--torques"),
     (("--report", "map.txt"), "--report"),

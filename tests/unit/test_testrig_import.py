@@ -71,6 +71,25 @@ def test_manifest_lists_the_files(tmp_path):
         list_files(tmp_path)
 
 
+@pytest.mark.parametrize("text, message", [
+    ("", "not a readable CSV file"),                         # was a csv.Error traceback
+    ("file,ratio\na.csv,-121\n", "row 2: ratio must be a finite number above 1 (got -121)"),
+    ("file,torque_nm\na.csv,inf\n", "row 2: torque_nm must be a finite number (got inf)"),
+])
+def test_bad_manifests_are_one_clear_error(tmp_path, text, message):
+    (tmp_path / "a.csv").write_text("time_s,input_angle_deg,output_angle_deg\n0,0,0\n")
+    (tmp_path / "manifest.csv").write_text(text)
+    with pytest.raises(InputFileError, match=re.escape(message)):
+        list_files(tmp_path)
+
+
+def test_a_map_ratio_below_one_is_refused_as_on_the_command_line(tmp_path):
+    (tmp_path / "m.toml").write_text("ratio = -121\n")
+    with pytest.raises(InputFileError, match=re.escape("ratio must be a finite number above 1 "
+                                                       "(got -121)")):
+        read_column_map(tmp_path / "m.toml")
+
+
 def test_parquet_without_pyarrow_is_one_clear_error(tmp_path, monkeypatch):
     path = tmp_path / "r.parquet"
     path.write_bytes(b"PAR1")

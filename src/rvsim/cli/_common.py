@@ -30,9 +30,11 @@ class Parser(argparse.ArgumentParser):
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        # "-1e-5" is a value (argparse's own pattern misses exponents and takes it for an
-        # option: "expected one argument"); the option's own check then names the reason
-        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+        # "-1e-5" and "-20,40" are values (argparse's own pattern misses exponents and lists
+        # and takes them for an option: "expected one argument"); the option's own check
+        # then names the reason
+        number = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+        self._negative_number_matcher = re.compile(rf"^-{number}(,\s*[-+]?{number})*$")
 
     def error(self, message: str) -> None:  # type: ignore[override]
         raise UsageError(f"{message} (see '{self.prog} --help')")

@@ -103,14 +103,25 @@ def _study(args: argparse.Namespace) -> int:
     return 0
 
 
+def _names(option: str, text: str | None) -> list[str] | None:
+    """A comma-separated list of column names (None when the option is not given)."""
+    if text is None:
+        return None
+    names = [n.strip() for n in text.split(",")]
+    if not any(names) or not all(names):
+        raise ParameterError(option, f"'{text}': expected comma-separated column names, none "
+                             "empty")
+    return names
+
+
 def _analyze(args: argparse.Namespace) -> int:
     from ..analysis import analyze_table, anova, range_analysis
     from ..analysis._table import drop_failed_runs, read_table
 
     # a failed run's numbers are no response (rvsim study leaves them out the same way)
     table, failed = drop_failed_runs(read_table(args.table))
-    factors = args.factors.split(",") if args.factors else None
-    pool = tuple(p for p in args.pool.split(",") if p) if args.pool else ()
+    factors = _names("--factors", args.factors)
+    pool = tuple(_names("--pool", args.pool) or ())
     response = _response_column(table, args.response)
     result = analyze_table(table, response, factors, pool=pool, alpha=args.alpha)
     if failed:

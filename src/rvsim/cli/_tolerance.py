@@ -76,7 +76,7 @@ def run_tolerance_command(study, args) -> int:
             print(f"  {name}: mean {m['mean']:.4g}, p5 {m['p5']:.4g}, p50 {m['p50']:.4g}, "
                   f"p95 {m['p95']:.4g}")
     for note in summary.get("sobol_notes", []):
-        print(f"rvsim: note: Sobol indices of {note}", file=sys.stderr)
+        print(f"rvsim: note: {note}", file=sys.stderr)
     return 0
 
 

@@ -10,6 +10,7 @@ recording); a file whose point is given nowhere is a point of its own, its value
 
 from __future__ import annotations
 
+import csv
 import dataclasses
 import math
 from pathlib import Path
@@ -19,7 +20,7 @@ import numpy as np
 from ..analysis.catalogue import CurveError
 from ..errors import InputFileError
 from . import analysis as A
-from .recording import ColumnMap, Recording, point_from_name, read_recording
+from .recording import ColumnMap, Recording, check_ratio, point_from_name, read_recording
 
 __all__ = ["FileResult", "PointResult", "analyse_path", "analyse_recording", "list_files",
            "check_model_ratio", "RATIO_TOLERANCE", "MANIFEST"]
@@ -82,7 +83,8 @@ def _read_manifest(manifest: Path) -> list[tuple[Path, dict]]:
 
     try:
         frame = pd.read_csv(manifest, sep=None, engine="python", comment="#")
-    except (pd.errors.ParserError, UnicodeDecodeError, ValueError, OSError) as exc:
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, csv.Error, UnicodeDecodeError,
+            ValueError, OSError) as exc:
         raise InputFileError(f"{manifest}: not a readable CSV file ({exc})") from None
     frame.columns = [str(c).strip() for c in frame.columns]
     if "file" not in frame.columns:
@@ -107,12 +109,17 @@ def _read_manifest(manifest: Path) -> list[tuple[Path, dict]]:
                     raise InputFileError(f"{manifest}: row {row}: test must be "
                                          "transmission_error, torque_reversal or te_curve "
                                          f"(got {value!r})")
+            elif key == "ratio":
+                value = check_ratio(value, f"{manifest}: row {row}")
             else:
                 try:
                     value = float(value)
                 except ValueError:
                     raise InputFileError(f"{manifest}: row {row}: {key} '{value}' is not a "
                                          "number") from None
+                if not math.isfinite(value):
+                    raise InputFileError(f"{manifest}: row {row}: {key} must be a finite "
+                                         f"number (got {value})")
             declared[key] = value
         out.append((target, declared))
     if not out:

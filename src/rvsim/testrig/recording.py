@@ -26,7 +26,7 @@ import numpy as np
 from .._files import read_toml
 from ..errors import InputFileError
 
-__all__ = ["Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map",
+__all__ = ["check_ratio", "Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map",
            "parse_column_option", "point_from_name", "unwrapped", "DEFAULT_COLUMNS",
            "QUANTITIES", "UNITS"]
 
@@ -117,8 +117,8 @@ def _spec(quantity: str, column, unit: str | None, cpr, where: str) -> ColumnSpe
             raise InputFileError(f"{where}: {quantity} in counts needs the counts per "
                                  f"revolution (got {cpr!r})") from None
         if not (math.isfinite(cpr) and cpr > 0):
-            raise InputFileError(f"{where}: counts per revolution of {quantity} must be "
-                                 f"positive (got {cpr:g})")
+            raise InputFileError(f"{where}: counts per revolution of {quantity} must be a "
+                                 f"finite positive number (got {cpr:g})")
     elif cpr is not None:
         raise InputFileError(f"{where}: counts per revolution given for {quantity}, whose unit "
                              f"is '{unit}', not counts")
@@ -141,12 +141,13 @@ def parse_column_option(text: str) -> tuple[str, ColumnSpec]:
     return quantity, _spec(quantity, column, unit or None, cpr, f"--column {text}")
 
 
-def _ratio(value, where: str) -> float:
+def check_ratio(value, where: str) -> float:
+    """A bench reducer's ratio from a file: a finite number above 1 (InputFileError)."""
     try:
         value = float(value)
     except (TypeError, ValueError):
         raise InputFileError(f"{where}: ratio must be a number (got {value!r})") from None
-    if not (math.isfinite(value) and abs(value) > 1):
+    if not (math.isfinite(value) and value > 1):       # as --ratio: a negative one is a typo
         raise InputFileError(f"{where}: ratio must be a finite number above 1 (got {value:g})")
     return value
 
@@ -157,7 +158,7 @@ def read_column_map(path: str | Path) -> ColumnMap:
     ``counts_per_revolution = 4096``."""
     path = Path(path)
     data = read_toml(path, "column map TOML file")
-    ratio = _ratio(data.pop("ratio"), str(path)) if "ratio" in data else None
+    ratio = check_ratio(data.pop("ratio"), str(path)) if "ratio" in data else None
     columns = {}
     for quantity, table in data.items():
         if not isinstance(table, dict):

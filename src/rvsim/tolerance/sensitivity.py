@@ -108,6 +108,11 @@ def sobol_indices(study: ToleranceStudy, values: dict, status: np.ndarray) -> di
     if 0 < binds.sum() < len(binds):
         first, second = _indices(prob, binds, study.seed, "binds", notes)
         first_all["binds"], second_all["binds"] = first, second
+    if imputed:
+        notes.append(f"Sobol indices: {imputed} of the {len(status)} reducers of the design "
+                     "bind or fail and were given the mean of the others: the indices describe "
+                     "the reducers that assemble and solve, and are less certain than their "
+                     "intervals say")
     out = {"sobol": first_all, "sobol_second_order": second_all, "sobol_imputed": imputed,
            "sobol_samples": int(len(status))}
     if notes:
@@ -118,6 +123,6 @@ def sobol_indices(study: ToleranceStudy, values: dict, status: np.ndarray) -> di
 def _indices(prob: dict, y: np.ndarray, seed: int, metric: str, notes: list) -> tuple:
     first, second, constant = _analyze(prob, y, seed)
     if constant:
-        notes.append(f"{metric}: some bootstrap resamples had one value only (too few distinct "
+        notes.append(f"Sobol indices of {metric}: some bootstrap resamples had one value only (too few distinct "
                      "outcomes for this Sobol base); its confidence intervals are unreliable")
     return first, second
