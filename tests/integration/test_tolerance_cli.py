@@ -43,8 +43,14 @@ def test_tolerance_writes_summary_results_and_report(tmp_path, small, cli):
                                                    "clearances.crank_arm_bushing"}
     assert {"S1", "ST", "S1_conf", "ST_conf"} <= set(
         summary["sobol"]["ate_arcmin"]["pin_radius"])
-    assert (out / "report.html").read_text().count("<img") >= 4
+    page = (out / "report.html").read_text()
+    assert page.count("<img") >= 4
     assert len((out / "results.csv").read_text().splitlines()) == 7
+    # `rvsim report` rebuilds the same page from the folder (it said "not a study folder")
+    (out / "report.html").unlink()
+    rebuilt = cli("report", str(out))
+    assert rebuilt.code == 0, rebuilt.err
+    assert (out / "report.html").read_text() == page
     # re-running resumes: nothing is evaluated again, the same numbers come out
     again = cli("tolerance", str(small), "--out", str(out), "--workers", "1", "--sobol", "2",
                 "--json")

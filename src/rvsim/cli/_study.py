@@ -148,7 +148,13 @@ def _analyze(args: argparse.Namespace) -> int:
 def _report(args: argparse.Namespace) -> int:
     from ..report import write_study_report
 
-    path = write_study_report(args.folder, alpha=args.alpha)
+    folder = Path(args.folder)
+    if (folder / "summary.json").is_file() and not (folder / "analysis.json").is_file():
+        from ..tolerance.report import rebuild_tolerance_report   # a tolerance study's folder
+
+        path = rebuild_tolerance_report(folder)
+    else:
+        path = write_study_report(args.folder, alpha=args.alpha)
     if args.json:
         print_json({"report": str(path)})
     else:
@@ -159,7 +165,8 @@ def _report(args: argparse.Namespace) -> int:
 def register(sub) -> None:
     p = add_command(sub, "report", "write the HTML report of a study folder",
                     "Write DIR/report.html (self-contained: figures embedded, "
-                    "no network requests) from a folder made by 'rvsim study'.",
+                    "no network requests) from a folder made by 'rvsim study' (or by "
+                    "'rvsim tolerance').",
                     ["rvsim report study"])
     p.add_argument("folder", type=path_text, help="study folder")
     p.add_argument("--alpha", type=probability, help="significance level marked in the ANOVA "

@@ -73,7 +73,8 @@ def write_tolerance_report(folder: Path, summary: dict, values: dict, status) ->
             f"({summary['positions']} positions); lost motion and rigidity from the "
             "torque-reversal test (quasi-static engine).</p>",
             "<h2>Tolerances</h2>",
-            _table(pd.DataFrame(summary["tolerances"]), index=False),
+            _table(pd.DataFrame([{**t, "orders": ", ".join(map(str, t.get("orders") or ()))}
+                                 for t in summary["tolerances"]]), index=False),
             "<h2>Distributions</h2>"]
     rows = {name: {k: m[k] for k in ("mean", "std", "p5", "p50", "p95")}
             for name, m in summary["metrics"].items()}
@@ -117,3 +118,23 @@ def write_allocation_report(folder: Path, result: dict) -> Path:
     path = Path(folder) / "report.html"
     atomic_write_text(path, _page(f"rvsim allocate: {result['study']}", body))
     return path
+
+
+def rebuild_tolerance_report(folder: str | Path) -> Path:
+    """report.html of a tolerance folder again, from its summary.json and results.csv (the
+    Monte Carlo reducers; ``rvsim report`` on a folder of ``rvsim tolerance``)."""
+    import json
+
+    from ..errors import InputFileError
+
+    folder = Path(folder)
+    try:
+        summary = json.loads((folder / "summary.json").read_text(encoding="utf-8"))
+        frame = pd.read_csv(folder / "results.csv")
+        status = frame["status"].to_numpy(dtype=object)
+        values = {m: pd.to_numeric(frame[m], errors="coerce").to_numpy(dtype=float)
+                  for m in summary["metrics"]}
+    except (OSError, ValueError, KeyError, TypeError, pd.errors.ParserError) as exc:
+        raise InputFileError(f"{folder}: damaged tolerance study files ({type(exc).__name__}: "
+                             f"{exc}); run 'rvsim tolerance' on it again") from None
+    return write_tolerance_report(folder, summary, values, status)
