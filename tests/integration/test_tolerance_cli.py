@@ -305,3 +305,24 @@ def test_bad_profile_csv_is_one_line(tmp_path, cli):
     path.write_text(SMALL.replace('seed = 3', 'seed = 3\nprofile_csv = "profile.csv"'))
     res = cli("tolerance", str(path), "--out", str(tmp_path / "o"))
     assert res.code == 2 and res.err.count("\n") == 1 and "deviation_um" in res.err, res.err
+
+
+def test_a_reducer_both_invalid_and_binding_is_invalid(tmp_path):
+    """A drawn value the model refuses comes first: such a reducer was counted as binding
+    (scrap of a real part) because the assembly was checked before the values."""
+    from rvsim.tolerance import load_tolerance_study
+    from rvsim.tolerance.engine import evaluate_sample
+
+    path = _bad(tmp_path, INVALID + "[tolerances.pin_radius]\ntolerance = 5.0\n")
+    study = load_tolerance_study(path)
+    reducer = study.realise(study.unit_sample(0))
+    assert reducer.materials.pin.poisson_ratio > 0.5
+    outcome = evaluate_sample(reducer, 12)
+    assert outcome["status"] == "invalid", outcome
+    assert "'materials.pin.poisson_ratio': must not exceed 0.5" in outcome["error"]
+    # the same draw with a valid Poisson ratio binds
+    import dataclasses
+
+    valid = dataclasses.replace(reducer, materials=dataclasses.replace(
+        reducer.materials, pin=dataclasses.replace(reducer.materials.pin, poisson_ratio=0.3)))
+    assert evaluate_sample(valid, 12)["status"] == "binds"

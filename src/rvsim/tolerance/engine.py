@@ -31,11 +31,13 @@ def evaluate_sample(reducer, positions: int = 360) -> dict:
     """Evaluate one drawn reducer (module docstring)."""
     from ..errors import ParameterError, SimulationError
     from ..geometry.assembly import CONTACT_TOLERANCE, assembly_overlaps
+    from ..parameters import validate
     from ..quasistatic import hysteresis, ltca
 
     start = time.perf_counter()
     cpu = time.process_time()
     try:
+        validate(reducer, assembly=False)   # a value the model refuses: invalid, even if it binds
         worst = max(assembly_overlaps(reducer), key=lambda o: o.approach)
         if worst.approach > CONTACT_TOLERANCE:
             return {"status": BINDS, "metrics": {"binds": 1},
