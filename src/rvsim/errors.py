@@ -6,7 +6,7 @@ exits with code 2.  Messages name the offending field and the reason.
 
 from __future__ import annotations
 
-__all__ = ["RvsimError", "ParameterError", "SimulationError", "InputFileError"]
+__all__ = ["RvsimError", "ParameterError", "SimulationError", "InputFileError", "Terminated"]
 
 
 class RvsimError(Exception):
@@ -35,3 +35,8 @@ class SimulationError(RvsimError):
     def __init__(self, status: str, message: str):
         self.status = status
         super().__init__(message)
+
+
+class Terminated(KeyboardInterrupt):
+    """The process received SIGTERM or SIGHUP: unwinds like Ctrl-C (temporary files removed,
+    a study's finished rows kept); the command line ends with exit code 143."""

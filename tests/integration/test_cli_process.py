@@ -75,10 +75,10 @@ def test_a_signal_swallowed_on_its_way_still_stops_the_command(tmp_path, cli, mo
     output is moved into place once it came."""
     import rvsim.geometry.export
     from rvsim._files import request_stop
-    from rvsim.cli import _Terminated
+    from rvsim.errors import Terminated
 
     def swallowed(reducer, points):              # the handler ran; its exception was lost
-        request_stop(_Terminated("SIGTERM"))
+        request_stop(Terminated("SIGTERM"))
         return 0.0
 
     monkeypatch.setattr(rvsim.geometry.export, "chordal_deviation", swallowed)

@@ -13,7 +13,7 @@ import threading
 
 from .. import __version__
 from .._files import check_stop, clear_stop, request_stop
-from ..errors import RvsimError
+from ..errors import RvsimError, Terminated
 from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig, _tolerance
 from ._common import EXAMPLES, Parser
 
@@ -45,13 +45,8 @@ def main(argv: list[str] | None = None) -> int:
     return _main(argv)[0]
 
 
-class _Terminated(KeyboardInterrupt):
-    """SIGTERM or SIGHUP in a command that starts no processes: unwinds like Ctrl-C, so its
-    temporary files are removed (the study commands handle these signals themselves)."""
-
-
 def _terminate(signum, frame):
-    interrupt = _Terminated(signal.Signals(signum).name)
+    interrupt = Terminated(signal.Signals(signum).name)
     request_stop(interrupt)
     raise interrupt
 
@@ -61,7 +56,9 @@ def _interrupt(signum, frame):
     raise KeyboardInterrupt
 
 
-#: commands with worker processes and their own handling of SIGTERM and SIGHUP
+#: commands with worker processes: Ctrl-C reaches them as Python's KeyboardInterrupt (their
+#: runner stops the workers), and SIGTERM and SIGHUP as :class:`Terminated` from the start on
+#: (the runner handles them in its own way while the workers run)
 _STARTS_PROCESSES = frozenset({"study", "tolerance", "allocate"})
 
 
@@ -75,18 +72,19 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
         if not getattr(args, "func", None):
             parser.print_help()
             return 2, command
-        if command not in _STARTS_PROCESSES and \
-                threading.current_thread() is threading.main_thread():
+        if threading.current_thread() is threading.main_thread():
             previous = {name: signal.signal(getattr(signal, name), _terminate)
                         for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)}
-            previous["SIGINT"] = signal.signal(signal.SIGINT, _interrupt)
+            if command not in _STARTS_PROCESSES:
+                previous["SIGINT"] = signal.signal(signal.SIGINT, _interrupt)
         code = int(args.func(args) or 0)
-        check_stop()        # a signal whose exception was swallowed on its way still counts
+        if code not in (130, 143):   # the command has not said it was stopped:
+            check_stop()             # a signal whose exception was swallowed still counts
         return code, command
     except RvsimError as exc:
         print(f"rvsim: error: {exc}", file=sys.stderr)
         return 2, command
-    except _Terminated as exc:
+    except Terminated as exc:
         print(f"rvsim: terminated ({exc})", file=sys.stderr)
         return 143, command
     except KeyboardInterrupt:

@@ -25,7 +25,7 @@ import pandas as pd
 from .._files import atomic_write_text
 from ..dynamics.model import EXPLICIT, SCHEMES
 from ..dynamics.simulate import default_time_step
-from ..errors import InputFileError, ParameterError
+from ..errors import InputFileError, ParameterError, Terminated
 from ..parameters import Reducer
 from ._workers import evaluate_task, run_workers
 from .folder import check_same_study, held_lock_fds, lock_folder
@@ -97,8 +97,10 @@ def _progress(total: int, initial: int, enabled: bool):
                 desc="study", dynamic_ncols=True)
 
 
-class StudyTerminated(KeyboardInterrupt):
-    """The study process received SIGTERM or SIGHUP (handled like Ctrl-C: finished rows kept)."""
+#: the study process received SIGTERM or SIGHUP (handled like Ctrl-C: finished rows kept);
+#: the command line's own exception for these signals, so that one before the runs or after
+#: them is the same
+StudyTerminated = Terminated
 
 
 @contextlib.contextmanager
