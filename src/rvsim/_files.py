@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Callable, Iterator
 
 __all__ = ["atomic_write", "atomic_write_text", "atomic_outputs", "read_toml", "request_stop",
-           "clear_stop", "check_stop"]
+           "clear_stop", "check_stop", "stop_requested"]
 
 #: the interrupt (KeyboardInterrupt or a subclass) that a signal raised in this process, kept
 #: by the command line's handlers: an exception raised in a callback of a C library is
@@ -26,6 +26,10 @@ def request_stop(interrupt: BaseException) -> None:
 
 def clear_stop() -> None:
     _STOP.clear()
+
+
+def stop_requested() -> bool:
+    return bool(_STOP)
 
 
 def check_stop() -> None:
@@ -58,8 +62,10 @@ def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
 @contextlib.contextmanager
 def atomic_outputs(*paths: str | Path | None) -> Iterator[list[Path | None]]:
     """Temporary paths beside ``paths`` (None stays None) for a command's several outputs,
-    moved into place together when the block ends without an exception, all removed when it
-    raises: an interrupted command leaves every output as it was, never one of a pair."""
+    renamed into place one after the other (microseconds) only when the block ends without
+    an exception and every one is written, all removed when it raises: an interrupted
+    command leaves the outputs as they were, not one of a pair.  The files get the
+    permissions a plain ``open`` would give, as with :func:`atomic_write`."""
     temps: list[Path | None] = []
     try:
         for path in paths:
@@ -73,9 +79,18 @@ def atomic_outputs(*paths: str | Path | None) -> Iterator[list[Path | None]]:
             temps.append(Path(tmp))
         yield temps
         check_stop()
+        umask = os.umask(0)
+        os.umask(umask)
         for tmp, path in zip(temps, paths):
             if tmp is not None:
-                os.replace(tmp, path)
+                try:
+                    os.chmod(tmp, 0o666 & ~umask)
+                    os.replace(tmp, path)
+                except OSError as exc:
+                    from .errors import InputFileError
+
+                    raise InputFileError(f"{path}: cannot write ({exc.strerror or exc})") \
+                        from None
     finally:
         for tmp in temps:
             if tmp is not None:

@@ -46,12 +46,23 @@ def small_study(tmp_path):
     return write_study(tmp_path)
 
 
-def interrupted(args, delay, cwd, sig=signal.SIGINT):
-    """Start ``python -m rvsim ARGS`` in ``cwd``, send it a real ``sig`` (SIGINT) after
-    ``delay`` s and return (exit code, stdout, stderr)."""
+def default_signals(ignored=()):
+    """A ``preexec_fn``: SIGINT, SIGTERM and SIGHUP at their defaults in the child (a test run
+    under ``nohup`` or in a background job would otherwise pass on their being ignored),
+    those in ``ignored`` ignored."""
+    def reset():
+        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+            signal.signal(sig, signal.SIG_IGN if sig in ignored else signal.SIG_DFL)
+    return reset
+
+
+def interrupted(args, delay, cwd, sig=signal.SIGINT, ignored=()):
+    """Start ``python -m rvsim ARGS`` in ``cwd`` (``ignored`` signals ignored), send it a real
+    ``sig`` (SIGINT) after ``delay`` s and return (exit code, stdout, stderr)."""
     proc = subprocess.Popen([sys.executable, "-m", "rvsim", *args], stdin=subprocess.DEVNULL,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=cwd,
-                            env={**os.environ, "PYTHONPATH": SRC})
+                            env={**os.environ, "PYTHONPATH": SRC},
+                            preexec_fn=default_signals(ignored))
     try:
         time.sleep(delay)
         proc.send_signal(sig)

@@ -12,10 +12,11 @@ import os
 import signal
 import subprocess
 import sys
+import time
 
 import pytest
 
-from .conftest import SRC, interrupted
+from .conftest import SRC, default_signals, interrupted
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
@@ -88,3 +89,25 @@ def test_a_signal_swallowed_on_its_way_still_stops_the_command(tmp_path, cli, mo
     # the remembered signal ends with the command: the next one runs
     monkeypatch.undo()
     assert cli("profile", "--out", str(tmp_path / "disc.csv"), "--points", "400").code == 0
+
+
+def test_an_ignored_signal_stays_ignored(tmp_path):
+    """`nohup rvsim simulate ...` must survive the terminal's SIGHUP: the command's handlers
+    replaced an ignored signal (a review found it); SIGTERM then ends the run as usual."""
+    proc = subprocess.Popen([sys.executable, "-m", "rvsim", "simulate", "--duration", "30",
+                             "--save", "r.npz"], stdin=subprocess.DEVNULL,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path,
+                            env=ENV, preexec_fn=default_signals(ignored=(signal.SIGHUP,)))
+    try:
+        time.sleep(2.5)
+        proc.send_signal(signal.SIGHUP)
+        time.sleep(1.0)
+        assert proc.poll() is None                       # still running
+        proc.send_signal(signal.SIGTERM)
+        out, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    assert (proc.returncode, out, err) == (143, b"", b"rvsim: terminated (SIGTERM)\n")
+    assert list(tmp_path.iterdir()) == []

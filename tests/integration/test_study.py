@@ -58,6 +58,13 @@ def test_a_study_whose_runs_all_fail_exits_1_with_one_line(tmp_path, cli):
     assert res.err.startswith("rvsim: error: study: all 4 runs failed (run 1: ")
     assert res.err.count("\n") == 1
     assert len(pd.read_csv(out / "results.csv")) == 4      # the failed rows are kept
+    # --json: the status on stdout as well (it printed nothing there)
+    again = cli("study", str(path), "--out", str(out), "--workers", "1", "--no-report",
+                "--json")
+    assert again.code == 1 and again.err == res.err
+    payload = json.loads(again.out)
+    assert payload["status"] == "all_failed" and payload["runs"] == 4
+    assert payload["first_failure"]["run"] == 1 and payload["first_failure"]["status"]
 
 
 def test_failed_row_is_stored_and_does_not_stop_the_study(tmp_path):

@@ -87,6 +87,27 @@ def test_a_mapped_column_the_file_lacks_is_named(tmp_path, capsys, column):
                           "the file has 'time_s', "), err
 
 
+def test_a_folder_may_lack_a_mapped_optional_column_in_some_files(tmp_path, capsys):
+    """One map for a folder: a column some files have (the oil temperature of some runs) is
+    fine; one that no file has is named; a file that fails while lacking one is named."""
+    import shutil
+
+    folder = tmp_path / "bench"
+    shutil.copytree(EXAMPLE, folder)      # the TE file has oil_temperature_c, reversal.csv not
+    assert "oil_temperature_c" not in (folder / "reversal.csv").read_text().splitlines()[0]
+    code = main(["testrig", str(folder), "--column", "oil_temperature=oil_temperature_c",
+                 "--json"])
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    assert main(["testrig", str(folder), "--column", "oil_temperature=temp_c"]) == 2
+    assert capsys.readouterr().err == (f"rvsim: error: {folder}: no file has column 'temp_c' "
+                                       "(mapped to oil_temperature)\n")
+    assert main(["testrig", str(folder), "--column", "input_angle=nope"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"rvsim: error: {folder / 'te_15rpm_300Nm_40C.csv'}: no column "
+                          "'nope' (mapped to input_angle)"), err
+
+
 def test_calibrate_writes_params_the_other_commands_accept(tmp_path, capsys):
     # the example's other uncertain values at their true ones: the stiffness factor alone is
     # then found (0.809 at 128 positions; with the clearance free too the two are correlated

@@ -193,6 +193,10 @@ def test_every_reducer_failing_is_an_error_naming_the_reason(tmp_path, cli):
     assert summary["binding_share"] is None
     assert summary["failures"]["invalid"]["count"] == 3
     assert "n/a" in (out / "report.html").read_text()
+    again = cli("tolerance", path, "--out", str(out), "--workers", "1", "--json")
+    assert again.code == 1 and again.err == res.err
+    payload = json.loads(again.out)
+    assert payload["status"] == "all_failed" and payload["failures"]["invalid"]["count"] == 3
 
 
 def test_some_reducers_failing_are_counted_with_a_note(tmp_path, cli):

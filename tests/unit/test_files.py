@@ -25,3 +25,17 @@ def test_an_interrupted_pair_leaves_the_old_files_and_no_temporary_one(tmp_path)
             raise KeyboardInterrupt
     assert a.read_text() == "old" and not b.exists()
     assert [p.name for p in tmp_path.iterdir()] == ["a.npz"]
+
+
+def test_outputs_get_the_permissions_of_a_plain_open(tmp_path):
+    """mkstemp makes 0600 files; a file written straight into the temporary path (calibrate's
+    fitted.toml) kept them (a review found it)."""
+    import os
+
+    umask = os.umask(0o022)
+    try:
+        with atomic_outputs(tmp_path / "a.toml") as (tmp,):
+            tmp.write_text("x = 1\n")
+    finally:
+        os.umask(umask)
+    assert (tmp_path / "a.toml").stat().st_mode & 0o777 == 0o644

@@ -12,7 +12,7 @@ import sys
 import threading
 
 from .. import __version__
-from .._files import check_stop, clear_stop, request_stop
+from .._files import check_stop, clear_stop, request_stop, stop_requested
 from ..errors import RvsimError, Terminated
 from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig, _tolerance
 from ._common import EXAMPLES, Parser
@@ -46,14 +46,27 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _terminate(signum, frame):
+    if stop_requested():          # a second signal while the first unwinds: one is enough
+        return
     interrupt = Terminated(signal.Signals(signum).name)
     request_stop(interrupt)
     raise interrupt
 
 
 def _interrupt(signum, frame):
+    if stop_requested():
+        return
     request_stop(KeyboardInterrupt())
     raise KeyboardInterrupt
+
+
+def _install(name: str, handler) -> tuple[str, object] | None:
+    """Install ``handler`` for signal ``name`` unless the signal is ignored (``nohup``, a
+    background job's SIGINT: the user's choice stays); (name, previous handler) or None."""
+    number = getattr(signal, name, None)
+    if number is None or signal.getsignal(number) is signal.SIG_IGN:
+        return None
+    return name, signal.signal(number, handler)
 
 
 #: commands with worker processes: Ctrl-C reaches them as Python's KeyboardInterrupt (their
@@ -73,10 +86,10 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
             parser.print_help()
             return 2, command
         if threading.current_thread() is threading.main_thread():
-            previous = {name: signal.signal(getattr(signal, name), _terminate)
-                        for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)}
+            handlers = {"SIGTERM": _terminate, "SIGHUP": _terminate}
             if command not in _STARTS_PROCESSES:
-                previous["SIGINT"] = signal.signal(signal.SIGINT, _interrupt)
+                handlers["SIGINT"] = _interrupt
+            previous = dict(filter(None, (_install(n, h) for n, h in handlers.items())))
         code = int(args.func(args) or 0)
         if code not in (130, 143):   # the command has not said it was stopped:
             check_stop()             # a signal whose exception was swallowed still counts
@@ -94,7 +107,8 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
         return 0, command
     finally:
         for name, handler in previous.items():
-            signal.signal(getattr(signal, name), handler)
+            if handler is not None:      # None: installed from C, cannot be put back
+                signal.signal(getattr(signal, name), handler)
         clear_stop()
 
 

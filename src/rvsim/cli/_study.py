@@ -85,7 +85,12 @@ def _study(args: argparse.Namespace) -> int:
     if len(results) and failed == len(results):
         # nothing to analyse: a failure of the study, not a result (exit 1, one line)
         first = results.iloc[0]
-        reason = f"{first['status']}" + (f": {first['error']}" if first["error"] else "")
+        error = first["error"] if isinstance(first["error"], str) else ""   # NaN: none given
+        reason = f"{first['status']}" + (f": {error}" if error else "")
+        if args.json:
+            print_json({"status": "all_failed", "folder": str(folder), "runs": int(len(results)),
+                        "first_failure": {"run": int(first["run"]),
+                                          "status": str(first["status"]), "error": error}})
         print(f"rvsim: error: study: all {len(results)} runs failed (run {int(first['run'])}: "
               f"{reason.splitlines()[0][:300]}); their rows are in {folder}/results.csv",
               file=sys.stderr)

@@ -58,6 +58,9 @@ def run_tolerance_command(study, args) -> int:
     failed = failure_line(summary)
     if summary["samples"] and summary["failed"] == summary["samples"]:
         # nothing assembled, bound or solved: a failure of the study, not a result
+        if args.json:
+            print_json({"status": "all_failed", "folder": str(folder),
+                        "samples": summary["samples"], "failures": summary["failures"]})
         print(f"rvsim: error: tolerance: all {summary['samples']} reducers failed: {failed}; "
               f"their rows are in {folder}/results.csv", file=sys.stderr)
         return 1

@@ -193,7 +193,7 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
                     worker.task = None
                     on_result(key, outcome)
                     dispatch(worker)
-                    if on_idle is not None and worker.task is None and \
+                    if on_idle is not None and worker.task is None and not queue and \
                             any(w.task is not None for w in pool):
                         idle, on_idle = on_idle, None
                         try:

@@ -7,6 +7,7 @@ import time as _time
 
 import numpy as np
 
+from .._files import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from . import _layout as L
@@ -150,6 +151,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
                                      fe, modal, carried, *implicit)
             if bar is not None:
                 bar.update(min(step, n_steps) * time_step - bar.n)
+            check_stop()        # a Ctrl-C or SIGTERM whose exception was swallowed on its way
             if status != L.STATUS_OK or step > n_steps:
                 break
     finally:

@@ -20,7 +20,8 @@ import numpy as np
 from ..analysis.catalogue import CurveError
 from ..errors import InputFileError
 from . import analysis as A
-from .recording import ColumnMap, Recording, check_ratio, point_from_name, read_recording
+from .recording import (ColumnMap, Recording, _no_column, check_ratio, missing_mapped,
+                        point_from_name, read_recording)
 
 __all__ = ["FileResult", "PointResult", "analyse_path", "analyse_recording", "list_files",
            "check_model_ratio", "RATIO_TOLERANCE", "MANIFEST"]
@@ -240,11 +241,25 @@ def _point_key(declared: dict) -> tuple:
 
 def analyse_path(path: str | Path, reducer, column_map: ColumnMap | None = None, *,
                  points: int = A.DEFAULT_POINTS) -> list[PointResult]:
-    """Every recording of a file or folder, analysed and grouped into operating points."""
+    """Every recording of a file or folder, analysed and grouped into operating points.
+
+    A column that ``column_map`` maps must be in a single file; a folder's files may lack it
+    (the oil temperature of some runs only), but not all of them, and a file whose analysis
+    fails while it lacks a mapped column is reported as lacking it."""
+    column_map = column_map or ColumnMap()
+    folder = Path(path).is_dir()
     groups: dict = {}
+    seen: set = set()
     for file, declared in list_files(path):
-        rec = read_recording(file, column_map)
-        result = analyse_recording(rec, declared, reducer, points=points)
+        rec = read_recording(file, column_map, strict=not folder)
+        seen.update(rec.columns)
+        try:
+            result = analyse_recording(rec, declared, reducer, points=points)
+        except InputFileError:
+            missing = missing_mapped(column_map, rec.columns)
+            if missing:               # the likelier cause: a mapped column this file lacks
+                raise _no_column(file, missing, rec.columns) from None
+            raise
         key = _point_key(declared) or (("file", file.name),)
         point = {k: v for k, v in declared.items() if k in ("speed_rpm", "torque_nm",
                                                               "temperature_c")}
@@ -252,6 +267,10 @@ def analyse_path(path: str | Path, reducer, column_map: ColumnMap | None = None,
             point.setdefault(k, v)
         group = groups.setdefault(key, PointResult(point, []))
         group.files.append(result)
+    nowhere = missing_mapped(column_map, seen)
+    if nowhere:
+        quantity, column = nowhere[0]
+        raise InputFileError(f"{path}: no file has column '{column}' (mapped to {quantity})")
     return list(groups.values())
 
 

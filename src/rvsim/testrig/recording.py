@@ -192,6 +192,7 @@ class Recording:
     oil_temperature: np.ndarray | None = None
     te: np.ndarray | None = None
     direction: np.ndarray | None = None
+    columns: tuple = ()              # the file's column names (header-less: "1", "2", ...)
     ratio: float | None = None       # from the column map, if it gives one
 
     @property
@@ -316,8 +317,24 @@ def _headerless_map(frame, column_map: ColumnMap) -> ColumnMap:
     return ColumnMap(columns, column_map.ratio, column_map.source).merged(column_map)
 
 
-def read_recording(path: str | Path, column_map: ColumnMap | None = None) -> Recording:
-    """The bench file at ``path`` in SI (see the module docstring)."""
+def missing_mapped(column_map: ColumnMap, columns) -> list[tuple[str, str]]:
+    """(quantity, column) of the columns mapped by ``column_map`` that ``columns`` lacks."""
+    return [(q, spec.column) for q, spec in column_map.columns.items()
+            if spec.column not in columns]
+
+
+def _no_column(path: Path, missing: list[tuple[str, str]], columns) -> InputFileError:
+    quantity, column = missing[0]
+    found = ", ".join(f"'{c}'" for c in list(columns)[:12])
+    return InputFileError(f"{path}: no column '{column}' (mapped to {quantity}); the file has "
+                          f"{found} (map columns with --column or --map)")
+
+
+def read_recording(path: str | Path, column_map: ColumnMap | None = None, *,
+                   strict: bool = True) -> Recording:
+    """The bench file at ``path`` in SI (see the module docstring).  ``strict``: a column
+    that ``column_map`` maps must be in the file (a folder's files may lack some, see
+    :func:`rvsim.testrig.bench.analyse_path`)."""
     path = Path(path)
     column_map = column_map or ColumnMap()
     frame = _read_table(path)
@@ -326,11 +343,9 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None) -> Rec
     headerless = all(c.isdigit() for c in frame.columns)
     if headerless:
         column_map = _headerless_map(frame, column_map)
-    for q, spec in column_map.columns.items():      # a mapped column must be there
-        if spec.column not in frame.columns:
-            found = ", ".join(f"'{c}'" for c in frame.columns[:12])
-            raise InputFileError(f"{path}: no column '{spec.column}' (mapped to {q}); the "
-                                 f"file has {found} (map columns with --column or --map)")
+    missing = missing_mapped(column_map, frame.columns)
+    if strict and missing:                           # a mapped column must be there
+        raise _no_column(path, missing, frame.columns)
     values = {q: _column(frame, path, q, column_map.spec(q)) for q in QUANTITIES}
     has = {q for q, v in values.items() if v is not None}
     if "te" in has:
@@ -360,7 +375,7 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None) -> Rec
             if values[q] is not None:
                 values[q] = unwrapped(values[q])
     return Recording(path=path, kind=kind, ratio=column_map.ratio,
-                     **{q: values[q] for q in QUANTITIES})
+                     columns=tuple(frame.columns), **{q: values[q] for q in QUANTITIES})
 
 
 def unwrapped(angle: np.ndarray) -> np.ndarray:

@@ -169,8 +169,9 @@ def failures(status: np.ndarray, errors: np.ndarray) -> dict:
 
 
 def share_text(share: float | None) -> str:
-    """A binding share as text: 'n/a' when no reducer assembled or bound."""
-    return "n/a" if share is None else f"{100 * share:.2f} %"
+    """A binding share as text: 'n/a' when no reducer assembled or bound (None; NaN in the
+    summary.json of earlier versions)."""
+    return "n/a" if share is None or share != share else f"{100 * share:.2f} %"
 
 
 def failure_line(summary: dict) -> str:
