@@ -15,9 +15,12 @@ __all__ = ["MODEL_PACKAGES", "model_source_files", "fingerprint_files", "model_f
 
 _ROOT = Path(__file__).parent
 
-#: sub-packages and modules of rvsim whose source determines a simulation's numbers
-MODEL_PACKAGES = ("dynamics", "fe", "geometry", "parameters", "units.py", "bearings.py",
-                  "friction.py")
+#: sub-packages and modules of rvsim whose source determines a stored run's numbers: the
+#: dynamic and quasi-static engines and what they call, the catalogue quantities of a
+#: quasi-static run, a study's and a tolerance sample's evaluation
+MODEL_PACKAGES = ("dynamics", "fe", "geometry", "parameters", "quasistatic", "units.py",
+                  "bearings.py", "friction.py", "analysis/catalogue.py", "doe/engines.py",
+                  "tolerance/engine.py")
 
 
 def model_source_files(root: Path = _ROOT) -> list[Path]:

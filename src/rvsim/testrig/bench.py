@@ -20,7 +20,7 @@ import numpy as np
 from ..analysis.catalogue import CurveError
 from ..errors import InputFileError
 from . import analysis as A
-from .recording import (ColumnMap, Recording, _no_column, check_ratio, missing_mapped,
+from .recording import (ColumnMap, Recording, check_ratio, missing_mapped, no_column_error,
                         point_from_name, read_recording)
 
 __all__ = ["FileResult", "PointResult", "analyse_path", "analyse_recording", "list_files",
@@ -258,7 +258,7 @@ def analyse_path(path: str | Path, reducer, column_map: ColumnMap | None = None,
         except InputFileError:
             missing = missing_mapped(column_map, rec.columns)
             if missing:               # the likelier cause: a mapped column this file lacks
-                raise _no_column(file, missing, rec.columns) from None
+                raise no_column_error(file, missing, rec.columns) from None
             raise
         key = _point_key(declared) or (("file", file.name),)
         point = {k: v for k, v in declared.items() if k in ("speed_rpm", "torque_nm",

@@ -26,9 +26,9 @@ import numpy as np
 from .._files import read_toml
 from ..errors import InputFileError
 
-__all__ = ["check_ratio", "Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map",
-           "parse_column_option", "point_from_name", "unwrapped", "DEFAULT_COLUMNS",
-           "QUANTITIES", "UNITS"]
+__all__ = ["Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map",
+           "parse_column_option", "point_from_name", "unwrapped", "check_ratio",
+           "missing_mapped", "no_column_error", "DEFAULT_COLUMNS", "QUANTITIES", "UNITS"]
 
 #: canonical quantity -> (default column name, its unit)
 DEFAULT_COLUMNS: dict[str, tuple[str, str]] = {
@@ -323,7 +323,7 @@ def missing_mapped(column_map: ColumnMap, columns) -> list[tuple[str, str]]:
             if spec.column not in columns]
 
 
-def _no_column(path: Path, missing: list[tuple[str, str]], columns) -> InputFileError:
+def no_column_error(path: Path, missing: list[tuple[str, str]], columns) -> InputFileError:
     quantity, column = missing[0]
     found = ", ".join(f"'{c}'" for c in list(columns)[:12])
     return InputFileError(f"{path}: no column '{column}' (mapped to {quantity}); the file has "
@@ -345,7 +345,7 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None, *,
         column_map = _headerless_map(frame, column_map)
     missing = missing_mapped(column_map, frame.columns)
     if strict and missing:                           # a mapped column must be there
-        raise _no_column(path, missing, frame.columns)
+        raise no_column_error(path, missing, frame.columns)
     values = {q: _column(frame, path, q, column_map.spec(q)) for q in QUANTITIES}
     has = {q for q, v in values.items() if v is not None}
     if "te" in has:
