@@ -13,7 +13,8 @@ own tolerances (so the allocation never buys its savings with more scrap than th
 given).  Reducers the model cannot evaluate (a drawn value outside what it accepts, a solve
 that fails) are left out of the percentiles, so their share is a constraint as well: at most
 the share of the tolerances as given (without it, loosening a tolerance into values the model
-refuses would shrink the percentiles it is judged by).  The constraints are Monte Carlo percentiles of ``samples`` reducers with common random
+refuses would shrink the percentiles it is judged by).  The constraints are Monte Carlo
+percentiles of ``samples`` reducers with common random
 numbers (the same uniform numbers, only the tolerances scale them), so they are smooth
 functions of the tolerances; the optimiser is SciPy's COBYLA on the logarithms of the
 tolerances.  Every evaluation is stored in the study store (a repeated point is not re-run).
