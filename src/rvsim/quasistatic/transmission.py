@@ -13,6 +13,7 @@ import time as _time
 
 import numpy as np
 
+from .._files import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..units import ARCMIN
@@ -144,6 +145,7 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
                        out.output_pin_forces[part], P_fric, moving[part], turning[part],
                        friction[part], model.fe)
         solved += done
+        check_stop()        # a Ctrl-C or SIGTERM whose exception was swallowed on its way
         if done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK:
             break
         q0 = out.q[solved - 1].copy()
