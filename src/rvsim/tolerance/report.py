@@ -134,7 +134,11 @@ def rebuild_tolerance_report(folder: str | Path) -> Path:
         status = frame["status"].to_numpy(dtype=object)
         values = {m: pd.to_numeric(frame[m], errors="coerce").to_numpy(dtype=float)
                   for m in summary["metrics"]}
-    except (OSError, ValueError, KeyError, TypeError, pd.errors.ParserError) as exc:
+        return write_tolerance_report(folder, summary, values, status)
+    except (ValueError, KeyError, TypeError, AttributeError, pd.errors.ParserError) as exc:
+        # a summary.json or results.csv that is not what rvsim tolerance writes
         raise InputFileError(f"{folder}: damaged tolerance study files ({type(exc).__name__}: "
                              f"{exc}); run 'rvsim tolerance' on it again") from None
-    return write_tolerance_report(folder, summary, values, status)
+    except OSError as exc:
+        raise InputFileError(f"{folder}: cannot read or write the tolerance study files "
+                             f"({exc.strerror or exc})") from None
