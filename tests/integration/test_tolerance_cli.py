@@ -51,6 +51,11 @@ def test_tolerance_writes_summary_results_and_report(tmp_path, small, cli):
     rebuilt = cli("report", str(out))
     assert rebuilt.code == 0, rebuilt.err
     assert (out / "report.html").read_text() == page
+    (out / "summary.json").write_text('{"metrics": {}}')      # damaged: one line
+    damaged = cli("report", str(out))
+    assert damaged.code == 2 and damaged.err == (
+        f"rvsim: error: {out}: damaged tolerance study files (KeyError: 'study'); run "
+        "'rvsim tolerance' on it again\n")
     # re-running resumes: nothing is evaluated again, the same numbers come out
     again = cli("tolerance", str(small), "--out", str(out), "--workers", "1", "--sobol", "2",
                 "--json")
