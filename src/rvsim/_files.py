@@ -44,19 +44,31 @@ def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
     The file gets the permissions a plain ``open`` would give (0666 less the umask).
     """
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=path.suffix)
-    os.close(fd)
+    tmp = _temporary_beside(path)
     try:
-        write(Path(tmp))
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
+        write(tmp)
         check_stop()
-        os.replace(tmp, path)
+        _move_into_place(tmp, path)
     except BaseException:
-        Path(tmp).unlink(missing_ok=True)
+        tmp.unlink(missing_ok=True)
         raise
     return path
+
+
+def _temporary_beside(path: Path) -> Path:
+    """A new empty hidden file ``.NAME.xxxx.SUFFIX`` in ``path``'s folder."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=path.suffix)
+    os.close(fd)
+    return Path(tmp)
+
+
+def _move_into_place(tmp: Path, path: Path) -> None:
+    """Give ``tmp`` the permissions a plain ``open`` would (0666 less the umask; mkstemp
+    makes 0600) and rename it to ``path``."""
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)
+    os.replace(tmp, path)
 
 
 @contextlib.contextmanager
@@ -69,23 +81,13 @@ def atomic_outputs(*paths: str | Path | None) -> Iterator[list[Path | None]]:
     temps: list[Path | None] = []
     try:
         for path in paths:
-            if path is None:
-                temps.append(None)
-                continue
-            path = Path(path)
-            fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
-                                       suffix=path.suffix)
-            os.close(fd)
-            temps.append(Path(tmp))
+            temps.append(None if path is None else _temporary_beside(Path(path)))
         yield temps
         check_stop()
-        umask = os.umask(0)
-        os.umask(umask)
         for tmp, path in zip(temps, paths):
             if tmp is not None:
                 try:
-                    os.chmod(tmp, 0o666 & ~umask)
-                    os.replace(tmp, path)
+                    _move_into_place(tmp, Path(path))
                 except OSError as exc:
                     from .errors import InputFileError
 

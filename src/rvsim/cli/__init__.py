@@ -45,28 +45,24 @@ def main(argv: list[str] | None = None) -> int:
     return _main(argv)[0]
 
 
-def _terminate(signum, frame):
+def _stop(signum, frame):
+    """SIGINT: KeyboardInterrupt; SIGTERM, SIGHUP: :class:`Terminated`; remembered, so that
+    one swallowed on its way still stops the command (:func:`rvsim._files.check_stop`)."""
     if stop_requested():          # a second signal while the first unwinds: one is enough
         return
-    interrupt = Terminated(signal.Signals(signum).name)
+    interrupt = (KeyboardInterrupt() if signum == signal.SIGINT
+                 else Terminated(signal.Signals(signum).name))
     request_stop(interrupt)
     raise interrupt
 
 
-def _interrupt(signum, frame):
-    if stop_requested():
-        return
-    request_stop(KeyboardInterrupt())
-    raise KeyboardInterrupt
-
-
-def _install(name: str, handler) -> tuple[str, object] | None:
-    """Install ``handler`` for signal ``name`` unless the signal is ignored (``nohup``, a
+def _install(name: str) -> tuple[str, object] | None:
+    """Install :func:`_stop` for signal ``name`` unless the signal is ignored (``nohup``, a
     background job's SIGINT: the user's choice stays); (name, previous handler) or None."""
     number = getattr(signal, name, None)
     if number is None or signal.getsignal(number) is signal.SIG_IGN:
         return None
-    return name, signal.signal(number, handler)
+    return name, signal.signal(number, _stop)
 
 
 #: commands with worker processes: Ctrl-C reaches them as Python's KeyboardInterrupt (their
@@ -86,10 +82,9 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
             parser.print_help()
             return 2, command
         if threading.current_thread() is threading.main_thread():
-            handlers = {"SIGTERM": _terminate, "SIGHUP": _terminate}
-            if command not in _STARTS_PROCESSES:
-                handlers["SIGINT"] = _interrupt
-            previous = dict(filter(None, (_install(n, h) for n, h in handlers.items())))
+            names = ["SIGTERM", "SIGHUP"] + (["SIGINT"] if command not in _STARTS_PROCESSES
+                                             else [])
+            previous = dict(filter(None, (_install(name) for name in names)))
         code = int(args.func(args) or 0)
         if code not in (130, 143):   # the command has not said it was stopped:
             check_stop()             # a signal whose exception was swallowed still counts

@@ -37,10 +37,10 @@ def _params(args: argparse.Namespace) -> int:
 
 
 def _profile(args: argparse.Namespace) -> int:
-    from ..geometry.export import export_profile
+    from ..geometry.export import export_profile, least_points
 
     reducer = reducer_from_args(args)
-    least = 3 * reducer.cycloid.disc_teeth                 # three points per tooth
+    least = least_points(reducer)
     if not least <= args.points <= MAX_PROFILE_POINTS:
         raise ParameterError("--points", f"must be between {least:,} (3 per tooth of the "
                              f"{reducer.cycloid.disc_teeth}-tooth disc) and "

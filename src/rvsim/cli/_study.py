@@ -63,9 +63,8 @@ def _study(args: argparse.Namespace) -> int:
             write_study_report(folder, study=study)
 
     from ..doe._workers import WorkerStartError
-    from ..doe.runner import StudyTerminated
-
     from ..doe.outputs import prepare_outputs
+    from ..doe.runner import StudyTerminated
 
     try:
         results = run(study, folder, workers=args.workers, scheduler=args.scheduler,

@@ -17,7 +17,7 @@ from ..errors import InputFileError, ParameterError
 from ..parameters import Reducer
 from .cycloid import profile_of
 
-__all__ = ["export_profile", "chordal_deviation", "SUPPORTED_SUFFIXES"]
+__all__ = ["export_profile", "chordal_deviation", "least_points", "SUPPORTED_SUFFIXES"]
 
 SUPPORTED_SUFFIXES = (".csv", ".dxf")
 
@@ -40,6 +40,11 @@ def chordal_deviation(reducer: Reducer, points: int) -> float:
     return worst
 
 
+def least_points(reducer: Reducer) -> int:
+    """The fewest profile points :func:`export_profile` writes: three per tooth."""
+    return 3 * reducer.cycloid.disc_teeth
+
+
 def export_profile(reducer: Reducer, path: str | Path, *, points: int = 36000) -> dict:
     """Write the disc profile to ``path`` (.csv or .dxf); return a summary dict."""
     path = Path(path)
@@ -47,8 +52,8 @@ def export_profile(reducer: Reducer, path: str | Path, *, points: int = 36000) -
     if suffix not in SUPPORTED_SUFFIXES:
         raise InputFileError(f"{path}: unsupported profile format '{path.suffix}' "
                              f"(use {' or '.join(SUPPORTED_SUFFIXES)})")
-    if points < 3 * reducer.cycloid.disc_teeth:
-        raise ParameterError("points", f"must be at least {3 * reducer.cycloid.disc_teeth} "
+    if points < least_points(reducer):
+        raise ParameterError("points", f"must be at least {least_points(reducer)} "
                              f"(3 per tooth of the {reducer.cycloid.disc_teeth}-tooth disc; "
                              f"got {points})")
     if not path.parent.exists():
