@@ -91,6 +91,38 @@ def test_a_signal_swallowed_on_its_way_still_stops_the_command(tmp_path, cli, mo
     assert cli("profile", "--out", str(tmp_path / "disc.csv"), "--points", "400").code == 0
 
 
+SWALLOWED_IN_A_FINALISER = """
+import os, signal, sys
+import rvsim.geometry.export
+from rvsim.cli import run
+
+class Finalised:                     # a signal that lands in a finaliser (llvmlite's objects)
+    def __del__(self):
+        os.kill(os.getpid(), signal.SIGHUP)
+        for _ in range(1000):        # the handler runs here; its exception cannot leave
+            pass
+
+def deviation(reducer, points):
+    Finalised()
+    return 0.0
+
+rvsim.geometry.export.chordal_deviation = deviation
+sys.argv = ["rvsim", "profile", "--out", "disc.csv", "--points", "400"]
+run()
+"""
+
+
+def test_a_signal_swallowed_in_a_finaliser_is_one_line(tmp_path):
+    """CI, cold numba cache: a SIGHUP that landed in llvmlite's ``ObjectRef.__del__`` while
+    numba compiled printed "Exception ignored in: ..." and a 30-line traceback before rvsim's
+    own line.  The swallowed stop is said once, by the command."""
+    res = subprocess.run([sys.executable, "-c", SWALLOWED_IN_A_FINALISER], capture_output=True,
+                         cwd=tmp_path, env=ENV, stdin=subprocess.DEVNULL, timeout=300)
+    assert (res.returncode, res.stdout, res.stderr) == (143, b"",
+                                                        b"rvsim: terminated (SIGHUP)\n")
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_an_ignored_signal_stays_ignored(tmp_path):
     """`nohup rvsim simulate ...` must survive the terminal's SIGHUP: the command's handlers
     replaced an ignored signal (a review found it); SIGTERM then ends the run as usual."""

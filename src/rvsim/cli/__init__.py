@@ -12,7 +12,7 @@ import sys
 import threading
 
 from .. import __version__
-from .._files import check_stop, clear_stop, request_stop, stop_requested
+from .._files import check_stop, clear_stop, quiet_swallowed_stop, request_stop, stop_requested
 from ..errors import RvsimError, Terminated
 from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig, _tolerance
 from ._common import EXAMPLES, Parser
@@ -75,6 +75,7 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
     parser = build_parser()
     command = None
     previous = {}
+    unraisable_hook = sys.unraisablehook
     try:
         args = parser.parse_args(argv)
         command = getattr(args, "command", None)
@@ -85,6 +86,7 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
             names = ["SIGTERM", "SIGHUP"] + (["SIGINT"] if command not in _STARTS_PROCESSES
                                              else [])
             previous = dict(filter(None, (_install(name) for name in names)))
+            sys.unraisablehook = quiet_swallowed_stop(unraisable_hook)
         code = int(args.func(args) or 0)
         if code not in (130, 143):   # the command has not said it was stopped:
             check_stop()             # a signal whose exception was swallowed still counts
@@ -101,6 +103,7 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
     except BrokenPipeError:
         return 0, command
     finally:
+        sys.unraisablehook = unraisable_hook
         for name, handler in previous.items():
             if handler is not None:      # None: installed from C, cannot be put back
                 signal.signal(getattr(signal, name), handler)
