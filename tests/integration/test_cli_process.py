@@ -91,6 +91,25 @@ def test_a_signal_swallowed_on_its_way_still_stops_the_command(tmp_path, cli, mo
     assert cli("profile", "--out", str(tmp_path / "disc.csv"), "--points", "400").code == 0
 
 
+def test_a_signal_turned_into_another_exception_is_said_as_the_stop(tmp_path, cli,
+                                                                   monkeypatch):
+    """A SIGHUP during numba's compilation of a cold cache once ended `rvsim simulate` with a
+    traceback and exit code 1 (1 try in 10): the compiler let another exception out in the
+    interrupt's place.  Any exception after a stop signal is the stop."""
+    import rvsim.geometry.export
+    from rvsim._files import request_stop
+    from rvsim.errors import Terminated
+
+    def wrapped(reducer, points):
+        request_stop(Terminated("SIGHUP"))
+        raise RuntimeError("Failed in nopython mode pipeline (step: native lowering)")
+
+    monkeypatch.setattr(rvsim.geometry.export, "chordal_deviation", wrapped)
+    res = cli("profile", "--out", str(tmp_path / "disc.csv"), "--points", "400")
+    assert (res.code, res.out, res.err) == (143, "", "rvsim: terminated (SIGHUP)\n")
+    assert list(tmp_path.iterdir()) == []
+
+
 SWALLOWED_IN_A_FINALISER = """
 import os, signal, sys
 import rvsim.geometry.export

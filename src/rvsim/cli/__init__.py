@@ -87,7 +87,11 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
                                              else [])
             previous = dict(filter(None, (_install(name) for name in names)))
             sys.unraisablehook = quiet_swallowed_stop(unraisable_hook)
-        code = int(args.func(args) or 0)
+        try:
+            code = int(args.func(args) or 0)
+        except Exception:
+            check_stop()   # an exception a stop signal's became on its way: the stop is said
+            raise
         if code not in (130, 143):   # the command has not said it was stopped:
             check_stop()             # a signal whose exception was swallowed still counts
         return code, command
