@@ -9,44 +9,9 @@ import tempfile
 from pathlib import Path
 from typing import Callable, Iterator
 
-__all__ = ["atomic_write", "atomic_write_text", "atomic_outputs", "read_toml", "request_stop",
-           "clear_stop", "check_stop", "stop_requested", "quiet_swallowed_stop"]
+from ._stopping import check_stop
 
-#: the interrupt (KeyboardInterrupt or a subclass) that a signal raised in this process, kept
-#: by the command line's handlers: an exception raised in a callback of a C library is
-#: sometimes swallowed there (numba's compiler prints "Exception ignored in: ..." and goes
-#: on), and the command must still stop before it moves an output into place
-_STOP: list[BaseException] = []
-
-
-def request_stop(interrupt: BaseException) -> None:
-    """Remember ``interrupt`` (raised by a signal handler) until :func:`clear_stop`."""
-    _STOP[:] = [interrupt]
-
-
-def clear_stop() -> None:
-    _STOP.clear()
-
-
-def stop_requested() -> bool:
-    return bool(_STOP)
-
-
-def check_stop() -> None:
-    """Raise the remembered interrupt again, if a signal asked this process to stop."""
-    if _STOP:
-        raise _STOP[0]
-
-
-def quiet_swallowed_stop(then: Callable) -> Callable:
-    """A :data:`sys.unraisablehook` that says nothing of the remembered interrupt when a
-    finaliser or a C callback swallows it (numba's compiler printed "Exception ignored in:
-    ..." and a traceback); it is raised again at the next :func:`check_stop`, and the command
-    says in one line that it stopped.  Anything else goes on to the hook ``then``."""
-    def hook(unraisable) -> None:
-        if not (_STOP and unraisable.exc_value is _STOP[0]):
-            then(unraisable)
-    return hook
+__all__ = ["atomic_write", "atomic_write_text", "atomic_outputs", "read_toml"]
 
 
 def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:

@@ -75,7 +75,7 @@ def test_a_signal_swallowed_on_its_way_still_stops_the_command(tmp_path, cli, mo
     write its file and exit 0 (1 try in 20).  The handler also remembers the signal, and no
     output is moved into place once it came."""
     import rvsim.geometry.export
-    from rvsim._files import request_stop
+    from rvsim._stopping import request_stop
     from rvsim.errors import Terminated
 
     def swallowed(reducer, points):              # the handler ran; its exception was lost
@@ -97,7 +97,7 @@ def test_a_signal_turned_into_another_exception_is_said_as_the_stop(tmp_path, cl
     traceback and exit code 1 (1 try in 10): the compiler let another exception out in the
     interrupt's place.  Any exception after a stop signal is the stop."""
     import rvsim.geometry.export
-    from rvsim._files import request_stop
+    from rvsim._stopping import request_stop
     from rvsim.errors import Terminated
 
     def wrapped(reducer, points):

@@ -18,7 +18,7 @@ from rvsim.doe._workers import TEST_KILL_ENV
 from rvsim.doe.folder import lock_folder
 from rvsim.doe.store import ResultStore
 from rvsim.dynamics import DEFAULT_TIME_STEP
-from tests.integration.conftest import factors, write_study
+from tests.integration.conftest import SRC, default_signals, factors, write_study
 
 HANG = 60  # s: a guard against a hung study, not a performance figure
 
@@ -50,12 +50,14 @@ def _study(tmp_path, design="L9"):
     return path
 
 
-def _start(path, out, *extra, env=None, session=False):
-    """``rvsim study`` as a subprocess (``session``: in its own process group)."""
+def _start(path, out, *extra, env=None, session=False, ignored=()):
+    """``rvsim study`` as a subprocess (``session``: in its own process group; ``ignored``:
+    signals ignored in it, as ``nohup`` does)."""
     return subprocess.Popen([sys.executable, "-m", "rvsim", "study", str(path), "--out",
                              str(out), "--workers", "2", "--no-progress", "--no-report", *extra],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            env={**os.environ, **(env or {})}, start_new_session=session)
+                            env={**os.environ, **(env or {})}, start_new_session=session,
+                            preexec_fn=default_signals(ignored))
 
 
 def _wait_rows(proc, out, count):
@@ -111,6 +113,61 @@ def test_signal_stops_the_study_keeps_rows_and_leaves_no_worker(tmp_path, cli, s
     else:
         with lock_folder(out):
             pass
+
+
+def test_a_study_under_nohup_survives_the_hangup(tmp_path):
+    """`nohup rvsim study ...`: the terminal's SIGHUP (to the whole process group) used to
+    stop the study (143), its runner replacing the ignored signal with its own handler, and
+    its workers set SIGHUP back to its default.  Study and workers now carry on."""
+    path = _study(tmp_path, "L4")
+    out = tmp_path / "out"
+    proc = _start(path, out, session=True, ignored=(signal.SIGHUP,))
+    workers = _wait_rows(proc, out, 1)
+    os.killpg(proc.pid, signal.SIGHUP)
+    _, err = proc.communicate(timeout=HANG)
+    assert (proc.returncode, err) == (0, "")
+    assert not _gone(workers)
+    assert list(_rows(out).values()) == ["ok"] * 4
+
+
+SWALLOWED_CTRL_C = """
+import importlib, os, signal, sys
+from rvsim.cli import run
+
+simulate = importlib.import_module("rvsim.dynamics.simulate")
+checked = simulate.check_run_options
+sent = []
+
+class Finalised:                     # Ctrl-C lands in a finaliser (llvmlite's, numba compiling)
+    def __del__(self):
+        os.kill(os.getpid(), signal.SIGINT)
+        for _ in range(1000):        # the handler runs here; its exception cannot leave
+            pass
+
+def check(*args, **kwargs):          # the runner's checks before any run
+    if not sent:
+        sent.append(Finalised())
+        sent.clear()
+    return checked(*args, **kwargs)
+
+simulate.check_run_options = check
+sys.argv = ["rvsim", "study", sys.argv[1], "--out", sys.argv[2], "--no-progress"]
+run()
+"""
+
+
+def test_a_ctrl_c_swallowed_before_the_runs_stops_the_study(tmp_path):
+    """Cold numba cache, Ctrl-C 2.5 s after the start of `rvsim study paper-l36`: Python
+    printed "Exception ignored on calling ctypes callback function" with a traceback, and the
+    study ran all 36 runs and exited 0.  The stop is now remembered in a study's process too:
+    one line, 130, no run."""
+    path = _study(tmp_path, "L4")
+    out = tmp_path / "out"
+    res = subprocess.run([sys.executable, "-c", SWALLOWED_CTRL_C, str(path), str(out)],
+                         capture_output=True, text=True, timeout=HANG, stdin=subprocess.DEVNULL,
+                         env={**os.environ, "PYTHONPATH": SRC}, preexec_fn=default_signals())
+    assert (res.returncode, res.stdout, res.stderr) == (130, "", "rvsim: interrupted\n")
+    assert _rows(out) == {}
 
 
 def test_sigkill_of_the_study_ends_its_workers_and_the_store_file_alone_is_complete(tmp_path):

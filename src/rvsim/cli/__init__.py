@@ -7,12 +7,10 @@ from __future__ import annotations
 
 import argparse
 import os
-import signal
 import sys
-import threading
 
 from .. import __version__
-from .._files import check_stop, clear_stop, quiet_swallowed_stop, request_stop, stop_requested
+from .._stopping import check_stop, stop_signals
 from ..errors import RvsimError, Terminated
 from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig, _tolerance
 from ._common import EXAMPLES, Parser
@@ -45,55 +43,23 @@ def main(argv: list[str] | None = None) -> int:
     return _main(argv)[0]
 
 
-def _stop(signum, frame):
-    """SIGINT: KeyboardInterrupt; SIGTERM, SIGHUP: :class:`Terminated`; remembered, so that
-    one swallowed on its way still stops the command (:func:`rvsim._files.check_stop`)."""
-    if stop_requested():          # a second signal while the first unwinds: one is enough
-        return
-    interrupt = (KeyboardInterrupt() if signum == signal.SIGINT
-                 else Terminated(signal.Signals(signum).name))
-    request_stop(interrupt)
-    raise interrupt
-
-
-def _install(name: str) -> tuple[str, object] | None:
-    """Install :func:`_stop` for signal ``name`` unless the signal is ignored (``nohup``, a
-    background job's SIGINT: the user's choice stays); (name, previous handler) or None."""
-    number = getattr(signal, name, None)
-    if number is None or signal.getsignal(number) is signal.SIG_IGN:
-        return None
-    return name, signal.signal(number, _stop)
-
-
-#: commands with worker processes: Ctrl-C reaches them as Python's KeyboardInterrupt (their
-#: runner stops the workers), and SIGTERM and SIGHUP as :class:`Terminated` from the start on
-#: (the runner handles them in its own way while the workers run)
-_STARTS_PROCESSES = frozenset({"study", "tolerance", "allocate"})
-
-
 def _main(argv: list[str] | None) -> tuple[int, str | None]:
     parser = build_parser()
     command = None
-    previous = {}
-    unraisable_hook = sys.unraisablehook
     try:
         args = parser.parse_args(argv)
         command = getattr(args, "command", None)
         if not getattr(args, "func", None):
             parser.print_help()
             return 2, command
-        if threading.current_thread() is threading.main_thread():
-            names = ["SIGTERM", "SIGHUP"] + (["SIGINT"] if command not in _STARTS_PROCESSES
-                                             else [])
-            previous = dict(filter(None, (_install(name) for name in names)))
-            sys.unraisablehook = quiet_swallowed_stop(unraisable_hook)
-        try:
-            code = int(args.func(args) or 0)
-        except Exception:
-            check_stop()   # an exception a stop signal's became on its way: the stop is said
-            raise
-        if code not in (130, 143):   # the command has not said it was stopped:
-            check_stop()             # a signal whose exception was swallowed still counts
+        with stop_signals():
+            try:
+                code = int(args.func(args) or 0)
+            except Exception:
+                check_stop()   # an exception a stop signal's became on its way: the stop
+                raise
+            if code not in (130, 143):   # the command has not said it was stopped:
+                check_stop()             # a signal whose exception was swallowed still counts
         return code, command
     except RvsimError as exc:
         print(f"rvsim: error: {exc}", file=sys.stderr)
@@ -106,12 +72,6 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
         return 130, command
     except BrokenPipeError:
         return 0, command
-    finally:
-        sys.unraisablehook = unraisable_hook
-        for name, handler in previous.items():
-            if handler is not None:      # None: installed from C, cannot be put back
-                signal.signal(getattr(signal, name), handler)
-        clear_stop()
 
 
 # Commands that start no processes of their own.  Once they have returned, every file they

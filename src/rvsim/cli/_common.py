@@ -16,7 +16,7 @@ from ..errors import InputFileError, ParameterError, RvsimError
 from ..parameters import (BUILT_IN_SETS, RV40E, Reducer, load_toml, parse_assignment,
                           with_values)
 
-__all__ = ["Parser", "UsageError", "add_command", "add_reducer_options", "reducer_from_args",
+__all__ = ["Parser", "UsageError", "stopped_line", "add_command", "add_reducer_options", "reducer_from_args",
            "print_json", "EXAMPLES", "positive_int", "probability", "path_text",
            "scheduler_address", "check_output_file", "check_output_folder"]
 
@@ -153,6 +153,25 @@ def _check_writable_folder(folder: Path, option: str, target: Path) -> None:
                              f"({exc.strerror or exc})") from None
     os.close(fd)
     os.unlink(probe)
+
+
+def stopped_line(interrupt: KeyboardInterrupt, folder: Path, what: str) -> tuple[str, int]:
+    """The line and exit code of a study stopped by ``interrupt``; it names ``folder`` only
+    if the folder's store holds finished ``what`` (a stop before the first result has none)."""
+    from ..doe.store import ResultStore
+    from ..errors import RvsimError, Terminated
+
+    try:
+        store = ResultStore(folder, readonly=True)
+        try:
+            kept = f"; finished {what} are kept in {folder}" if store.finished() else ""
+        finally:
+            store.close()
+    except RvsimError:                 # no store yet
+        kept = ""
+    if isinstance(interrupt, Terminated):
+        return f"rvsim: terminated ({interrupt}){kept}", 143
+    return f"rvsim: interrupted{kept}", 130
 
 
 def check_output_file(path: str, option: str) -> Path:

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from ..errors import InputFileError, ParameterError
 from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
-                      probability, scheduler_address)
+                      probability, scheduler_address, stopped_line)
 
 __all__ = ["register"]
 
@@ -64,18 +64,14 @@ def _study(args: argparse.Namespace) -> int:
 
     from ..doe._workers import WorkerStartError
     from ..doe.outputs import prepare_outputs
-    from ..doe.runner import StudyTerminated
 
     try:
         results = run(study, folder, workers=args.workers, scheduler=args.scheduler,
                       progress=progress, finish=finish, prepare=prepare_outputs)
-    except StudyTerminated as exc:
-        print(f"rvsim: terminated ({exc}); finished runs are kept in {folder}",
-              file=sys.stderr)
-        return 143
-    except KeyboardInterrupt:
-        print(f"rvsim: interrupted; finished runs are kept in {folder}", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:            # Ctrl-C, or SIGTERM / SIGHUP (Terminated)
+        line, code = stopped_line(exc, folder, "runs")
+        print(line, file=sys.stderr)
+        return code
     except WorkerStartError as exc:
         print(f"rvsim: error: {exc}; finished runs are kept in {folder}", file=sys.stderr)
         return 1

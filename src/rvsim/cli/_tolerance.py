@@ -8,7 +8,7 @@ from pathlib import Path
 
 from ..errors import InputFileError
 from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
-                      scheduler_address)
+                      scheduler_address, stopped_line)
 
 __all__ = ["register", "load_any_tolerance_study"]
 
@@ -35,7 +35,6 @@ def load_any_tolerance_study(name: str):
 
 def run_tolerance_command(study, args) -> int:
     """Shared by ``rvsim tolerance`` and ``rvsim study`` given a tolerance study."""
-    from ..doe.runner import StudyTerminated
     from ..tolerance.analysis import tolerance_analysis
     from ..tolerance.montecarlo import failure_line, share_text
 
@@ -48,13 +47,10 @@ def run_tolerance_command(study, args) -> int:
                                      workers=args.workers, scheduler=args.scheduler,
                                      progress=progress,
                                      report=not getattr(args, "no_report", False))
-    except StudyTerminated as exc:
-        print(f"rvsim: terminated ({exc}); finished reducers are kept in {folder}",
-              file=sys.stderr)
-        return 143
-    except KeyboardInterrupt:
-        print(f"rvsim: interrupted; finished reducers are kept in {folder}", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:            # Ctrl-C, or SIGTERM / SIGHUP (Terminated)
+        line, code = stopped_line(exc, folder, "reducers")
+        print(line, file=sys.stderr)
+        return code
     failed = failure_line(summary)
     if summary["samples"] and summary["failed"] == summary["samples"]:
         # nothing assembled, bound or solved: a failure of the study, not a result

@@ -60,9 +60,10 @@ def _die_with_parent(parent_pid: int) -> None:
 
 def _worker_main(conn, parent_pid: int, inherited_fds: list[int]) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    for name in ("SIGTERM", "SIGHUP"):
-        if hasattr(signal, name):
-            signal.signal(getattr(signal, name), signal.SIG_DFL)
+    for name in ("SIGTERM", "SIGHUP"):   # the parent's handlers; an ignored one (nohup) stays
+        number = getattr(signal, name, None)
+        if number is not None and signal.getsignal(number) is not signal.SIG_IGN:
+            signal.signal(number, signal.SIG_DFL)
     _die_with_parent(parent_pid)
     for fd in inherited_fds:       # the parent's folder lock must die with the parent
         try:

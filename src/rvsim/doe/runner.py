@@ -11,11 +11,9 @@ finished row.
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import json
 import os
-import signal
 import traceback
 from pathlib import Path
 from typing import Callable
@@ -103,25 +101,12 @@ def _progress(total: int, initial: int, enabled: bool):
 StudyTerminated = Terminated
 
 
-@contextlib.contextmanager
 def _termination_interrupts():
-    """Make SIGTERM and SIGHUP raise StudyTerminated (so workers are stopped, rows kept)."""
-    import threading
+    """Ctrl-C, SIGTERM and SIGHUP raise KeyboardInterrupt or StudyTerminated while the workers
+    run, so they are stopped and every finished row is kept (:mod:`rvsim._stopping`)."""
+    from .._stopping import stop_signals
 
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def terminate(signum, frame):
-        raise StudyTerminated(signal.Signals(signum).name)
-
-    names = [n for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n)]
-    previous = {n: signal.signal(getattr(signal, n), terminate) for n in names}
-    try:
-        yield
-    finally:
-        for name, handler in previous.items():
-            signal.signal(getattr(signal, name), handler)
+    return stop_signals()
 
 
 def run(study: Study, folder: str | Path, *, workers: int | None = None,

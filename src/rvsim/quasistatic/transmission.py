@@ -13,7 +13,7 @@ import time as _time
 
 import numpy as np
 
-from .._files import check_stop
+from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..units import ARCMIN
