@@ -105,6 +105,12 @@ def _bad(tmp_path, body):
 @pytest.mark.parametrize("body, field", [
     (SMALL.replace("[tolerances.pin_radius]", "[tolerances.pin_colour]"), "pin_colour"),
     (SMALL.replace("tolerance = 0.002", "tolerance = -0.002"), "tolerance"),
+    # 1e308 mm went on: every reducer "bound on assembly", with numpy's overflow warnings
+    (SMALL.replace("tolerance = 0.002", "tolerance = 1e308"),
+     "'tolerances.pin_radius.tolerance': must be at most 1 mm (got 1e+308)"),
+    (SMALL.replace("tolerance = 0.002", "tolerance = 2"), "at most 1 mm (got 2)"),
+    (SMALL.replace("[tolerances.pin_radius]", "[tolerances.disc_phase]").replace(
+        "tolerance = 0.002", "tolerance = 61"), "at most 60 arcmin (got 61)"),
     (SMALL.replace('distribution = "normal"', 'distribution = "cauchy"'), "distribution"),
     (SMALL.replace('distribution = "normal"', 'per = "batch"'), "per"),
     (SMALL.replace("samples = 6", "samples = 1"), "samples"),

@@ -62,6 +62,9 @@ FEATURES = {
     "carrier_holes": ("mm", "each crank's bore position in the carrier (radial, tangential)"),
 }
 _KEYS = {"tolerance", "distribution", "per", "orders"}
+#: the largest per-part tolerance accepted, by unit: far beyond any reducer that assembles
+#: (part errors of a precision reducer are microns); a tolerance meant in um is refused
+FEATURE_LIMITS = {"mm": 1.0, "arcmin": 60.0}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -285,6 +288,11 @@ def _tolerance(name: str, spec, path) -> Tolerance:
         raise ParameterError(f"{where}.tolerance", f"needs a finite number (got {tol!r})")
     if tol < 0:
         raise ParameterError(f"{where}.tolerance", f"must not be negative (got {tol:g})")
+    if name in FEATURES:
+        unit = FEATURES[name][0]
+        if tol > FEATURE_LIMITS[unit]:
+            raise ParameterError(f"{where}.tolerance", f"must be at most "
+                                 f"{FEATURE_LIMITS[unit]:g} {unit} (got {tol:g})")
     distribution = spec.get("distribution", "uniform")
     if distribution not in DISTRIBUTIONS:
         raise ParameterError(f"{where}.distribution", f"unknown distribution {distribution!r} "
