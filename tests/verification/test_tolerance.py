@@ -163,3 +163,21 @@ def test_the_example_file_is_the_built_in_study():
                                                          built.positions)
     for i in (0, 7):
         assert file.realise(file.unit_sample(i)) == built.realise(built.unit_sample(i))
+
+
+def test_allocation_never_loosens_a_part_beyond_the_largest_tolerance():
+    """A 0.5 mm pin radius tolerance: the default loosest (4 x) would be 2 mm, beyond the
+    1 mm every tolerance file is held to; a [cost] table's loosest above it is refused."""
+    from rvsim.errors import ParameterError
+    from rvsim.tolerance.allocation import CostModel
+
+    study = rv40e_tolerances()
+    study = dataclasses.replace(study, tolerances=tuple(
+        t.with_tolerance(0.5) if t.name == "pin_radius" else t for t in study.tolerances))
+    cost = CostModel.default(study)
+    assert cost.loosest["pin_radius"] == 1.0
+    assert cost.loosest["disc_holes"] == pytest.approx(0.012)         # 4 x 0.003 mm
+    assert cost.loosest["clearances.crank_arm_bushing"] == pytest.approx(
+        4 * dict((t.name, t.tolerance) for t in study.tolerances)["clearances.crank_arm_bushing"])
+    with pytest.raises(ParameterError, match=r"cost.disc_holes.loosest.*at most 1 mm \(got 2\)"):
+        CostModel.default(study, {"disc_holes": {"loosest": 2.0}})
