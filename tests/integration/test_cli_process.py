@@ -13,6 +13,7 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 
@@ -140,6 +141,33 @@ def test_a_signal_swallowed_in_a_finaliser_is_one_line(tmp_path):
     assert (res.returncode, res.stdout, res.stderr) == (143, b"",
                                                         b"rvsim: terminated (SIGHUP)\n")
     assert list(tmp_path.iterdir()) == []
+
+
+CTRL_C_WHILE_IMPORTING = """
+import sys
+
+class CtrlC:                         # Ctrl-C lands while rvsim.cli is being imported
+    def find_spec(self, name, path=None, target=None):
+        if name == "rvsim.cli":
+            raise KeyboardInterrupt
+
+sys.meta_path.insert(0, CtrlC())
+from rvsim.__main__ import main      # the `rvsim` executable's entry point
+main()
+"""
+
+
+def test_ctrl_c_while_the_command_line_is_imported_is_one_line():
+    """The `rvsim` executable entered at rvsim.cli.run, so a Ctrl-C in its first 0.1 s (while
+    Python imported the command line) gave Python's traceback; `python -m rvsim` did not."""
+    res = subprocess.run([sys.executable, "-c", CTRL_C_WHILE_IMPORTING], capture_output=True,
+                         env=ENV, stdin=subprocess.DEVNULL, timeout=60)
+    assert (res.returncode, res.stdout, res.stderr) == (130, b"", b"rvsim: interrupted\n")
+    import tomllib
+
+    scripts = tomllib.loads((Path(SRC).parent / "pyproject.toml").read_text())["project"][
+        "scripts"]
+    assert scripts == {"rvsim": "rvsim.__main__:main"}
 
 
 def test_an_ignored_signal_stays_ignored(tmp_path):
