@@ -170,7 +170,7 @@ def test_a_binding_share_target_that_cannot_be_met_is_one_line(tmp_path, cli):
 
 def test_every_reducer_binding_is_reported_without_warnings(tmp_path, small, cli):
     """A tolerance so loose that every reducer binds: summary and report, nothing on stderr."""
-    path = _bad(tmp_path, SMALL.replace("tolerance = 0.002", "tolerance = 5.0"))
+    path = _bad(tmp_path, SMALL.replace("tolerance = 0.002", "tolerance = 1.0"))   # the largest
     res = cli("tolerance", path, "--out", str(tmp_path / "o"), "--workers", "1",
               "--samples", "2")
     assert res.code == 0 and res.err == "", res.err
@@ -328,7 +328,7 @@ def test_a_reducer_both_invalid_and_binding_is_invalid(tmp_path):
     from rvsim.tolerance import load_tolerance_study
     from rvsim.tolerance.engine import evaluate_sample
 
-    path = _bad(tmp_path, INVALID + "[tolerances.pin_radius]\ntolerance = 5.0\n")
+    path = _bad(tmp_path, INVALID + "[tolerances.pin_radius]\ntolerance = 1.0\n")
     study = load_tolerance_study(path)
     reducer = study.realise(study.unit_sample(0))
     assert reducer.materials.pin.poisson_ratio > 0.5

@@ -69,3 +69,33 @@ def test_the_unraisable_hook_drops_only_the_remembered_stop():
     finally:
         _stopping._STOP.clear()
     assert seen == [other, other]
+
+
+def test_a_signal_asked_again_later_raises_again():
+    """A stop swallowed by numba's compiler (cold cache) was acted on 52 s later, and every
+    signal in between was ignored as 'still unwinding'.  After REPEAT_AFTER it raises."""
+    with pytest.raises(Terminated):
+        with stop_signals():
+            _stopping.request_stop(Terminated("SIGTERM"))            # lost on its way
+            _stopping._SINCE[0] -= _stopping.REPEAT_AFTER + 0.5
+            _signal_self(signal.SIGINT)                               # the user asks again
+            pytest.fail("the second signal was ignored")
+
+
+def test_the_handlers_change_with_the_signals_held_back(monkeypatch):
+    """A signal between the restored hook and the restored handlers raised out of the block's
+    end and left the nesting count, the remembered stop and the handler behind (a hostile
+    test: within 10 s of random signals); every change is now made with them held back."""
+    masks = []
+    real = signal.signal
+
+    def recording(number, handler):
+        masks.append(set(signal.pthread_sigmask(signal.SIG_BLOCK, [])))
+        return real(number, handler)
+
+    monkeypatch.setattr(_stopping.signal, "signal", recording)
+    with stop_signals():
+        pass
+    assert len(masks) == 6
+    assert all(set(_stopping.STOP_SIGNALS) <= mask for mask in masks)
+    assert not set(_stopping.STOP_SIGNALS) & set(signal.pthread_sigmask(signal.SIG_BLOCK, []))

@@ -18,6 +18,7 @@ import sys
 from multiprocessing.connection import wait
 from typing import Callable
 
+from .._stopping import STOP_SIGNALS, check_stop, forget_stop, signals_blocked
 from ..errors import RvsimError
 
 __all__ = ["run_workers", "evaluate_task", "TEST_KILL_ENV", "MAX_ATTEMPTS", "WorkerStartError"]
@@ -59,11 +60,17 @@ def _die_with_parent(parent_pid: int) -> None:
 
 
 def _worker_main(conn, parent_pid: int, inherited_fds: list[int]) -> None:
+    # started with the stop signals held back (see _Worker): the parent's handlers, its
+    # remembered stop and its unraisable hook are replaced before a signal can reach them
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    for name in ("SIGTERM", "SIGHUP"):   # the parent's handlers; an ignored one (nohup) stays
+    for name in ("SIGTERM", "SIGHUP"):   # an ignored one (nohup) stays ignored
         number = getattr(signal, name, None)
         if number is not None and signal.getsignal(number) is not signal.SIG_IGN:
             signal.signal(number, signal.SIG_DFL)
+    forget_stop()
+    sys.unraisablehook = sys.__unraisablehook__
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
     _die_with_parent(parent_pid)
     for fd in inherited_fds:       # the parent's folder lock must die with the parent
         try:
@@ -130,12 +137,16 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
     def spawn() -> _Worker | None:
         """A new worker, or None when the system refuses one (the study carries on with the
         workers it has; with none left, :class:`WorkerStartError`)."""
-        try:
-            worker = _Worker(context, fds)
-        except OSError as exc:
-            start_failure.append(f"{type(exc).__name__}: {exc}")
-            return None
-        pool.append(worker)
+        # a stop signal during the fork would run the parent's handler in the child (or in
+        # the parent's after-fork callbacks, where its exception is lost): held back until
+        # the child has its own handlers, and in the parent until the worker is in the pool
+        with signals_blocked():
+            try:
+                worker = _Worker(context, fds)
+            except OSError as exc:
+                start_failure.append(f"{type(exc).__name__}: {exc}")
+                return None
+            pool.append(worker)
         return worker
 
     def give_up_if_stuck() -> None:
@@ -184,6 +195,7 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
         give_up_if_stuck()
         while busy := [w for w in pool if w.task is not None]:
             ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy]))
+            check_stop()        # a stop signal whose exception was lost on its way
             for worker in busy:
                 if worker.conn in ready:
                     try:
