@@ -16,9 +16,9 @@ from ..errors import InputFileError, ParameterError, RvsimError
 from ..parameters import (BUILT_IN_SETS, RV40E, Reducer, load_toml, parse_assignment,
                           with_values)
 
-__all__ = ["Parser", "UsageError", "stopped_line", "add_command", "add_reducer_options", "reducer_from_args",
-           "print_json", "EXAMPLES", "positive_int", "probability", "path_text",
-           "scheduler_address", "check_output_file", "check_output_folder"]
+__all__ = ["Parser", "UsageError", "stopped_line", "add_command", "add_reducer_options",
+           "reducer_from_args", "print_json", "EXAMPLES", "positive_int", "probability",
+           "path_text", "scheduler_address", "check_output_file", "check_output_folder"]
 
 
 class UsageError(RvsimError):

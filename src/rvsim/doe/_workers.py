@@ -60,7 +60,7 @@ def _die_with_parent(parent_pid: int) -> None:
 
 
 def _worker_main(conn, parent_pid: int, inherited_fds: list[int]) -> None:
-    # started with the stop signals held back (see _Worker): the parent's handlers, its
+    # started with the stop signals held back (run_workers' spawn): the parent's handlers, its
     # remembered stop and its unraisable hook are replaced before a signal can reach them
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for name in ("SIGTERM", "SIGHUP"):   # an ignored one (nohup) stays ignored
