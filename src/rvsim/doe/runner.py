@@ -21,6 +21,7 @@ from typing import Callable
 import pandas as pd
 
 from .._files import atomic_write_text
+from .._stopping import stop_signals
 from ..dynamics.model import EXPLICIT, SCHEMES
 from ..dynamics.simulate import default_time_step
 from ..errors import InputFileError, ParameterError, Terminated
@@ -101,14 +102,6 @@ def _progress(total: int, initial: int, enabled: bool):
 StudyTerminated = Terminated
 
 
-def _termination_interrupts():
-    """Ctrl-C, SIGTERM and SIGHUP raise KeyboardInterrupt or StudyTerminated while the workers
-    run, so they are stopped and every finished row is kept (:mod:`rvsim._stopping`)."""
-    from .._stopping import stop_signals
-
-    return stop_signals()
-
-
 def run(study: Study, folder: str | Path, *, workers: int | None = None,
         scheduler: str | None = None, progress: bool = True,
         finish: Callable[[pd.DataFrame], object] | None = None,
@@ -152,7 +145,8 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
     keys = [run_key(r, tag) for r in reducers]
     options = (time_step, study.engine, study.hysteresis, 360, study.scheme)
     folder.mkdir(parents=True, exist_ok=True)
-    with lock_folder(folder), _termination_interrupts():
+    # Ctrl-C, SIGTERM and SIGHUP stop the workers and keep every finished row
+    with lock_folder(folder), stop_signals():
         store = ResultStore(folder)
         try:
             done = store.finished()

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import InputFileError, ParameterError
 from .engine import METRICS
-from .spec import FEATURE_LIMITS, FEATURES, ToleranceStudy
+from .spec import FEATURES, ToleranceStudy, largest_tolerance
 
 __all__ = ["CostModel", "parse_targets", "allocate", "Target"]
 
@@ -127,7 +127,7 @@ class CostModel:
         ref = {t.name: t.tolerance for t in study.tolerances}
         out = {"weight": {n: 1.0 for n in names}, "exponent": {n: 1.0 for n in names},
                "tightest": {n: 0.25 * ref[n] for n in names},
-               "loosest": {n: min(4.0 * ref[n], _limit(n)) for n in names}}
+               "loosest": {n: min(4.0 * ref[n], largest_tolerance(n)) for n in names}}
         for name, spec in (table or {}).items():
             if name not in ref:
                 raise ParameterError(f"cost.{name}", "not a toleranced error of this study")
@@ -142,8 +142,9 @@ class CostModel:
             if ref[n] <= 0:
                 raise ParameterError(f"tolerances.{n}.tolerance", "allocation needs a "
                                      "positive tolerance to scale")
-            if out["loosest"][n] > _limit(n):
-                raise ParameterError(f"cost.{n}.loosest", f"must be at most {_limit(n):g} "
+            largest = largest_tolerance(n)
+            if out["loosest"][n] > largest:
+                raise ParameterError(f"cost.{n}.loosest", f"must be at most {largest:g} "
                                      f"{FEATURES[n][0]} (got {out['loosest'][n]:g})")
             if not out["tightest"][n] < out["loosest"][n]:
                 raise ParameterError(f"cost.{n}", "tightest must be below loosest")
@@ -152,11 +153,6 @@ class CostModel:
     def cost(self, tolerances: dict) -> float:
         return float(sum(self.weight[n] * (self.reference[n] / tolerances[n])
                          ** self.exponent[n] for n in tolerances))
-
-
-def _limit(name: str) -> float:
-    """The largest tolerance of error ``name`` (per-part errors only; parameters: none)."""
-    return FEATURE_LIMITS[FEATURES[name][0]] if name in FEATURES else math.inf
 
 
 def _evaluate(study, store, folder, samples, tolerances, targets, workers, scheduler):

@@ -27,7 +27,8 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
     return the summary."""
     from .._files import atomic_write_text
     from ..doe.folder import check_same_study, lock_folder
-    from ..doe.runner import _check_scheduler, _termination_interrupts
+    from .._stopping import stop_signals
+    from ..doe.runner import _check_scheduler
     from ..doe.store import ResultStore
 
     folder = Path(folder)
@@ -44,7 +45,7 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
     if sobol:
         designs["sobol"] = (sobol_count(study, sobol), lambda: iter(sobol_units(study, sobol)))
     folder.mkdir(parents=True, exist_ok=True)
-    with lock_folder(folder), _termination_interrupts():
+    with lock_folder(folder), stop_signals():
         store = ResultStore(folder)
         try:
             check_same_study(folder, definition, bool(store.finished()))

@@ -67,6 +67,12 @@ _KEYS = {"tolerance", "distribution", "per", "orders"}
 FEATURE_LIMITS = {"mm": 1.0, "arcmin": 60.0}
 
 
+def largest_tolerance(name: str) -> float:
+    """The largest tolerance of error ``name``: per-part errors by their unit; a parameter's
+    has none here (its drawn values are validated as the reducer's)."""
+    return FEATURE_LIMITS[FEATURES[name][0]] if name in FEATURES else math.inf
+
+
 @dataclasses.dataclass(frozen=True)
 class Tolerance:
     """One toleranced error: ``name`` is a FEATURES key or a dotted parameter name."""
@@ -288,11 +294,9 @@ def _tolerance(name: str, spec, path) -> Tolerance:
         raise ParameterError(f"{where}.tolerance", f"needs a finite number (got {tol!r})")
     if tol < 0:
         raise ParameterError(f"{where}.tolerance", f"must not be negative (got {tol:g})")
-    if name in FEATURES:
-        unit = FEATURES[name][0]
-        if tol > FEATURE_LIMITS[unit]:
-            raise ParameterError(f"{where}.tolerance", f"must be at most "
-                                 f"{FEATURE_LIMITS[unit]:g} {unit} (got {tol:g})")
+    if tol > largest_tolerance(name):
+        raise ParameterError(f"{where}.tolerance", f"must be at most "
+                             f"{largest_tolerance(name):g} {FEATURES[name][0]} (got {tol:g})")
     distribution = spec.get("distribution", "uniform")
     if distribution not in DISTRIBUTIONS:
         raise ParameterError(f"{where}.distribution", f"unknown distribution {distribution!r} "
