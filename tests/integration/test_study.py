@@ -308,3 +308,42 @@ def test_study_scheme_errors(tmp_path, cli, extra, args, words):
     res = cli("study", str(path), "--out", str(out), *args)
     assert res.code == 2 and words in res.err and res.err.count("\n") == 1
     assert not out.exists()
+
+
+@pytest.mark.parametrize("extra, args, words", [
+    ("", ("--time-step", "0"), "parameter '--time-step': must be a number of seconds in"),
+    ("", ("--time-step", "nan"), "parameter '--time-step': must be a number of seconds in"),
+    ("", ("--time-step", "1"), "parameter '--time-step': must be a number of seconds in"),
+    ("", ("--time-step", "fast"), "argument --time-step: invalid float value"),
+    ('engine = "quasi-static"', ("--time-step", "1e-5"),
+     "parameter '--time-step': the study runs the quasi-static engine"),
+])
+def test_study_time_step_errors(tmp_path, cli, extra, args, words):
+    path = write_study(tmp_path, extra=extra)
+    out = tmp_path / "out"
+    res = cli("study", str(path), "--out", str(out), *args)
+    assert res.code == 2 and words in res.err and res.err.count("\n") == 1
+    assert not out.exists()
+
+
+def test_a_tolerance_study_takes_no_time_step(tmp_path, cli):
+    out = tmp_path / "out"
+    res = cli("study", "rv40e-tolerances", "--out", str(out), "--time-step", "1e-5")
+    assert res.code == 2 and res.err.count("\n") == 1
+    assert "parameter '--time-step': a tolerance study runs the quasi-static engine" in res.err
+    assert not out.exists()
+
+
+def test_study_time_step_option_is_the_studys_step(tmp_path, cli):
+    """--time-step sets every dynamic run's step, as a study file's time_step does: the runs
+    take it, study.json records it, and a folder of another step is another study."""
+    path = write_study(tmp_path, extra='scheme = "implicit-bearings"')
+    out = tmp_path / "out"
+    res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress",
+              "--time-step", "2.5e-5")
+    assert res.code == 0, res.err
+    table = pd.read_csv(out / "results.csv")
+    assert (table["status"] == "ok").all() and (table["steps"] == 16_000).all()
+    assert json.loads((out / "study.json").read_text())["time_step"] == 2.5e-5
+    res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress")
+    assert res.code == 2 and res.err.count("\n") == 1 and "study.json differs" in res.err
