@@ -301,16 +301,6 @@ def test_scheme_belongs_to_the_dynamic_engine():
     ('engine = "quasi-static"\nscheme = "implicit-bearings"', (), "parameter 'scheme'"),
     ('engine = "quasi-static"', ("--scheme", "implicit-bearings"), "--scheme"),
     ("", ("--scheme", "bogus"), "invalid choice"),
-])
-def test_study_scheme_errors(tmp_path, cli, extra, args, words):
-    path = write_study(tmp_path, extra=extra)
-    out = tmp_path / "out"
-    res = cli("study", str(path), "--out", str(out), *args)
-    assert res.code == 2 and words in res.err and res.err.count("\n") == 1
-    assert not out.exists()
-
-
-@pytest.mark.parametrize("extra, args, words", [
     ("", ("--time-step", "0"), "parameter '--time-step': must be a number of seconds in"),
     ("", ("--time-step", "nan"), "parameter '--time-step': must be a number of seconds in"),
     ("", ("--time-step", "1"), "parameter '--time-step': must be a number of seconds in"),
@@ -318,7 +308,7 @@ def test_study_scheme_errors(tmp_path, cli, extra, args, words):
     ('engine = "quasi-static"', ("--time-step", "1e-5"),
      "parameter '--time-step': the study runs the quasi-static engine"),
 ])
-def test_study_time_step_errors(tmp_path, cli, extra, args, words):
+def test_study_scheme_and_time_step_errors(tmp_path, cli, extra, args, words):
     path = write_study(tmp_path, extra=extra)
     out = tmp_path / "out"
     res = cli("study", str(path), "--out", str(out), *args)
