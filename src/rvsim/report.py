@@ -198,7 +198,9 @@ def _read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
     except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError
             ) as exc:
         raise InputFileError(f"{path}: cannot read ({str(exc).strip()})") from None
-    columns = ["run", "status", "key", "te_mean_arcmin"] + labels
+    columns = ["run", "status", "key"] + labels
+    if "status" in results.columns and (results["status"] == "ok").any():
+        columns.append("te_mean_arcmin")    # a study none of whose runs finished has no metric
     absent = [c for c in columns if c not in results.columns]
     if absent:
         raise InputFileError(f"{path}: missing column(s) {', '.join(absent)} (truncated or "

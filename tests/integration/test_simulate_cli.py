@@ -55,6 +55,11 @@ def test_text_output_names_the_largest_pin_force(tmp_path, cli):
     (("--time-step", "-1e-5"), "'time_step': must be in (0, 0.001] s (got -1e-05)"),
     (("--duration", "-.5"), "(got -0.5 s)"),
     (("--duration", "0"), "duration"),
+    # a step so small that the run's step count overflowed the kernel's integer (exit 1 with
+    # numba's message), or would take hours
+    (("--time-step", "1e-300"), "'time_step': 4 s at 1e-300 s per step is 4e+300 steps, more "
+     "than the 1e+09 a run may take (at least 4e-09 s per step for this duration)"),
+    (("--time-step", "1e-9"), "is 4e+09 steps, more than the 1e+09"),
 ])
 def test_simulate_errors(cli, args, words):
     res = cli("simulate", *args)

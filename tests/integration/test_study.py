@@ -307,6 +307,7 @@ def test_scheme_belongs_to_the_dynamic_engine():
     ("", ("--time-step", "fast"), "argument --time-step: invalid float value"),
     ('engine = "quasi-static"', ("--time-step", "1e-5"),
      "parameter '--time-step': the study runs the quasi-static engine"),
+    ("", ("--time-step", "1e-12"), "steps, more than the 1e+09 a run may take"),
 ])
 def test_study_scheme_and_time_step_errors(tmp_path, cli, extra, args, words):
     path = write_study(tmp_path, extra=extra)
@@ -337,3 +338,29 @@ def test_study_time_step_option_is_the_studys_step(tmp_path, cli):
     assert json.loads((out / "study.json").read_text())["time_step"] == 2.5e-5
     res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress")
     assert res.code == 2 and res.err.count("\n") == 1 and "study.json differs" in res.err
+
+
+def test_a_study_none_of_whose_runs_finished_still_reports(tmp_path, monkeypatch, capsys):
+    """Every run an exception (no metric at all in results.csv): the report is still written,
+    with the failed runs, and the command ends with its one line and exit 1.  (Before, the
+    report refused results.csv for its missing te_mean_arcmin and the command ended with that
+    misleading line and exit 2.)  In-process, so that the forked worker inherits the fault."""
+    import rvsim.doe.runner as runner
+    from rvsim.cli import main
+
+    def broken(*args, **kwargs):
+        return {"status": "error", "error": "RuntimeError: injected", "metrics": {}}
+
+    monkeypatch.setattr(runner, "evaluate", broken)
+    path = write_study(tmp_path)
+    out = tmp_path / "out"
+    code = main(["study", str(path), "--out", str(out), "--workers", "1", "--no-progress"])
+    err = capsys.readouterr().err
+    assert code == 1 and err.count("\n") == 1
+    assert err.startswith("rvsim: error: study: all 4 runs failed (run 1: error: "
+                          "RuntimeError: injected)")
+    table = pd.read_csv(out / "results.csv")
+    assert "te_mean_arcmin" not in table.columns and (table["status"] == "error").all()
+    page = (out / "report.html").read_text()
+    assert "Failed runs" in page and "RuntimeError: injected" in page
+    assert "analysis not possible" in page

@@ -17,7 +17,7 @@ from .model import EXPLICIT, IMPLICIT_BEARINGS, SCHEMES, build_model
 from .result import Result
 
 __all__ = ["simulate", "decompose_te", "DEFAULT_TIME_STEP", "DEFAULT_SAMPLE_RATE",
-           "SCHEMES", "default_time_step", "check_scheme", "check_run_options", "MAX_TIME_STEP", "CHUNK_STEPS", "MAX_HISTORY_BYTES", "ENERGY_RESIDUAL_LIMIT", "SPEED_RATIO_LIMIT"]
+           "SCHEMES", "default_time_step", "check_scheme", "check_run_options", "MAX_TIME_STEP", "CHUNK_STEPS", "MAX_HISTORY_BYTES", "MAX_STEPS", "ENERGY_RESIDUAL_LIMIT", "SPEED_RATIO_LIMIT"]
 
 #: integration step [s] of the default scheme ("explicit"); docs/model.md and the convergence
 #: test justify it (5e-6 s since the conforming bushings of issue 10, about 3x stiffer than the
@@ -33,6 +33,9 @@ DEFAULT_SAMPLE_RATE = 2000.0
 CHUNK_STEPS = 5000
 #: memory the histories of one run may take [bytes]
 MAX_HISTORY_BYTES = 2 * 1024 ** 3
+#: steps one run may take (duration / time_step): about 30-50 minutes of one core at 1.7-3 us
+#: per step (docs/benchmarks.md), and far inside the kernel's 64-bit step counter
+MAX_STEPS = 10 ** 9
 #: largest |energy residual| / input work over the steady window of a trusted run (healthy runs:
 #: at most 1.19e-4 over the paper's 36 runs; docs/model.md section 9)
 ENERGY_RESIDUAL_LIMIT = 1e-2
@@ -99,6 +102,12 @@ def check_run_options(reducer: Reducer, duration: float | None = None,
                              f"{duration * per_second / 1e9:.3g} GB, more than the "
                              f"{MAX_HISTORY_BYTES / 1e9:.3g} GB limit (at most "
                              f"{MAX_HISTORY_BYTES / per_second:.0f} s at this sample rate)")
+    # after the histories' limit, which names a duration too long for any step
+    if duration / time_step > MAX_STEPS:
+        raise ParameterError("time_step", f"{duration:g} s at {time_step:g} s per step is "
+                             f"{duration / time_step:.3g} steps, more than the {MAX_STEPS:.0e} "
+                             f"a run may take (at least {duration / MAX_STEPS:.3g} s per step "
+                             f"for this duration)")
 
 
 def simulate(reducer: Reducer, *, duration: float | None = None,
