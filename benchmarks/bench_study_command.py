@@ -80,7 +80,11 @@ def main() -> None:
     parser.add_argument("--variant", action="append", default=None,
                         help="extra options of the command (repeatable; default: none)")
     args = parser.parse_args()
+    if args.repeat < 1:
+        parser.error("--repeat: at least 1")
     variants = args.variant or [""]
+    if any("--scheduler" in v for v in variants):
+        parser.error("--variant: the phases are those of the local worker pool (no --scheduler)")
     rows = []
     for _ in range(args.repeat):
         for variant in variants:

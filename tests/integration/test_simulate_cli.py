@@ -59,7 +59,11 @@ def test_text_output_names_the_largest_pin_force(tmp_path, cli):
     # numba's message), or would take hours
     (("--time-step", "1e-300"), "'time_step': 4 s at 1e-300 s per step is 4e+300 steps, more "
      "than the 1e+09 a run may take (at least 4e-09 s per step for this duration)"),
-    (("--time-step", "1e-9"), "is 4e+09 steps, more than the 1e+09"),
+    (("--time-step", "1e-9"), "is 4000000000 steps, more than the 1e+09"),
+    # just above the limit: the count and the least step show it (not "1e+09 ... 4e-09")
+    (("--time-step", "4e-9", "--duration", "4.0000001"), "4.0000001 s at 4e-09 s per step is "
+     "1000000025 steps, more than the 1e+09 a run may take (at least 4.0000001e-09 s per step"),
+    (("--time-step", "-inf"), "'time_step': must be in (0, 0.001] s (got -inf)"),
 ])
 def test_simulate_errors(cli, args, words):
     res = cli("simulate", *args)

@@ -307,7 +307,12 @@ def test_scheme_belongs_to_the_dynamic_engine():
     ("", ("--time-step", "fast"), "argument --time-step: invalid float value"),
     ('engine = "quasi-static"', ("--time-step", "1e-5"),
      "parameter '--time-step': the study runs the quasi-static engine"),
-    ("", ("--time-step", "1e-12"), "steps, more than the 1e+09 a run may take"),
+    ("", ("--time-step", "1e-12"), "parameter '--time-step': 0.4 s at 1e-12 s per step is "
+     "4e+11 steps, more than the 1e+09 a run may take"),
+    ("", ("--time-step", "-inf"), "parameter '--time-step': must be a number of seconds in"),
+    # the input's own error before the (unreachable) scheduler's
+    ("", ("--time-step", "1e-12", "--scheduler", "tcp://127.0.0.1:1"),
+     "parameter '--time-step': 0.4 s at 1e-12 s"),
 ])
 def test_study_scheme_and_time_step_errors(tmp_path, cli, extra, args, words):
     path = write_study(tmp_path, extra=extra)
@@ -364,3 +369,30 @@ def test_a_study_none_of_whose_runs_finished_still_reports(tmp_path, monkeypatch
     page = (out / "report.html").read_text()
     assert "Failed runs" in page and "RuntimeError: injected" in page
     assert "analysis not possible" in page
+
+
+def test_the_summary_says_when_the_analysis_is_not_possible(tmp_path, monkeypatch, capsys):
+    """Runs finished, but too few for the analysis: the text summary says so (it printed the
+    counts alone, as if the analysis had been written; found by review)."""
+    import rvsim.doe.runner as runner
+    from rvsim.cli import main
+
+    original = runner.evaluate
+    calls = []
+
+    def first_only(*args, **kwargs):      # in the one forked worker: its first run only
+        calls.append(1)
+        if len(calls) == 1:
+            return original(*args, **kwargs)
+        return {"status": "error", "error": "RuntimeError: injected", "metrics": {}}
+
+    monkeypatch.setattr(runner, "evaluate", first_only)
+    path = write_study(tmp_path)
+    out = tmp_path / "out"
+    code = main(["study", str(path), "--out", str(out), "--workers", "1", "--no-progress",
+                 "--no-report"])
+    printed = capsys.readouterr().out
+    assert code == 0
+    assert printed.splitlines()[0].endswith("4 runs, 3 failed -> "
+                                            f"{out}/results.csv, analysis.json")
+    assert printed.splitlines()[1].startswith("analysis not possible: ")

@@ -30,10 +30,10 @@ class Parser(argparse.ArgumentParser):
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        # "-1e-5" and "-20,40" are values (argparse's own pattern misses exponents and lists
-        # and takes them for an option: "expected one argument"); the option's own check
-        # then names the reason
-        number = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+        # "-1e-5", "-inf" and "-20,40" are values (argparse's own pattern misses exponents,
+        # inf and lists and takes them for an option: "expected one argument"); the option's
+        # own check then names the reason
+        number = r"((\d+\.?\d*|\.\d+)([eE][-+]?\d+)?|inf|nan)"
         self._negative_number_matcher = re.compile(rf"^-{number}(,\s*[-+]?{number})*$")
 
     def error(self, message: str) -> None:  # type: ignore[override]

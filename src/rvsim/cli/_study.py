@@ -79,6 +79,10 @@ def _study(args: argparse.Namespace) -> int:
     try:
         results = run(study, folder, workers=args.workers, scheduler=args.scheduler,
                       progress=progress, finish=finish, prepare=prepare_outputs)
+    except ParameterError as exc:
+        if exc.field == "time_step" and args.time_step is not None:
+            raise ParameterError("--time-step", exc.reason) from None   # the option's fault
+        raise
     except KeyboardInterrupt as exc:            # Ctrl-C, or SIGTERM / SIGHUP (Terminated)
         line, code = stopped_line(exc, folder, "runs")
         print(line, file=sys.stderr)
@@ -111,6 +115,8 @@ def _study(args: argparse.Namespace) -> int:
             print("factor order by range: none (the response is constant)")
         elif "order" in analysis:
             print(f"factor order by range: {analysis['order']}")
+        elif "error" in analysis:        # e.g. too few finished runs for the model
+            print(analysis["error"])
     return 0
 
 

@@ -122,8 +122,6 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
         raise InputFileError(f"{folder}: exists and is not a folder")
     table = study.table()
     reducers = study.reducers()              # validates every run before any simulation
-    if scheduler:
-        _check_scheduler(scheduler)          # before anything is written
     time_step = study.time_step or default_time_step(study.scheme)
     if study.engine == "dynamic":             # run length and step, also before anything runs
         from ..dynamics.simulate import check_run_options
@@ -133,6 +131,8 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
                 check_run_options(reducer, time_step=time_step, scheme=study.scheme)
             except ParameterError as exc:
                 raise ParameterError(exc.field, f"{exc.reason} (study run {number})") from None
+    if scheduler:                            # the input's own errors first, then the cluster
+        _check_scheduler(scheduler)          # before anything is written
     definition = _definition(study, time_step, reducers[0])
     # the engine is part of a run's identity: a dynamic and a quasi-static result of the same
     # reducer are different rows

@@ -104,10 +104,11 @@ def check_run_options(reducer: Reducer, duration: float | None = None,
                              f"{MAX_HISTORY_BYTES / per_second:.0f} s at this sample rate)")
     # after the histories' limit, which names a duration too long for any step
     if duration / time_step > MAX_STEPS:
-        raise ParameterError("time_step", f"{duration:g} s at {time_step:g} s per step is "
-                             f"{duration / time_step:.3g} steps, more than the {MAX_STEPS:.0e} "
-                             f"a run may take (at least {duration / MAX_STEPS:.3g} s per step "
-                             f"for this duration)")
+        # enough digits that a count just above the limit shows as above it
+        raise ParameterError("time_step", f"{duration:.10g} s at {time_step:.10g} s per step "
+                             f"is {duration / time_step:.10g} steps, more than the "
+                             f"{MAX_STEPS:.0e} a run may take (at least "
+                             f"{duration / MAX_STEPS:.10g} s per step for this duration)")
 
 
 def simulate(reducer: Reducer, *, duration: float | None = None,
