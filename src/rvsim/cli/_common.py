@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from .._json import to_json_safe
-from ..errors import InputFileError, ParameterError, RvsimError
+from ..errors import InputFileError, ParameterError, RvsimError, Terminated
 from ..parameters import (BUILT_IN_SETS, RV40E, Reducer, load_toml, parse_assignment,
                           with_values)
 
@@ -159,7 +159,6 @@ def stopped_line(interrupt: KeyboardInterrupt, folder: Path, what: str) -> tuple
     """The line and exit code of a study stopped by ``interrupt``; it names ``folder`` only
     if the folder's store holds finished ``what`` (a stop before the first result has none)."""
     from ..doe.store import ResultStore
-    from ..errors import RvsimError, Terminated
 
     try:
         store = ResultStore(folder, readonly=True)

@@ -23,6 +23,14 @@ def _response_column(table, response: str | None) -> str:
     raise InputFileError("no response column: name one with --response")
 
 
+def _as_option(exc: ParameterError, args: argparse.Namespace) -> ParameterError:
+    """``exc`` in the words of the command line: a refused ``time_step`` is the --time-step
+    option's fault when the option gave it (the study's range check or a run's step count)."""
+    if exc.field == "time_step" and args.time_step is not None:
+        return ParameterError("--time-step", exc.reason)
+    return exc
+
+
 def _study(args: argparse.Namespace) -> int:
     from ..doe import BUILT_IN_STUDIES, load_study, run, write_study_outputs
     from ..tolerance.spec import BUILT_IN_TOLERANCE_STUDIES, is_tolerance_file
@@ -59,7 +67,7 @@ def _study(args: argparse.Namespace) -> int:
         try:
             study = dataclasses.replace(study, time_step=args.time_step)
         except ParameterError as exc:
-            raise ParameterError("--time-step", exc.reason) from None
+            raise _as_option(exc, args) from None
     check_output_folder(args.out, "--out")   # before the runs, not after them
     folder = Path(args.out)
     progress = not args.no_progress and sys.stderr.isatty()
@@ -80,9 +88,7 @@ def _study(args: argparse.Namespace) -> int:
         results = run(study, folder, workers=args.workers, scheduler=args.scheduler,
                       progress=progress, finish=finish, prepare=prepare_outputs)
     except ParameterError as exc:
-        if exc.field == "time_step" and args.time_step is not None:
-            raise ParameterError("--time-step", exc.reason) from None   # the option's fault
-        raise
+        raise _as_option(exc, args) from None
     except KeyboardInterrupt as exc:            # Ctrl-C, or SIGTERM / SIGHUP (Terminated)
         line, code = stopped_line(exc, folder, "runs")
         print(line, file=sys.stderr)
