@@ -232,7 +232,9 @@ def test_study_with_the_implicit_bearings_scheme(tmp_path, cli):
     res = cli("study", str(stepped), "--out", str(out), "--no-report", "--no-progress",
               "--scheme", "explicit")
     assert res.code == 2 and res.err.count("\n") == 1
-    assert "study.json differs" in res.err and "--scheme" not in res.err
+    assert "study.json differs in scheme: implicit-bearings in the folder, explicit here; " \
+        "time_step: 2e-05 in the folder, 1e-05 here)" in res.err
+    assert "--scheme" not in res.err and "--time-step" not in res.err
 
 
 @pytest.mark.parametrize("stored", ["{corrupt", "", "null", "42", "[1, 2]", '"text"'])
@@ -342,7 +344,14 @@ def test_study_time_step_option_is_the_studys_step(tmp_path, cli):
     assert (table["status"] == "ok").all() and (table["steps"] == 16_000).all()
     assert json.loads((out / "study.json").read_text())["time_step"] == 2.5e-5
     res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress")
-    assert res.code == 2 and res.err.count("\n") == 1 and "study.json differs" in res.err
+    assert res.code == 2 and res.err.count("\n") == 1
+    # the refusal names the step that differs, with both values
+    assert "study.json differs in time_step: 2.5e-05 in the folder, 2e-05 here)" in res.err
+    assert "resume it with --time-step 2.5e-05, or give a new --out folder" in res.err
+    # ... which it does
+    res = cli("study", str(path), "--out", str(out), "--no-report", "--no-progress",
+              "--time-step", "2.5e-05")
+    assert res.code == 0, res.err
 
 
 def test_a_study_none_of_whose_runs_finished_still_reports(tmp_path, monkeypatch, capsys):

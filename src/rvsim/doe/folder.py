@@ -91,8 +91,36 @@ def check_same_study(folder: Path, definition: dict, has_results: bool,
                     f"scheme (step {stored.get('time_step')} s), not "
                     f"{definition.get('scheme', 'explicit')}; resume it with --scheme {scheme} "
                     f"(Python: scheme=\"{scheme}\"), or give a new --out folder")
-        which = (f"a different definition of study '{name}' (study.json differs)"
-                 if name == definition["name"] else
-                 f"study '{name}'" if name else "another study")
+        resume = ""
+        if name == definition["name"]:
+            which = (f"a different definition of study '{name}' (study.json differs in "
+                     f"{_differences(stored, wanted)})")
+            if wanted.get("engine") == "dynamic" and \
+                    {**stored, "time_step": None} == {**wanted, "time_step": None}:
+                # the step alone: the option that sets it resumes the folder (a dynamic study's)
+                resume = f"resume it with --time-step {stored.get('time_step')}, or "
+        else:
+            which = f"study '{name}'" if name else "another study"
         raise InputFileError(f"{folder}: holds the results of {which}, not of this "
-                             f"'{definition['name']}'; give a new --out folder")
+                             f"'{definition['name']}'; {resume}give a new --out folder")
+
+
+def _differences(stored: dict, wanted: dict, most: int = 3) -> str:
+    """The keys in which a folder's study.json differs from this study's definition, with
+    both values where they are short (a step, a seed, a scheme), e.g. "time_step: 2e-05 in
+    the folder, 2.5e-05 here"."""
+    def value(definition: dict, key: str):
+        # a definition without a scheme is the explicit scheme's (folders of before the key)
+        return definition.get(key, "explicit" if key == "scheme" else "(none)")
+
+    keys = sorted(key for key in set(stored) | set(wanted)
+                  if value(stored, key) != value(wanted, key))
+    parts = []
+    for key in keys[:most]:
+        old, new = value(stored, key), value(wanted, key)
+        short = all(isinstance(x, (str, int, float, bool)) and len(str(x)) <= 40
+                    for x in (old, new))
+        parts.append(f"{key}: {old} in the folder, {new} here" if short else key)
+    if len(keys) > most:
+        parts.append(f"{len(keys) - most} more")
+    return "; ".join(parts)
