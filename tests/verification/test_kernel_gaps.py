@@ -67,8 +67,9 @@ def test_kernel_gaps_equal_geometry_gaps(disc, crank_angle, turn, shift):
 def _disc_motion(t, disc, omega=55.0, lag=6e-4):
     """A loaded disc's pose and velocity: the kinematic orbit at ``omega`` rad/s of the
     eccentric (paper run 3's, about 55 rad/s), turned into the pins by ``lag`` (about five pins
-    in contact), with a vibration of 1 um and 2e-5 rad at 1.3-1.7 kHz (its velocity, about 0.01
-    m/s, that of the disc's deviation from rolling measured in paper run 3's steady window).
+    in contact), with a vibration of 1 um and 2e-5 rad at 1.3-1.7 kHz (its velocity about 0.01
+    m/s: the disc's deviation from rolling about the pitch point reached 0.018 m/s in paper run
+    3's steady window).
     Returns (eccentric angle, pose, velocity, (dx, dy, extra rotation))."""
     phi = 0.3 + omega * t
     x, y, theta = nominal_disc_pose(REDUCER, phi, disc)
@@ -114,9 +115,10 @@ def _skipped_gaps(disc, step_factor=1.0, steps=3000, dt=2e-5):
 def test_a_skipped_pin_is_open(disc):
     """The pin loop's skips are exact (docs/model.md section 4): over 0.06 s of a loaded,
     vibrating disc (3000 steps of 2e-5 s), every pin it skips is open at that step, with the
-    margin the bound's factor 2 gives.  Measured: the least gap of a skipped pin 14.2 um
-    (disc 0) and 14.2 um (disc 1), 60 % of the pin-steps skipped; with the bound told a step
-    4 times too short, 3.5 um; 32 times, -1.0 um (a contact skipped)."""
+    margin the bound's factor 2 gives.  Measured: the least gap of a skipped pin 14.23 um
+    (disc 0) and 14.18 um (disc 1), 60 % of the pin-steps skipped; with the bound told a step
+    4 times too short, 3.5 um; 32 times, -0.66 and -0.26 um within 1500 steps (a contact
+    skipped)."""
     gaps, share = _skipped_gaps(disc)
     assert share > 0.55                    # the loop does skip (measured 0.60)
     assert gaps.min() > 1.2e-5             # measured 1.42e-5 m
