@@ -43,15 +43,16 @@ def main(argv: list[str] | None = None) -> int:
     return _main(argv)[0]
 
 
-def _main(argv: list[str] | None) -> tuple[int, str | None]:
+def _main(argv: list[str] | None) -> tuple[int, bool]:
+    """(exit code, whether the process may end at once: :func:`_ends_at_once`)."""
     parser = build_parser()
-    command = None
+    at_once = False
     try:
         args = parser.parse_args(argv)
-        command = getattr(args, "command", None)
+        at_once = _ends_at_once(getattr(args, "command", None), args)
         if not getattr(args, "func", None):
             parser.print_help()
-            return 2, command
+            return 2, at_once
         with stop_signals():
             try:
                 code = int(args.func(args) or 0)
@@ -60,18 +61,18 @@ def _main(argv: list[str] | None) -> tuple[int, str | None]:
                 raise
             if code not in (130, 143):   # the command has not said it was stopped:
                 check_stop()             # a signal whose exception was swallowed still counts
-        return code, command
+        return code, at_once
     except RvsimError as exc:
         print(f"rvsim: error: {exc}", file=sys.stderr)
-        return 2, command
+        return 2, at_once
     except Terminated as exc:
         print(f"rvsim: terminated ({exc})", file=sys.stderr)
-        return 143, command
+        return 143, at_once
     except KeyboardInterrupt:
         print("rvsim: interrupted", file=sys.stderr)
-        return 130, command
+        return 130, at_once
     except BrokenPipeError:
-        return 0, command
+        return 0, at_once
 
 
 # Commands that start no processes of their own.  Once they have returned, every file they
@@ -81,6 +82,17 @@ _NO_TEARDOWN = frozenset({"simulate", "ltca", "hysteresis", "efficiency", "sensi
                           "profile", "params"})
 
 
+def _ends_at_once(command: str | None, args: argparse.Namespace) -> bool:
+    """Whether the process may end without the interpreter's teardown once ``command`` has
+    returned: the commands of :data:`_NO_TEARDOWN`, and ``study`` on the local worker pool
+    (its workers are stopped and reaped, its store closed and its files written atomically
+    before it returns; 0.6-0.9 s of teardown after a paper study, docs/benchmarks.md).  A
+    study on a Dask scheduler ends normally, its client closed by the interpreter."""
+    if command in _NO_TEARDOWN:
+        return True
+    return command == "study" and getattr(args, "scheduler", None) is None
+
+
 def run() -> None:
     """The ``rvsim`` executable: :func:`main` on ``sys.argv``, then end the process.
 
@@ -88,8 +100,8 @@ def run() -> None:
     instead when a KeyboardInterrupt once passed through an ``exec`` of a string (dataclasses
     and numba create functions that way), even though rvsim caught it.
     """
-    code, command = _main(sys.argv[1:])
-    if code in (130, 143) or command in _NO_TEARDOWN:
+    code, at_once = _main(sys.argv[1:])
+    if code in (130, 143) or at_once:
         _flush_and_exit(code)
     sys.exit(code)
 
