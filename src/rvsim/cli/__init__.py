@@ -82,15 +82,19 @@ _NO_TEARDOWN = frozenset({"simulate", "ltca", "hysteresis", "efficiency", "sensi
                           "profile", "params"})
 
 
+# Commands that run on a worker pool: on the local one (no --scheduler) its workers are
+# stopped and reaped, its store closed and its files written atomically before they return.
+_LOCAL_POOL = frozenset({"study", "tolerance", "allocate"})
+
+
 def _ends_at_once(command: str | None, args: argparse.Namespace) -> bool:
     """Whether the process may end without the interpreter's teardown once ``command`` has
-    returned: the commands of :data:`_NO_TEARDOWN`, and ``study`` on the local worker pool
-    (its workers are stopped and reaped, its store closed and its files written atomically
-    before it returns; 0.6-0.9 s of teardown after a paper study, docs/benchmarks.md).  A
-    study on a Dask scheduler ends normally, its client closed by the interpreter."""
+    returned: the commands of :data:`_NO_TEARDOWN`, and those of :data:`_LOCAL_POOL` on the
+    local worker pool (0.6-0.9 s of teardown after a paper study, docs/benchmarks.md).  On a
+    Dask scheduler they end normally, the client closed by the interpreter."""
     if command in _NO_TEARDOWN:
         return True
-    return command == "study" and getattr(args, "scheduler", None) is None
+    return command in _LOCAL_POOL and getattr(args, "scheduler", None) is None
 
 
 def run() -> None:
