@@ -89,14 +89,14 @@ def check_same_study(folder: Path, definition: dict, has_results: bool,
                 raise InputFileError(
                     f"{folder}: holds the runs of study '{name}' with the {scheme} integration "
                     f"scheme (step {stored.get('time_step')} s), not "
-                    f"{definition.get('scheme', 'explicit')}; resume it with --scheme {scheme} "
+                    f"{_value(definition, 'scheme')}; resume it with --scheme {scheme} "
                     f"(Python: scheme=\"{scheme}\"), or give a new --out folder")
         resume = ""
         if name == definition["name"]:
+            keys = _differing_keys(stored, wanted)
             which = (f"a different definition of study '{name}' (study.json differs in "
-                     f"{_differences(stored, wanted)})")
-            if wanted.get("engine") == "dynamic" and \
-                    {**stored, "time_step": None} == {**wanted, "time_step": None}:
+                     f"{_differences(stored, wanted, keys)})")
+            if wanted.get("engine") == "dynamic" and keys == ["time_step"]:
                 # the step alone: the option that sets it resumes the folder (a dynamic study's)
                 resume = f"resume it with --time-step {stored.get('time_step')}, or "
         else:
@@ -105,19 +105,24 @@ def check_same_study(folder: Path, definition: dict, has_results: bool,
                              f"'{definition['name']}'; {resume}give a new --out folder")
 
 
-def _differences(stored: dict, wanted: dict, most: int = 3) -> str:
-    """The keys in which a folder's study.json differs from this study's definition, with
-    both values where they are short (a step, a seed, a scheme), e.g. "time_step: 2e-05 in
-    the folder, 2.5e-05 here"."""
-    def value(definition: dict, key: str):
-        # a definition without a scheme is the explicit scheme's (folders of before the key)
-        return definition.get(key, "explicit" if key == "scheme" else "(none)")
+def _value(definition: dict, key: str):
+    """A study definition's ``key``; one without a scheme is the explicit scheme's (the
+    runner leaves the default out, as the folders of before the key have it)."""
+    return definition.get(key, "explicit" if key == "scheme" else "(none)")
 
-    keys = sorted(key for key in set(stored) | set(wanted)
-                  if value(stored, key) != value(wanted, key))
+
+def _differing_keys(stored: dict, wanted: dict) -> list[str]:
+    """The keys in which a folder's study.json differs from this study's definition."""
+    return sorted(key for key in set(stored) | set(wanted)
+                  if _value(stored, key) != _value(wanted, key))
+
+
+def _differences(stored: dict, wanted: dict, keys: list[str], most: int = 3) -> str:
+    """``keys`` (:func:`_differing_keys`) with both values where they are short (a step, a
+    seed, a scheme), e.g. "time_step: 2e-05 in the folder, 2.5e-05 here"."""
     parts = []
     for key in keys[:most]:
-        old, new = value(stored, key), value(wanted, key)
+        old, new = _value(stored, key), _value(wanted, key)
         short = all(isinstance(x, (str, int, float, bool)) and len(str(x)) <= 40
                     for x in (old, new))
         parts.append(f"{key}: {old} in the folder, {new} here" if short else key)
