@@ -188,3 +188,116 @@ def test_calibrate_refuses_what_is_not_continuous(tmp_path, capsys, name, what):
     assert err == (f"rvsim: error: parameter '{name}': cannot be fitted ({what}; only "
                    "continuous quantities can be)\n")
     assert not (tmp_path / "c").exists()
+
+
+# --- hostile review of the tenth session: each case printed an absurd number as fine, or a
+# traceback, or refused a good file for a wrong reason
+
+
+def _bad(tmp_path, capsys, frame, name="run.csv", **csv):
+    frame.to_csv(tmp_path / name, index=False, **csv)
+    code = main(["testrig", str(tmp_path / name)])
+    return code, capsys.readouterr()
+
+
+@pytest.mark.parametrize("change, message", [
+    # an output encoder counting the other way gave a TE of 720 degrees, exit 0
+    (lambda f: f.assign(output_angle_deg=-f.output_angle_deg),
+     "the output turns against the ratio's sense (measured ratio -121"),
+    # a dead output encoder gave a TE of 360 degrees, exit 0
+    (lambda f: f.assign(output_angle_deg=0.0), "the output angle stands still"),
+    # a TE of 1e306 overflowed into a 300-digit peak-to-peak
+    (lambda f: f.assign(output_angle_deg=f.output_angle_deg.where(f.index != 9, 1e306)),
+     "column 'output_angle_deg' data row 10: '1e+306' deg is beyond any bench's output angle"),
+    (lambda f: f.assign(output_torque_nm=1e308), "beyond any bench's output torque"),
+])
+def test_absurd_encoders_and_values_are_refused(tmp_path, capsys, change, message):
+    code, out = _bad(tmp_path, capsys, change(_frame().assign(output_torque_nm=300.0)))
+    assert code == 2 and out.out == ""
+    assert out.err.count("\n") == 1 and message in out.err, out.err
+
+
+def test_a_ratio_slightly_off_is_noted_and_an_absurd_efficiency_too(tmp_path, capsys):
+    frame = _frame().assign(input_torque_nm=300.0 / 121 / 0.85 / 10, output_torque_nm=300.0)
+    frame.to_csv(tmp_path / "run.csv", index=False)
+    # 121.05 for the recording's exact 121: the TE is a 0.04 % trend (9 arcmin a revolution)
+    assert main(["testrig", str(tmp_path / "run.csv"), "--ratio", "121.05", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    trend, efficiency = summary["notes"]
+    assert "the measured ratio 121 differs from 121.05 by -0.041" in trend
+    assert "a trend of about 8.9" in trend and "arcmin per output revolution" in trend
+    assert "the efficiency 8.5 from the torque columns is outside 0 to 1" in efficiency
+    # the right ratio: no note, and the text output prints the notes it has
+    assert main(["testrig", str(tmp_path / "run.csv")]) == 0
+    text = capsys.readouterr().out
+    assert text.count("note:") == 1 and "efficiency 8.5" in text
+    assert main(["testrig", str(tmp_path / "run.csv"), "--ratio", "inf"]) == 2
+    assert "--ratio" in capsys.readouterr().err
+
+
+def test_coarse_output_encoder_on_a_reversal_is_named_not_a_traceback(tmp_path, capsys):
+    frame = pd.read_csv(f"{EXAMPLE}/reversal.csv")
+    frame["output_angle_deg"] = (frame["output_angle_deg"] / 0.01).round() * 0.01
+    code, out = _bad(tmp_path, capsys, frame)
+    assert code == 2 and "a stuck or too coarse angle encoder" in out.err, out.err
+    # the loop run backwards (unloading first): named, not as a "rated torque" the user never
+    # gave
+    frame = pd.read_csv(f"{EXAMPLE}/reversal.csv")
+    backwards = frame.drop(columns="time_s")[::-1].reset_index(drop=True)
+    code, out = _bad(tmp_path, capsys, backwards.assign(time_s=frame["time_s"]))
+    assert code == 2 and "are the rows in time order?" in out.err, out.err
+
+
+def test_the_reversal_note_reaches_the_text_output(tmp_path, capsys):
+    frame = pd.read_csv(f"{EXAMPLE}/reversal.csv")
+    frame["output_torque_nm"] *= 0.5
+    frame.to_csv(tmp_path / "half.csv", index=False)
+    assert main(["testrig", str(tmp_path / "half.csv")]) == 0
+    assert "not the rated 412 N*m" in capsys.readouterr().out
+
+
+def test_manifest_with_bom_and_semicolon_file_zeroed_at_its_start(tmp_path, capsys):
+    frame = _frame()
+    frame.iloc[:, 1:] -= frame.iloc[0, 1:]          # a first data row of whole numbers
+    frame.to_csv(tmp_path / "run.csv", sep=";", decimal=",", index=False)
+    (tmp_path / "manifest.csv").write_bytes(b"\xef\xbb\xbffile,torque_nm\nrun.csv,300\n")
+    assert main(["testrig", str(tmp_path), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["point"]["torque_nm"] == 300.0
+    (tmp_path / "manifest.csv").write_text("file,torque_nm\nrun.csv,300\n,200\n")
+    assert main(["testrig", str(tmp_path)]) == 2
+    assert "row 3: the file cell is empty" in capsys.readouterr().err
+
+
+def test_one_revolution_te_curve_sampled_periodically(tmp_path, capsys):
+    x = np.arange(720) * 0.5
+    curve = pd.DataFrame({"output_angle_deg": x, "te_arcsec": 6 * np.sin(np.radians(40 * x)),
+                          "direction": 1})
+    curve.to_csv(tmp_path / "curve.csv", index=False)
+    assert main(["testrig", str(tmp_path / "curve.csv"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["ate_pp_arcmin"] == pytest.approx(0.2, rel=1e-3)
+    assert summary["orders"][0]["order"] == 40
+    # one sample short of that: refused, and the coverage is not rounded up to "1"
+    curve.iloc[:-1].to_csv(tmp_path / "short.csv", index=False)
+    assert main(["testrig", str(tmp_path / "short.csv")]) == 2
+    assert "covers 0.9972 of a revolution" in capsys.readouterr().err
+
+
+def test_calibrate_status_says_when_a_parameter_is_not_fitted(tmp_path, capsys):
+    # the data do not depend on the carrier's density: it was "status ok", exit 0
+    assert main(["calibrate", EXAMPLE, "--params", "docs/examples/testrig_start.toml", "--fit",
+                 "materials.carrier.density", "--positions", "64", "--out",
+                 str(tmp_path / "a"), "--json"]) == 1
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["status"] == "not_identifiable"
+    assert payload["parameters"]["materials.carrier.density"]["ci95"] == [None, None]
+    # a ratio 0.4 % off: the recordings' trend note reaches the calibration, and an interval
+    # that reached below zero for a runout is cut at zero, and said so
+    assert main(["calibrate", EXAMPLE, "--params", "docs/examples/testrig_start.toml",
+                 "--ratio", "121.5", "--fit", "errors.disc_runout", "--positions", "64",
+                 "--out", str(tmp_path / "b"), "--json"]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    low, high = payload["parameters"]["errors.disc_runout"]["ci95"]
+    assert low == 0.0 and high > 0.02
+    assert any("differs from 121.5" in n for n in payload["notes"])
+    assert any("is cut at its bound 0 mm" in n for n in payload["notes"])

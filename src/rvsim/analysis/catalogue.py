@@ -270,15 +270,23 @@ def torsional_rigidity(torque, angle, rated: float, low: float = 0.5, high: floa
     if branch is not None:
         up, down = loop_branches(torque, angle, branch)
     what = f"torsional rigidity ({low:.0%} to {high:.0%} of rated)"
+
+    def secant(start: float, end: float) -> float:
+        # a curve whose angle stands still over the span (a coarse or stuck encoder) has no
+        # rigidity to give: named, not a division by zero
+        if not end - start > 0:
+            raise CurveError("angle", f"the angle does not increase with the torque between "
+                             f"{low:.0%} and {high:.0%} of rated (it changes by "
+                             f"{end - start:.3g} rad: a stuck or too coarse angle encoder?)")
+        return (high - low) * rated / (end - start)
+
     secants = []
     if direction in ("both", "positive"):
-        a_low = angle_at(*up, 1.0, low * rated, what)
-        a_high = angle_at(*up, 1.0, high * rated, what)
-        secants.append((high - low) * rated / (a_high - a_low))
+        secants.append(secant(angle_at(*up, 1.0, low * rated, what),
+                              angle_at(*up, 1.0, high * rated, what)))
     if direction in ("both", "negative"):
-        a_low = angle_at(*down, -1.0, -low * rated, what)
-        a_high = angle_at(*down, -1.0, -high * rated, what)
-        secants.append((high - low) * rated / (a_low - a_high))
+        secants.append(secant(angle_at(*down, -1.0, -high * rated, what),
+                              angle_at(*down, -1.0, -low * rated, what)))
     if not secants:
         raise CurveError("direction", f"must be 'both', 'positive' or 'negative' "
                          f"(got {direction!r})")

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import math
 import sys
 from pathlib import Path
 
@@ -27,8 +28,8 @@ def _column_map(args: argparse.Namespace):
     column_map = read_column_map(args.map) if args.map else ColumnMap()
     extra = dict(parse_column_option(text) for text in args.columns)
     ratio = args.ratio
-    if ratio is not None and not ratio > 1:
-        raise ParameterError("--ratio", f"must be above 1 (got {ratio:g})")
+    if ratio is not None and not (math.isfinite(ratio) and ratio > 1):
+        raise ParameterError("--ratio", f"must be a finite number above 1 (got {ratio:g})")
     return column_map.merged(ColumnMap(extra, ratio))
 
 
@@ -81,7 +82,7 @@ def _fmt(value, spec: str) -> str:
 
 def _print_point(s: dict) -> None:
     point = ", ".join(f"{k} {v:g}" for k, v in s["point"].items())
-    print(f"[{point}] {', '.join(s['files'])}")
+    print(f"[{point}] " * bool(point) + ", ".join(s["files"]))
     if s.get("ate_pp_arcmin") is not None:
         lines = ", ".join(f"{o['order']:g} ({o['name'] or '-'}) {o['amplitude_arcsec']:.3g}\""
                           for o in s["orders"][:4])
@@ -96,8 +97,12 @@ def _print_point(s: dict) -> None:
               f"{s['backlash_arcmin']:.4f} arcmin, hysteresis loss "
               f"{s['hysteresis_loss_arcmin']:.4f} arcmin, torsional rigidity "
               f"{s['torsional_rigidity_nm_per_arcmin']:.2f} N*m/arcmin")
+        if "note" in s:
+            print(f"    ({s['note']})")
     if "efficiency" in s:
         print(f"  efficiency {s['efficiency']:.4f}")
+    for note in s.get("notes", []):
+        print(f"  note: {note}")
     sim, diff = s.get("simulated"), s.get("difference") or {}
     if sim and sim.get("status") == "ok":
         keys = [k for k in diff if k != "te_curve_rms_arcsec"]

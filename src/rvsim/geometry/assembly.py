@@ -179,5 +179,7 @@ def check_assembly(reducer: Reducer) -> None:
     # round-off ties (disc 2 mirrors disc 1) go to the first part listed
     worst = max(assembly_overlaps(reducer), key=lambda o: round(o.approach, 12))
     if worst.approach > CONTACT_TOLERANCE:
-        raise ParameterError("assembly", f"{worst.parts} by {worst.approach * 1e6:.1f} um at "
+        micrometres = worst.approach * 1e6      # an overlap below 0.05 um is not "0.0 um"
+        size = f"{micrometres:.1f}" if micrometres >= 0.1 else f"{micrometres:.2g}"
+        raise ParameterError("assembly", f"{worst.parts} by {size} um at "
                              f"the assembled pose{_closing_parameters(reducer)}")

@@ -180,10 +180,25 @@ def te_curve_directions(output_angle, te, direction, points: int = DEFAULT_POINT
     direction = np.asarray(direction, dtype=float)
     change = np.flatnonzero(np.diff(direction) != 0) + 1
     bounds = np.r_[0, change, position.size]
-    # a run's sense of travel is that of its positions (the column says which direction it is)
-    runs = [(int(a), int(b), 1 if position[b - 1] > position[a] else -1, int(direction[a]))
-            for a, b in zip(bounds[:-1], bounds[1:]) if b - a >= 2]
-    return _directions(position, te, points, runs)
+    positions, values, runs, start = [], [], [], 0
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        if b - a < 2:
+            continue
+        p, t = position[a:b], te[a:b]
+        # a run's sense of travel is that of its positions (the column says which direction)
+        sense = 1 if p[-1] > p[0] else -1
+        # one revolution sampled periodically (0, 0.5, ..., 359.5 deg): the curve is closed
+        # by its first sample one turn on, which it repeats
+        step = float(np.median(np.abs(np.diff(p))))
+        if abs(abs(p[-1] - p[0]) + step - 2.0 * math.pi) <= 0.5 * step:
+            p, t = np.r_[p, p[0] + sense * 2.0 * math.pi], np.r_[t, t[0]]
+        positions.append(p)
+        values.append(t)
+        runs.append((start, start + p.size, sense, int(direction[a])))
+        start += p.size
+    if not runs:
+        return []
+    return _directions(np.concatenate(positions), np.concatenate(values), points, runs)
 
 
 def leading_orders(orders, amplitude, marks: dict, count: int = 8) -> list[dict]:
@@ -243,6 +258,10 @@ def reversal_summary(torque, angle, branch, rated: float) -> dict:
     or the loop's reach if it stops short of it (reported)."""
     (tu, _), (td, _) = catalogue.loop_branches(torque, angle, branch)
     reach = float(min(tu.max(), td.max(), -tu.min(), -td.min()))
+    if not reach > 0:
+        raise CurveError("torque", f"the loop does not load both ways on both branches (it "
+                         f"reaches {reach:.3g} N*m where +- a test torque is needed): are the "
+                         "rows in time order?")
     test = min(rated, reach)
     out = {"test_torque_nm": test,
            "torsional_rigidity_nm_per_arcmin": catalogue.torsional_rigidity(

@@ -28,6 +28,9 @@ __all__ = ["FileResult", "PointResult", "analyse_path", "analyse_recording", "li
 
 #: the measured ratio may differ from the expected one by this fraction
 RATIO_TOLERANCE = 0.01
+#: beyond this fraction (and within RATIO_TOLERANCE) the TE carries the ratio's trend: noted
+#: (a TE of 1 arcmin moves a one-revolution measurement of the ratio by 5e-5)
+RATIO_NOTE = 2e-4
 MANIFEST = "manifest.csv"
 _SUFFIXES = (".csv", ".parquet", ".pq", ".tsv", ".txt")
 _RPM = 2.0 * math.pi / 60.0
@@ -46,6 +49,7 @@ class FileResult:
     ratio_measured: float | None = None
     ratio_expected: float | None = None    # the ratio the file was analysed with
     samples: int = 0
+    notes: list = dataclasses.field(default_factory=list)   # what a reader must know
 
 
 @dataclasses.dataclass
@@ -83,7 +87,8 @@ def _read_manifest(manifest: Path) -> list[tuple[Path, dict]]:
     import pandas as pd
 
     try:
-        frame = pd.read_csv(manifest, sep=None, engine="python", comment="#")
+        frame = pd.read_csv(manifest, sep=None, engine="python", comment="#",
+                            encoding="utf-8-sig")    # Excel's "CSV UTF-8" starts with a BOM
     except (pd.errors.ParserError, pd.errors.EmptyDataError, csv.Error, UnicodeDecodeError,
             ValueError, OSError) as exc:
         raise InputFileError(f"{manifest}: not a readable CSV file ({exc})") from None
@@ -97,7 +102,10 @@ def _read_manifest(manifest: Path) -> list[tuple[Path, dict]]:
                              f"(known: {', '.join(sorted(known))})")
     out = []
     for row, record in enumerate(frame.to_dict("records"), start=2):
-        target = manifest.parent / str(record.pop("file")).strip()
+        name = record.pop("file")
+        if isinstance(name, float) and math.isnan(name) or not str(name).strip():
+            raise InputFileError(f"{manifest}: row {row}: the file cell is empty")
+        target = manifest.parent / str(name).strip()
         if not target.is_file():
             raise InputFileError(f"{manifest}: row {row}: file {target.name} not found")
         declared = {}
@@ -186,16 +194,7 @@ def analyse_recording(rec: Recording, declared: dict, reducer, *, points: int = 
             phi = rec.input_angle / expected
             runs = A.input_runs(rec.input_angle, expected)
             a, b = _longest_run(phi, runs)
-            turned = abs(rec.output_angle[b - 1] - rec.output_angle[a])
-            if turned > 0:
-                result.ratio_measured = abs(rec.input_angle[b - 1] - rec.input_angle[a]) / turned
-                off = result.ratio_measured / abs(expected) - 1.0
-                if abs(off) > RATIO_TOLERANCE:
-                    raise InputFileError(
-                        f"{rec.path}: the measured ratio {result.ratio_measured:.5g} differs "
-                        f"from {abs(expected):g} by {100 * off:+.1f} % (more than "
-                        f"{100 * RATIO_TOLERANCE:g} %): check the angle units and counts per "
-                        "revolution")
+            _check_ratio(rec, result, a, b, expected)
             result.directions = A.te_directions(rec.input_angle, rec.output_angle, expected,
                                                 points, runs)
             measured["speed_rpm"] = float(abs(phi[b - 1] - phi[a]) * abs(expected)
@@ -203,11 +202,12 @@ def analyse_recording(rec: Recording, declared: dict, reducer, *, points: int = 
             if rec.output_torque is not None:
                 measured["torque_nm"] = float(np.mean(np.abs(rec.output_torque)))
             if rec.input_torque is not None and rec.output_torque is not None:
-                result.efficiency = _efficiency(rec, runs)
+                result.efficiency = _efficiency(rec, runs, result.notes)
         if not result.directions:
             travel = _travel(rec, expected, test)
             raise InputFileError(f"{rec.path}: shorter than one output revolution (the longest "
-                                 f"run in one direction covers {travel:.3g} of a revolution)")
+                                 "run in one direction covers "
+                                 f"{math.floor(travel * 1e4) / 1e4:g} of a revolution)")
     except CurveError as exc:
         raise InputFileError(f"{rec.path}: read as a {test.replace('_', ' ')} recording: "
                              f"{exc}") from None
@@ -220,7 +220,48 @@ def _travel(rec: Recording, ratio: float, test: str) -> float:
     return abs(position[b - 1] - position[a]) / (2.0 * math.pi)
 
 
-def _efficiency(rec: Recording, runs) -> float:
+def _check_ratio(rec: Recording, result: FileResult, a: int, b: int, expected: float) -> None:
+    """The ratio measured over the longest run (input over output travel, signed) against the
+    expected one: an output that stands still or turns against the input, or a ratio more
+    than RATIO_TOLERANCE off, is refused (encoders, units, counts); one more than RATIO_NOTE
+    off is noted, since the TE then carries its trend."""
+    travel_in = rec.input_angle[b - 1] - rec.input_angle[a]
+    turned = rec.output_angle[b - 1] - rec.output_angle[a]
+    turns = abs(travel_in / expected) / (2.0 * math.pi)
+    if turned == 0.0:
+        raise InputFileError(f"{rec.path}: the output angle stands still while the input "
+                             f"turns {turns:.3g} output revolutions: check the output encoder "
+                             "and its column")
+    measured = travel_in / turned
+    if measured / expected < 0:
+        raise InputFileError(f"{rec.path}: the output turns against the ratio's sense "
+                             f"(measured ratio {measured:.5g}, expected {expected:+g}): the "
+                             "encoders count in opposite directions; negate one of the angle "
+                             "columns")
+    result.ratio_measured = abs(measured)
+    off = measured / expected - 1.0
+    if abs(off) > RATIO_TOLERANCE:
+        raise InputFileError(
+            f"{rec.path}: the measured ratio {abs(measured):.5g} differs from "
+            f"{abs(expected):g} by {100 * off:+.3g} % (more than {100 * RATIO_TOLERANCE:g} %): check the angle "
+            "units and counts per revolution")
+    # the trend from the run's middle 80 %: its start holds the lost motion taken up after a
+    # reversal (a few arcmin over the run's revolution on the example recording)
+    progress = np.abs(rec.input_angle[a:b] - rec.input_angle[a])
+    i0 = a + int(np.argmax(progress >= 0.1 * progress[-1]))
+    i1 = a + int(np.argmax(progress >= 0.9 * progress[-1]))
+    turned = rec.output_angle[i1] - rec.output_angle[i0]
+    trend = 0.0 if turned == 0.0 else (rec.input_angle[i1] - rec.input_angle[i0]) / turned \
+        / expected - 1.0
+    if abs(trend) > RATIO_NOTE:
+        result.notes.append(
+            f"{rec.path.name}: the measured ratio {abs(expected) * (1.0 + trend):.6g} differs "
+            f"from {abs(expected):g} by {100 * trend:+.3g} %: the TE carries a trend of about "
+            f"{abs(trend) * 21600.0:.3g} arcmin per output revolution (give the bench "
+            "reducer's exact ratio with --ratio, or check the encoders' counts)")
+
+
+def _efficiency(rec: Recording, runs, notes: list) -> float | None:
     values = []
     for a, b, _ in runs:
         if b - a < 4:
@@ -231,7 +272,18 @@ def _efficiency(rec: Recording, runs) -> float:
             rec.input_torque[part], rec.output_torque[part],
             None if rec.input_speed is None else rec.input_speed[part],
             None if rec.output_speed is None else rec.output_speed[part]))
-    return float(np.mean(values)) if values else None
+    if not values:
+        return None
+    value = float(np.mean(values))
+    if not math.isfinite(value):
+        notes.append(f"{rec.path.name}: no efficiency: the input power is too small to divide "
+                     "by (check the torque columns and their units)")
+        return None
+    if not 0.0 < value <= 1.0:
+        notes.append(f"{rec.path.name}: the efficiency {value:.4g} from the torque columns is "
+                     "outside 0 to 1: check their units, signs and which is input and which "
+                     "output")
+    return value
 
 
 def _point_key(declared: dict) -> tuple:

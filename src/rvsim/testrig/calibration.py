@@ -238,7 +238,7 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     inv = (vt[keep].T / sv[keep] ** 2) @ vt[keep]
     cov = s2 * inv * np.outer(scale, scale)
     std = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-    notes = []
+    notes = [n for point in points for f in point.files for n in f.notes]   # the recordings'
     for j, why in blocked.items():
         std[j] = np.inf
         notes.append(f"the model fails on both sides of the estimate of {names[j]} ({why}): "
@@ -272,10 +272,23 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
         notes.append(f"the model failed at some trial values (penalised): {failed[0]}")
     estimate = result.x * scale
     half = stats.t.ppf(0.975, m - p) * std
+    # a linearised interval can reach beyond what the parameter can be (a clearance below
+    # zero): cut at the parameter's bounds, and said
+    finite = np.isfinite(half)             # no interval stays no interval
+    low = np.where(finite, np.maximum(estimate - half, lower * scale), np.nan)
+    high = np.where(finite, np.minimum(estimate + half, upper * scale), np.nan)
+    for j in np.flatnonzero(finite & ((low > estimate - half)
+                                                 | (high < estimate + half))):
+        cut = [f"{b:g}" for b, moved in ((low[j], low[j] > estimate[j] - half[j]),
+                                         (high[j], high[j] < estimate[j] + half[j])) if moved]
+        notes.append(f"the 95 % interval of {names[j]} is cut at its bound "
+                     f"{' and '.join(cut)} {specs[j].unit}: the data hardly fix it")
     fitted = model_at(result.x)
-    status = ("model_fails" if blocked else "ok" if result.success else "not_converged")
-    return Calibration(names, [s.unit for s in specs], start, estimate, std, estimate - half,
-                       estimate + half, corr, notes,
+    # a parameter the data do not fix is not fitted, whatever the optimiser says
+    status = ("model_fails" if blocked else "not_identifiable" if not np.all(np.isfinite(std))
+              else "ok" if result.success else "not_converged")
+    return Calibration(names, [s.unit for s in specs], start, estimate, std, low,
+                       high, corr, notes,
                        float(np.sqrt(np.mean(r0 ** 2))),
                        float(np.sqrt(np.mean(result.fun ** 2))), m, evaluations[0], status,
                        fitted)

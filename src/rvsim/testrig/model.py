@@ -130,6 +130,9 @@ def point_summary(point: PointResult, reducer) -> dict:
     samples = sum(f.samples for f in point.files)
     if samples:
         out["samples"] = samples
+    notes = [n for f in point.files for n in f.notes]
+    if notes:
+        out["notes"] = notes
     return out
 
 

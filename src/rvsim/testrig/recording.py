@@ -59,6 +59,10 @@ UNITS: dict[str, tuple[str, float]] = {
     "C": ("temperature", 1.0), "degC": ("temperature", 1.0),
     "-": ("direction", 1.0),
 }
+#: kind -> the largest magnitude in SI that any bench records (an hour at 10,000 rpm is 4e6
+#: rad); a value beyond it is a unit or export error, refused before it overflows an analysis
+LIMITS: dict[str, float] = {"time": 1e9, "angle": 1e9, "torque": 1e9, "speed": 1e6,
+                            "temperature": 1e4, "direction": 1.0}
 _KIND = {"time": "time", "input_angle": "angle", "output_angle": "angle", "te": "angle",
          "input_torque": "torque", "output_torque": "torque", "input_speed": "speed",
          "output_speed": "speed", "oil_temperature": "temperature", "direction": "direction"}
@@ -216,8 +220,10 @@ def _sniff(path: Path) -> tuple[str, str, bool, int]:
         raise InputFileError(f"{path}: the file is empty")
     first = lines[0]
     sep = ";" if first.count(";") > 0 else ("\t" if "\t" in first else ",")
-    data_line = lines[1] if len(lines) > 1 else first
-    decimal = "," if sep == ";" and "," in data_line else "."
+    # the decimal mark from every data line read: a first row of whole numbers (a recording
+    # zeroed at its start) has none
+    data = lines[1:] or [first]
+    decimal = "," if sep == ";" and any("," in line for line in data) else "."
 
     def numeric(field: str) -> bool:
         try:
@@ -304,7 +310,16 @@ def _column(frame, path: Path, quantity: str, spec: ColumnSpec):
         if not np.all(np.isin(numbers, (1.0, -1.0))):
             raise InputFileError(f"{path}: column '{spec.column}': direction must be +1 or -1")
         return numbers
-    return numbers * spec.factor()
+    numbers = numbers * spec.factor()
+    limit = LIMITS[_KIND[quantity]]
+    huge = np.flatnonzero(~(np.abs(numbers) <= limit))
+    if huge.size:
+        row = int(huge[0])
+        raise InputFileError(f"{path}: column '{spec.column}' data row {row + 1}: "
+                             f"'{values.iloc[row]}' {spec.unit} is beyond any bench's "
+                             f"{quantity.replace('_', ' ')} ({limit:g} in SI units): check the "
+                             "unit")
+    return numbers
 
 
 def _headerless_map(frame, column_map: ColumnMap) -> ColumnMap:

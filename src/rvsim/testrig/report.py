@@ -146,6 +146,8 @@ def write_testrig_report(results, reducer, path: str | Path) -> Path:
         body.append("<p class='note'>files: " + html.escape(", ".join(summary["files"]))
                     + "</p>")
         body.append(_numbers(summary))
+        for note in summary.get("notes", []) + ([summary["note"]] if "note" in summary else []):
+            body.append("<p class='note'>note: " + html.escape(note) + "</p>")
         if summary.get("ate_pp_arcmin") is not None:
             body += ["<h3>Transmission error over one output revolution</h3>",
                      _png(_te_figure(measured, simulated)),
