@@ -110,6 +110,22 @@ def test_local_tolerance_and_allocation_end_without_teardown(tmp_path):
         assert (folder / "report.html").read_text().rstrip().endswith("</html>")
 
 
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="needs /dev/full")
+def test_standard_output_full_or_closed_is_one_line(tmp_path):
+    # found by a hostile review: a traceback ending in OSError ENOSPC, or AttributeError on a
+    # closed standard output (Python's sys.stdout is then None)
+    for args in (("params",), ("ltca", "--positions", "8", "--json")):
+        with open("/dev/full", "w") as full:
+            res = subprocess.run([sys.executable, "-m", "rvsim", *args], stdout=full,
+                                 stderr=subprocess.PIPE, cwd=tmp_path, env=ENV, timeout=300)
+        assert res.returncode == 1 and res.stderr == \
+            b"rvsim: error: cannot write the output (No space left on device)\n"
+    res = subprocess.run([sys.executable, "-m", "rvsim", "params"], stderr=subprocess.PIPE,
+                         cwd=tmp_path, env=ENV, timeout=300, preexec_fn=lambda: os.close(1))
+    assert res.returncode == 1 and res.stderr == \
+        b"rvsim: error: cannot write the output (standard output is closed)\n"
+
+
 def test_user_error_exit_code_through_quick_exit(tmp_path):
     res = _rvsim("ltca", "--torque", "abc", cwd=tmp_path)
     assert res.returncode == 2

@@ -56,3 +56,23 @@ def test_bad_input_is_one_line(cli, tmp_path, args, field):
     lines = res.err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("rvsim: error:") and field in lines[0]
     assert not (tmp_path / "x.html").exists()
+
+
+def test_torques_below_the_solvers_resolution_are_refused(cli, tmp_path):
+    # found by a hostile review: 1e-5 N*m gave an efficiency of 4238.6 with status ok (the
+    # solver's tolerance, 1e-7 of rated torque, is then larger than the input torque)
+    page = tmp_path / "eff.html"
+    res = cli("efficiency", "--set", "friction.mesh_coefficient=0.05", "--speeds", "500",
+              "--torques", "1e-5,412", "--report", str(page))
+    assert res.code == 2 and res.err == (
+        "rvsim: error: parameter 'torques': output torques from 0.0412 N*m, 0.0001 of the "
+        "rated 412 N*m (got 1e-05): below it the solver's tolerance is more than 0.1 % of "
+        "the input torque\n")
+    assert not page.exists()
+    # at the floor the efficiency is that of rated torque to 0.3 % (measured 0.920 / 0.922)
+    res = cli("efficiency", "--set", "friction.mesh_coefficient=0.05", "--set",
+              "contact.friction_coefficient=0.05", "--speeds", "500", "--torques",
+              "0.0412,412", "--json")
+    assert res.code == 0, res.err
+    low, rated = (p["efficiency"] for p in json.loads(res.out)["efficiency"])
+    assert low == pytest.approx(rated, rel=3e-3) and low < 1.0

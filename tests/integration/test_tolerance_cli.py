@@ -341,3 +341,47 @@ def test_a_reducer_both_invalid_and_binding_is_invalid(tmp_path):
     valid = dataclasses.replace(reducer, materials=dataclasses.replace(
         reducer.materials, pin=dataclasses.replace(reducer.materials.pin, poisson_ratio=0.3)))
     assert evaluate_sample(valid, 12)["status"] == "binds"
+
+
+def test_sobol_of_a_single_toleranced_error_is_refused(tmp_path, cli):
+    # found by a hostile review: SALib reads one group as none, so the study ran 1312
+    # reducers instead of 64 and reported pin 0's index (S1 -0.0009) as the feature's
+    single = SMALL.split("[tolerances.disc_holes]")[0]
+    (tmp_path / "one.toml").write_text(single)
+    res = cli("tolerance", str(tmp_path / "one.toml"), "--out", str(tmp_path / "o"),
+              "--workers", "1", "--sobol", "16")
+    assert res.code == 2 and res.err == (
+        "rvsim: error: parameter 'sobol': Sobol indices need two or more toleranced errors "
+        "(this study has 1: pin_radius; with one, all the variance is its own)\n")
+    assert not (tmp_path / "o").exists()
+
+
+def test_tolerance_files_checked_alike_and_folders_not_mixed(tmp_path, small, cli):
+    # found by a hostile review: `tolerance` ran a file whose [cost] table `allocate` refuses
+    bad = tmp_path / "bad.toml"
+    bad.write_text(SMALL + "[cost.nosuch]\nweight = -1\n")
+    res = cli("tolerance", str(bad), "--out", str(tmp_path / "t"), "--workers", "1")
+    assert res.code == 2 and res.err == (
+        "rvsim: error: parameter 'cost.nosuch': not a toleranced error of this study\n")
+    assert not (tmp_path / "t").exists()
+    # an impossible target in a folder that was there: it keeps what it held, and no more
+    kept = tmp_path / "kept"
+    kept.mkdir()
+    (kept / "keep.txt").write_text("x")
+    res = cli("allocate", str(small), "--out", str(kept), "--workers", "1", "--samples", "4",
+              "--max-evaluations", "5", "--target", "ate_p95=0.0001")
+    assert res.code == 2 and "cannot be met even at the tightest tolerances" in res.err
+    assert sorted(p.name for p in kept.iterdir()) == ["keep.txt"]
+    # a tolerance study and an allocation do not share a folder (each would replace the
+    # other's report.html)
+    out = tmp_path / "o"
+    assert cli("tolerance", str(small), "--out", str(out), "--workers", "1").code == 0
+    page = (out / "report.html").read_text()
+    res = cli("allocate", str(small), "--out", str(out), "--workers", "1", "--samples", "4",
+              "--max-evaluations", "5", "--target", "ate_p95=0.5")
+    assert res.code == 2 and "holds a tolerance study (summary.json)" in res.err
+    assert (out / "report.html").read_text() == page and not (out / "allocation.json").exists()
+    (out / "summary.json").rename(tmp_path / "summary.json")
+    (out / "allocation.json").write_text("{}")
+    res = cli("tolerance", str(small), "--out", str(out), "--workers", "1")
+    assert res.code == 2 and "holds a tolerance allocation (allocation.json)" in res.err

@@ -6,6 +6,8 @@ User errors print one line ``rvsim: error: ...`` on stderr and exit with code 2.
 from __future__ import annotations
 
 import argparse
+import errno
+import io
 import os
 import sys
 
@@ -61,6 +63,7 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
                 raise
             if code not in (130, 143):   # the command has not said it was stopped:
                 check_stop()             # a signal whose exception was swallowed still counts
+        sys.stdout.flush()               # a full disk shows here, not lost at the exit
         return code, at_once
     except RvsimError as exc:
         print(f"rvsim: error: {exc}", file=sys.stderr)
@@ -73,6 +76,23 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
         return 130, at_once
     except BrokenPipeError:
         return 0, at_once
+    except OSError as exc:
+        if exc.errno not in _OUTPUT_ERRORS:
+            raise
+        # standard output on a full disk, a failed device, or closed (>&-)
+        print(f"rvsim: error: cannot write the output ({exc.strerror or exc})", file=sys.stderr)
+        return 1, at_once
+
+
+#: errors of a write to standard output that end the command with one line
+_OUTPUT_ERRORS = frozenset({errno.ENOSPC, errno.EIO, errno.EBADF, errno.EDQUOT, errno.EFBIG})
+
+
+class _ClosedOutput(io.TextIOBase):
+    """Standard output when the process was started with it closed (Python then has None)."""
+
+    def write(self, text: str) -> int:
+        raise OSError(errno.EBADF, "standard output is closed")
 
 
 # Commands that start no processes of their own.  Once they have returned, every file they
@@ -104,6 +124,8 @@ def run() -> None:
     instead when a KeyboardInterrupt once passed through an ``exec`` of a string (dataclasses
     and numba create functions that way), even though rvsim caught it.
     """
+    if sys.stdout is None:
+        sys.stdout = _ClosedOutput()
     code, at_once = _main(sys.argv[1:])
     if code in (130, 143) or at_once:
         _flush_and_exit(code)

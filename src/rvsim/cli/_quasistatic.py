@@ -184,7 +184,8 @@ def register(sub) -> None:
                      "rvsim ltca --paper-run 2 --json"])
     _common(p)
     p.add_argument("--torque", type=float, metavar="NM",
-                   help="output torque [N*m] (default: operating.load_torque)")
+                   help="output torque [N*m] (default: operating.load_torque; negative: the load "
+                        "on the other flanks, as in a torque reversal)")
     p.add_argument("--positions", type=int, default=360, metavar="N",
                    help=f"input positions over one output revolution ({MIN_POSITIONS} to "
                         f"{MAX_POSITIONS}, default 360)")

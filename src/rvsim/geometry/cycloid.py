@@ -190,7 +190,7 @@ def check_profile(reducer: Reducer) -> None:
         raise ParameterError(field,
                              f"teeth undercut: pin radius + equidistant modification exceeds "
                              f"the smallest radius of curvature of the pin-centre curve by a "
-                             f"factor {ratio:.3f}")
+                             f"factor {ratio:.4g}")
 
 
 def pin_contact_geometry(reducer: Reducer, crank_angle: float, *, disc: int = 0):

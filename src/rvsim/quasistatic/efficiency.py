@@ -19,7 +19,7 @@ from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 
 __all__ = ["efficiency", "EfficiencyResult", "DEFAULT_SPEEDS_RPM", "DEFAULT_TORQUE_FRACTIONS",
-           "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM"]
+           "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM", "RESOLVED_TORQUE_FRACTION"]
 
 RPM = 2.0 * math.pi / 60.0
 #: input speeds of the default map [rpm] (RV-40E, i = 121: output 4 to 25 rpm)
@@ -31,6 +31,11 @@ POSITIONS = 24
 #: fastest input speed accepted [rpm]: above any servo motor (Palmgren's viscous law and the
 #: quasi-static engine have no meaning far beyond a reducer's rated speed)
 MAX_SPEED_RPM = 100_000.0
+#: smallest output torque of a map, as a fraction of the rated torque: the quasi-static
+#: solver converges to 1e-7 of the rated torque (transmission.TOLERANCE), so the input torque
+#: of a point at this torque carries up to about 0.1 % of error (an output torque of 1e-5
+#: N*m gave an efficiency of 4239, 1e-3 N*m 1.07, 1e-2 N*m 0.920 against 0.922 at rated)
+RESOLVED_TORQUE_FRACTION = 1e-4
 #: creep speed at which the starting torque is taken [input rpm]: Coulomb friction and
 #: Palmgren's low-speed viscous torque, i.e. the torque to keep the input moving at all
 STARTING_SPEED_RPM = 1.0
@@ -136,6 +141,12 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
     rated = reducer.rating.rated_torque
     loads = _values("torques", np.array(DEFAULT_TORQUE_FRACTIONS) * rated if torques is None
                     else torques, allow_zero=False)
+    floor = RESOLVED_TORQUE_FRACTION * rated
+    if np.any(loads < floor):
+        raise ParameterError("torques", f"output torques from {floor:.3g} N*m, "
+                             f"{RESOLVED_TORQUE_FRACTION:g} of the rated {rated:g} N*m (got "
+                             f"{loads.min():g}): below it the solver's tolerance is more than "
+                             "0.1 % of the input torque")
     if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
             or positions < 2:
         raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")

@@ -33,7 +33,7 @@ from ..errors import InputFileError, ParameterError
 from .engine import METRICS
 from .spec import FEATURES, ToleranceStudy, largest_tolerance
 
-__all__ = ["CostModel", "parse_targets", "allocate", "Target"]
+__all__ = ["CostModel", "cost_table", "parse_targets", "allocate", "Target"]
 
 #: the optimiser's targets are this much (relative) tighter than the user's (see allocate)
 MARGIN = 0.01
@@ -111,6 +111,30 @@ def parse_targets(text: str) -> list[Target]:
     return targets
 
 
+_COST_KEYS = ("weight", "exponent", "tightest", "loosest")
+
+
+def cost_table(study: ToleranceStudy, table: dict | None = None) -> dict:
+    """The study file's ``[cost.NAME]`` tables (or ``table``), checked: names of the study's
+    toleranced errors, keys of :data:`_COST_KEYS`, positive numbers (ParameterError).  Both
+    ``rvsim tolerance`` and ``rvsim allocate`` check them, so that a file one accepts the
+    other does not refuse."""
+    table = {n: dict(v) for n, v in study.cost} if table is None else table
+    names = {t.name for t in study.tolerances}
+    out = {}
+    for name, spec in table.items():
+        if name not in names:
+            raise ParameterError(f"cost.{name}", "not a toleranced error of this study")
+        if not isinstance(spec, dict) or set(spec) - set(_COST_KEYS):
+            raise ParameterError(f"cost.{name}", f"a table of {', '.join(_COST_KEYS)}")
+        for key, value in spec.items():
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not math.isfinite(value) or value <= 0:
+                raise ParameterError(f"cost.{name}.{key}", "must be a positive number")
+        out[name] = {key: float(value) for key, value in spec.items()}
+    return out
+
+
 @dataclasses.dataclass(frozen=True)
 class CostModel:
     """Per error: weight, exponent, tightest and loosest tolerance (user units)."""
@@ -128,16 +152,9 @@ class CostModel:
         out = {"weight": {n: 1.0 for n in names}, "exponent": {n: 1.0 for n in names},
                "tightest": {n: 0.25 * ref[n] for n in names},
                "loosest": {n: min(4.0 * ref[n], largest_tolerance(n)) for n in names}}
-        for name, spec in (table or {}).items():
-            if name not in ref:
-                raise ParameterError(f"cost.{name}", "not a toleranced error of this study")
-            if not isinstance(spec, dict) or set(spec) - set(out):
-                raise ParameterError(f"cost.{name}", f"a table of {', '.join(out)}")
+        for name, spec in cost_table(study, table or {}).items():
             for key, value in spec.items():
-                if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                        or not math.isfinite(value) or value <= 0:
-                    raise ParameterError(f"cost.{name}.{key}", "must be a positive number")
-                out[key][name] = float(value)
+                out[key][name] = value
         for n in names:
             if ref[n] <= 0:
                 raise ParameterError(f"tolerances.{n}.tolerance", "allocation needs a "
@@ -197,14 +214,28 @@ def allocate(study: ToleranceStudy, targets: list[Target], folder, *, samples: i
     if folder.exists() and not folder.is_dir():
         raise InputFileError(f"{folder}: exists and is not a folder")
     study.nominal
+    if (folder / "summary.json").exists():    # its report.html would be replaced
+        raise InputFileError(f"{folder}: holds a tolerance study (summary.json), whose "
+                             "report.html the allocation would replace: give another --out "
+                             "folder")
     created = not folder.exists()
+    before = set() if created else {p.name for p in folder.iterdir()}
     folder.mkdir(parents=True, exist_ok=True)
     try:
         return _allocate(study, targets, folder, samples, cost, workers, scheduler,
                          max_evaluations)
     except (ParameterError, InputFileError):
-        if created:       # bad input (an impossible target) leaves no partial folder
+        # bad input (an impossible target) leaves no partial folder, and in a folder that
+        # was there before, nothing it did not hold
+        if created:
             shutil.rmtree(folder, ignore_errors=True)
+        else:
+            for path in folder.iterdir():
+                if path.name not in before:
+                    if path.is_dir():
+                        shutil.rmtree(path, ignore_errors=True)
+                    else:
+                        path.unlink(missing_ok=True)
         raise
 
 

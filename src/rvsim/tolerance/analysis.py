@@ -12,7 +12,7 @@ from pathlib import Path
 from ..errors import InputFileError
 from .montecarlo import (collect, monte_carlo_units, run_samples, summarise,
                          write_json, write_results_csv)
-from .sensitivity import check_base, sobol_count, sobol_indices, sobol_units
+from .sensitivity import check_base, check_groups, sobol_count, sobol_indices, sobol_units
 from .spec import ToleranceStudy, check_samples
 
 __all__ = ["tolerance_analysis"]
@@ -35,11 +35,18 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
     n = check_samples(study.samples if samples is None else samples)
     if sobol:
         check_base(sobol)
+        check_groups(study)
     if folder.exists() and not folder.is_dir():
         raise InputFileError(f"{folder}: exists and is not a folder")
+    if (folder / "allocation.json").exists():  # its report.html would be replaced
+        raise InputFileError(f"{folder}: holds a tolerance allocation (allocation.json), whose "
+                             "report.html this study would replace: give another --out folder")
     if scheduler:
         _check_scheduler(scheduler)
     study.nominal                                     # validated before anything is written
+    from .allocation import cost_table
+
+    cost_table(study)                                 # as `allocate` reads the same file
     definition = study.definition()
     designs = {"monte-carlo": (n, lambda: monte_carlo_units(study, n))}
     if sobol:

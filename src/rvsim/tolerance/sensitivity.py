@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import ParameterError
 from .spec import ToleranceStudy
 
-__all__ = ["problem", "sobol_units", "sobol_count", "sobol_indices", "check_base",
+__all__ = ["problem", "sobol_units", "sobol_count", "sobol_indices", "check_base", "check_groups",
            "indices_from_samples"]
 
 
@@ -26,6 +26,17 @@ def check_base(base) -> int:
         raise ParameterError("sobol", f"the Sobol base sample size must be a power of 2 from "
                              f"2 to 65536 (got {base!r})")
     return int(base)
+
+
+def check_groups(study: ToleranceStudy) -> None:
+    """Sobol indices apportion the variance between two or more toleranced errors; with one,
+    all of it is that error's (S1 = ST = 1), and SALib would take its parts' random numbers
+    for the groups (it reads a single group as none) and report the first part's index."""
+    if len(study.tolerances) < 2:
+        names = ", ".join(t.name for t in study.tolerances) or "none"
+        raise ParameterError("sobol", f"Sobol indices need two or more toleranced errors (this "
+                             f"study has {len(study.tolerances)}: {names}; with one, all the "
+                             "variance is its own)")
 
 
 def problem(study: ToleranceStudy) -> dict:

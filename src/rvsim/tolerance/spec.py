@@ -289,6 +289,9 @@ def _tolerance(name: str, spec, path) -> Tolerance:
                                  f"{', '.join(FEATURES)}; or a numeric parameter of "
                                  "'rvsim params')")
         where = f"tolerances.{name}"
+    if "tolerance" not in spec:
+        raise ParameterError(f"{where}.tolerance", "missing (the tolerance of the error, in "
+                             "its unit)")
     tol = spec.get("tolerance")
     if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not math.isfinite(tol):
         raise ParameterError(f"{where}.tolerance", f"needs a finite number (got {tol!r})")
