@@ -222,6 +222,7 @@ def _read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
 def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition: dict,
                 factors: list[str], alpha: float | None) -> str:
     from .analysis import range_analysis, sn_response_table
+    from .analysis.anova import ZERO_RESPONSE_NOTE
     from .doe.store import ResultStore
     from .plots import main_effects_plot, spectrum_plot, speed_plot, te_plot
 
@@ -314,8 +315,10 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
                  _png_bytes(effects.read_bytes()) if effects.is_file() else
                  _png(main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
                                         ylabel="mean TE [arcmin]")),
-                 "<h2>Signal-to-noise ratios (smaller is better)</h2>",
-                 _table(sn_response_table(ok, "te_mean_arcmin", factors).round(4))]
+                 "<h2>Signal-to-noise ratios (smaller is better)</h2>"]
+        sn = sn_response_table(ok, "te_mean_arcmin", factors)
+        body.append(_table(sn.round(4)) if sn is not None else
+                    f"<p class='note'>{html.escape(ZERO_RESPONSE_NOTE)}</p>")
     failed = results[results["status"] != "ok"]
     if len(failed):
         body += ["<h2>Failed runs</h2>",

@@ -6,7 +6,7 @@ import pytest
 
 from rvsim.doe import load_study, run
 from rvsim.doe.engines import evaluate_quasi_static
-from rvsim.errors import InputFileError
+from rvsim.errors import InputFileError, ParameterError
 from rvsim.parameters import RV40E, with_values
 from tests.quasistatic_standin import standin  # noqa: F401  (fixture)
 
@@ -71,3 +71,24 @@ def test_outcome_shape_and_failures(standin, monkeypatch):
     monkeypatch.setattr(standin, "hysteresis", broken)
     outcome = evaluate_quasi_static(RV40E, hysteresis=True)
     assert outcome["status"] == "error" and "solver exploded" in outcome["error"]
+
+
+def test_no_factor_label_can_overwrite_a_metric_column(tmp_path):
+    # found by a hostile review: a factor labelled energy_residual (or max_pin_force_n) was
+    # accepted and results.csv held the metric in its column, the levels lost.  Every key of
+    # a real run's summary, of each engine and scheme, must be reserved.
+    from rvsim.doe.study import RESULT_COLUMNS
+    from rvsim.dynamics import simulate
+    from rvsim.quasistatic import hysteresis, ltca
+
+    short = with_values(RV40E, {"operating.duration": 1.6})
+    summaries = [simulate(short, scheme="implicit-bearings").summary(),
+                 simulate(short, time_step=7e-6).summary(),           # with the step guard
+                 ltca(RV40E, positions=16).summary(), hysteresis(RV40E).summary()]
+    keys = {k for s in summaries for k in s}
+    assert {"guard_substep_checks", "implicit_alerts", "backlash_arcmin"} <= keys
+    assert sorted(k for k in keys if k not in RESULT_COLUMNS and not k.startswith("te_")) == []
+    path = tmp_path / "bad.toml"
+    path.write_text(STUDY.format(extra="").replace("[factors.H]", "[factors.energy_residual]"))
+    with pytest.raises(ParameterError, match="factors.energy_residual"):
+        load_study(path)

@@ -235,3 +235,33 @@ def test_levels_must_be_positive_level_numbers(tmp_path, cli, levels):
     path.write_text("\n".join(rows) + "\n")
     res = cli("analyze", str(path), "--response", "y")
     assert res.code == 2 and "factor column 'A'" in res.err and len(res.err.splitlines()) == 1
+
+
+def test_factors_with_longer_labels_are_found_beside_single_letters(table3, tmp_path, cli):
+    # found by a hostile review: a study's factor labelled "mod" was left out of `rvsim
+    # analyze`, its effect folded into the error (H's p 0.34, "significant: none")
+    table = table3.rename(columns={"J": "mod", "te_arcmin": "te_mean_arcmin"})
+    table["energy_residual"] = 1e-5            # a study's result columns are not factors
+    table["steps"] = 2
+    table["run"] = range(1, 37)
+    table.to_csv(tmp_path / "results.csv", index=False)
+    res = cli("analyze", str(tmp_path / "results.csv"), "--json")
+    assert res.code == 0, res.err
+    data = json.loads(res.out)
+    reference = analyze_table(table3, "te_arcmin")
+    assert data["range"]["mod"] == pytest.approx(reference["range"]["J"], rel=1e-12)
+    assert data["order"] == reference["order"].replace("J", "mod")
+    from rvsim._json import to_json_safe
+
+    assert data["anova"] == json.loads(json.dumps(to_json_safe(reference["anova"]))
+                                       .replace('"J"', '"mod"'))
+
+
+def test_a_zero_response_has_no_sn_ratios_and_says_so(tmp_path, cli):
+    # it printed numpy's "divide by zero" warning and null S/N values without a word
+    (tmp_path / "z.csv").write_text("run,H,I,te_mean_arcmin\n1,1,1,0\n2,1,2,0.6\n3,2,1,0.7\n"
+                                    "4,2,2,0.9\n")
+    res = cli("analyze", str(tmp_path / "z.csv"), "--json")
+    assert res.code == 0 and res.err == ""
+    data = json.loads(res.out)
+    assert data["sn_response"] is None and any("no S/N ratios" in n for n in data["notes"])

@@ -37,10 +37,17 @@ def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
         # the ranges are round-off: no order of the factors (docs/decisions.md)
         out["order"] = None
         out["constant_response"] = True
+    from .anova import ZERO_RESPONSE_NOTE
+
     notes = list(dict.fromkeys(list(ra.notes) + list(table_anova.notes)))
+    sn = sn_response_table(table, response, factors)
+    if sn is None:
+        notes.append(ZERO_RESPONSE_NOTE)
+        out["sn_response"] = None
+    else:
+        out["sn_response"] = {f: {"levels": [v for v in row[:-2] if v == v],
+                                  "delta": row["delta"], "rank": int(row["rank"])}
+                              for f, row in sn.iterrows()}
     if notes:
         out["notes"] = notes
-    sn = sn_response_table(table, response, factors)
-    out["sn_response"] = {f: {"levels": [v for v in row[:-2] if v == v], "delta": row["delta"],
-                              "rank": int(row["rank"])} for f, row in sn.iterrows()}
     return out

@@ -57,7 +57,9 @@ def read_table(path) -> pd.DataFrame:
 
 
 def factor_columns(table: pd.DataFrame, response: str, factors=None) -> list[str]:
-    """The factor columns: given, or every single-letter column A-Z other than the response."""
+    """The factor columns: given, or every single-letter column A-Z other than the response and
+    every other column of level codes 1..k that is not one of a study's result columns (a
+    study's factor may have any label)."""
     if factors is not None:
         repeated = sorted({f for f in factors if list(factors).count(f) > 1})
         if repeated:
@@ -68,9 +70,25 @@ def factor_columns(table: pd.DataFrame, response: str, factors=None) -> list[str
         if missing:
             raise InputFileError(f"factor column(s) {', '.join(missing)} not in the table")
         return list(factors)
-    cols = [c for c in table.columns if len(str(c)) == 1 and str(c).isalpha() and c != response]
+    from ..doe.study import RESULT_COLUMNS
+
+    def is_factor(column) -> bool:
+        name = str(column)
+        if column == response or name.lower() in RESULT_COLUMNS or name.lower().startswith("te_"):
+            return False
+        if len(name) == 1 and name.isalpha():
+            return True
+        # a study's factor of a longer label: its column holds the level codes 1..k
+        values = pd.to_numeric(table[column], errors="coerce")
+        codes = set(values.dropna())
+        return (values.notna().all() and len(codes) >= 2
+                and codes == set(range(1, len(codes) + 1)))
+
+    cols = [c for c in table.columns if is_factor(c)]
     if not cols:
-        raise InputFileError("no factor columns found (expected single-letter columns A, B, ...)")
+        raise InputFileError("no factor columns found (expected single-letter columns A, B, "
+                             "..., or columns of level codes 1, 2, ...; name them with "
+                             "--factors)")
     return cols
 
 

@@ -18,6 +18,7 @@ from ..errors import InputFileError
 from ._table import UNBALANCED_NOTE, check_design_table, factor_columns, is_balanced
 
 __all__ = ["AnovaTable", "anova", "signal_to_noise_smaller", "sn_response_table",
+           "ZERO_RESPONSE_NOTE",
            "predict_optimum", "CONSTANT_NOTE"]
 
 #: note of an ANOVA whose response varies only at round-off level
@@ -133,11 +134,19 @@ def signal_to_noise_smaller(values) -> float:
     return float(-10.0 * np.log10(np.mean(y * y)))
 
 
+#: why a table has no S/N ratios
+ZERO_RESPONSE_NOTE = ("no S/N ratios: a run's response is exactly 0, where the smaller-is-"
+                      "better S/N ratio is infinite")
+
+
 def sn_response_table(table: pd.DataFrame, response: str = "te_arcmin", factors=None
-                      ) -> pd.DataFrame:
-    """Mean S/N ratio (smaller is better) per factor level, with Delta and Rank (Minitab)."""
+                      ) -> pd.DataFrame | None:
+    """Mean S/N ratio (smaller is better) per factor level, with Delta and Rank (Minitab);
+    None when a run's response is 0 (:data:`ZERO_RESPONSE_NOTE`)."""
     factors = factor_columns(table, response, factors)
     data = check_design_table(table, response, factors)
+    if (data[response] == 0).any():
+        return None
     data = data.assign(sn=[signal_to_noise_smaller([v]) for v in data[response]])
     every = sorted({int(lv) for f in factors for lv in data[f].unique()})
     out = {}

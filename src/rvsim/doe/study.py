@@ -49,11 +49,17 @@ __all__ = ["StudyFactor", "Study", "paper_l36", "load_study", "BUILT_IN_STUDIES"
 MAX_RUNS = 100_000
 #: columns of results.csv besides the factors (a factor label must not be one of them); every
 #: metric column starts with ``te_`` or is listed here
-RESULT_COLUMNS = frozenset({"run", "status", "error", "key", "reducer", "steps", "wall_s",
-                            "sim_time_s", "speed_ratio", "guard_substep_checks",
-                            "guard_substep_checks_steady", "guard_peak_omega_dt",
-                            "implicit_factorisations", "implicit_alerts",
-                            "implicit_fallbacks"})
+RESULT_COLUMNS = frozenset({
+    "run", "status", "error", "key", "reducer", "steps", "wall_s",
+    # the dynamic engine (tests/unit/test_study_file.py checks them against real runs)
+    "sim_time_s", "speed_ratio", "energy_residual", "max_pin_force_n", "guard_substep_checks",
+    "guard_substep_checks_steady", "guard_peak_omega_dt", "implicit_factorisations",
+    "implicit_alerts", "implicit_fallbacks",
+    # the quasi-static engine and its torque reversal
+    "max_contact_stress_mpa", "pins_in_contact_max", "pins_in_contact_min", "positions",
+    "torque_nm", "torsional_stiffness_nm_per_arcmin", "backlash_arcmin",
+    "hysteresis_loss_arcmin", "lost_motion_arcmin", "points", "rated_torque_nm",
+    "torsional_rigidity_nm_per_arcmin"})
 
 
 @dataclasses.dataclass(frozen=True)
