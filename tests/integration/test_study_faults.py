@@ -259,6 +259,20 @@ def test_a_folder_of_another_study_is_refused(tmp_path, small_study, cli):
     assert "holds the results of study 'other'" in res.err and "new --out folder" in res.err
 
 
+def test_a_users_own_results_are_not_overwritten(tmp_path, small_study, cli):
+    # found by a hostile review: a folder rvsim did not make, with the user's results.csv,
+    # took the study and lost the file
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "results.csv").write_text("mydata\n")
+    res = cli("study", str(small_study), "--out", str(out))
+    assert res.code == 2 and res.err == (
+        f"rvsim: error: {out}: holds results.csv but no study.json, so no study wrote them, "
+        "and this one would replace them; give a new --out folder\n")
+    assert sorted(p.name for p in out.iterdir()) == ["results.csv"]
+    assert (out / "results.csv").read_text() == "mydata\n"
+
+
 def _valid_store(folder):
     store = ResultStore(folder)
     for i in range(50):
@@ -266,18 +280,24 @@ def _valid_store(folder):
     store.close()
 
 
-@pytest.mark.parametrize("damage", ["junk", "truncated"])
+@pytest.mark.parametrize("damage", ["junk", "truncated", "pages"])
 def test_a_damaged_store_is_one_line(tmp_path, small_study, cli, damage):
     out = tmp_path / "out"
     out.mkdir()
     path = out / "results.sqlite"
     if damage == "junk":
         path.write_bytes(b"this is not a database" * 100)
-    else:
+    elif damage == "truncated":
         _valid_store(out)
         path.write_bytes(path.read_bytes()[:path.stat().st_size // 2])
+    else:               # pages overwritten: SQLite's integrity report ran over 2-5 lines
+        _valid_store(out)
+        data = bytearray(path.read_bytes())
+        for i in range(8192, len(data), 997):
+            data[i] = 0x5A
+        path.write_bytes(bytes(data))
     res = cli("study", str(small_study), "--out", str(out))
-    assert res.code == 2 and res.err.count("\n") == 1
+    assert res.code == 2 and res.err.count("\n") == 1, res.err
     assert "results.sqlite: damaged" in res.err
 
 

@@ -65,6 +65,14 @@ def test_parameter_table_lists_every_field_with_unit():
     ({"flexibility.pin": "maybe"}, "flexibility.pin", "yes/no"),
     ({"errors.eccentricity": 1.6}, "errors.eccentricity", "smaller than"),
     ({"operating.steady_start": 5}, "operating.steady_start", "earlier"),
+    # found by a hostile review: an OverflowError traceback, an inf TE printed with exit 0,
+    # and counts of 1e308 accepted
+    ({"gears.module": 1e308}, "gears.module", "1e+308 mm is beyond any reducer (at most "
+                                              "1e+18 mm)"),
+    ({"H": 1e308}, "errors.pin_circle_radius", "beyond any reducer"),
+    ({"cycloid.pillar_hole_count": 1e308}, "cycloid.pillar_hole_count", "1e+308 is beyond "
+                                                                        "any reducer (at most "
+                                                                        "100000)"),
 ])
 def test_bad_values_name_field_and_reason(values, field, words):
     with pytest.raises(ParameterError) as info:

@@ -66,7 +66,8 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
         sys.stdout.flush()               # a full disk shows here, not lost at the exit
         return code, at_once
     except RvsimError as exc:
-        print(f"rvsim: error: {exc}", file=sys.stderr)
+        # one line, whatever a library's text inside it held (SQLite's integrity report)
+        print(f"rvsim: error: {' '.join(str(exc).split())}", file=sys.stderr)
         return 2, at_once
     except Terminated as exc:
         print(f"rvsim: terminated ({exc})", file=sys.stderr)

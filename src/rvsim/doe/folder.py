@@ -20,7 +20,8 @@ try:
 except ImportError:  # pragma: no cover - not POSIX: studies run unlocked
     fcntl = None
 
-__all__ = ["LOCK_NAME", "lock_folder", "held_lock_fds", "check_same_study"]
+__all__ = ["LOCK_NAME", "lock_folder", "held_lock_fds", "check_same_study", "check_not_foreign",
+           "STUDY_OUTPUTS"]
 
 LOCK_NAME = "study.lock"
 
@@ -63,6 +64,22 @@ def lock_folder(folder: str | Path):
 def held_lock_fds() -> list[int]:
     """Descriptors of the locks this process holds (a forked worker closes its copies)."""
     return [fd for fd, _ in _HELD.values()]
+
+
+#: files a study writes into its folder besides its store and study.json
+STUDY_OUTPUTS = ("results.csv", "analysis.json", "report.html", "main_effects.png")
+
+
+def check_not_foreign(folder: Path) -> None:
+    """Refuse a folder that holds a study's output names but no study.json: no study wrote
+    them, and the study would replace them (a user's own results.csv was overwritten)."""
+    if not folder.is_dir() or (folder / "study.json").exists():
+        return
+    found = [name for name in STUDY_OUTPUTS if (folder / name).exists()]
+    if found:
+        raise InputFileError(f"{folder}: holds {', '.join(found)} but no study.json, so no "
+                             "study wrote them, and this one would replace them; give a new "
+                             "--out folder")
 
 
 def check_same_study(folder: Path, definition: dict, has_results: bool,

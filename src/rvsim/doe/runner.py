@@ -27,7 +27,7 @@ from ..dynamics.simulate import default_time_step
 from ..errors import InputFileError, ParameterError, Terminated
 from ..parameters import Reducer
 from ._workers import evaluate_task, run_workers
-from .folder import check_same_study, held_lock_fds, lock_folder
+from .folder import check_not_foreign, check_same_study, held_lock_fds, lock_folder
 from .store import ResultStore, run_key
 from .study import Study
 
@@ -144,6 +144,7 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
         tag = f"{time_step} {study.scheme}"
     keys = [run_key(r, tag) for r in reducers]
     options = (time_step, study.engine, study.hysteresis, 360, study.scheme)
+    check_not_foreign(folder)
     folder.mkdir(parents=True, exist_ok=True)
     # Ctrl-C, SIGTERM and SIGHUP stop the workers and keep every finished row
     with lock_folder(folder), stop_signals():

@@ -74,7 +74,9 @@ class ResultStore:
                                      "program that holds it and run again)") from None
             if "readonly" in str(exc) or "read-only" in str(exc):
                 raise InputFileError(f"{self.path}: cannot be written ({exc})") from None
-            raise InputFileError(f"{self.path}: damaged ({exc}); move it away to start the "
+            said = " ".join(str(exc).split())
+            said = said if len(said) <= 120 else said[:117] + "..."
+            raise InputFileError(f"{self.path}: damaged ({said}); move it away to start the "
                                  "study afresh, or use a new folder") from None
         self._db.execute(f"PRAGMA busy_timeout = {int(_BUSY_TIMEOUT * 1000)}")
 

@@ -172,6 +172,14 @@ def load_toml(path: str | Path, base: Reducer | None = None) -> Reducer:
     return with_values(base, values)
 
 
+#: largest magnitude of any quantity in SI units (a Young's modulus is 2e11 Pa, the stiffest
+#: element a few 1e10 N/m): beyond it a value is a unit error, refused before the geometry's
+#: formulas overflow on it (a module of 1e308 mm raised OverflowError)
+SI_CEILING = 1e15
+#: largest count (teeth, pins, rollers, holes): a count beyond it would only exhaust memory
+COUNT_CEILING = 100_000
+
+
 def validate(reducer: Reducer, *, assembly: bool = True) -> Reducer:
     """Check ranges and the physical consistency of ``reducer``; return it unchanged.
 
@@ -204,6 +212,11 @@ def validate(reducer: Reducer, *, assembly: bool = True) -> Reducer:
             shown = "" if spec.unit in ("-", "count") else f" {spec.unit}"
             raise ParameterError(spec.name, f"must not exceed {spec.maximum / unit:g}{shown} "
                                  f"(got {value / unit:g})")
+        ceiling = COUNT_CEILING if spec.kind == "int" else SI_CEILING
+        if abs(value) > ceiling:          # before any formula overflows on it
+            shown = "" if spec.unit in ("-", "count") else f" {spec.unit}"
+            raise ParameterError(spec.name, f"{value / unit:.3g}{shown} is beyond any reducer "
+                                 f"(at most {ceiling / unit:g}{shown})")
     _check_consistency(reducer, assembly)
     return reducer
 
