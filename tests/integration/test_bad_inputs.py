@@ -304,3 +304,22 @@ def test_output_files_are_written_atomically(tmp_path):
     data = figure_to_png(main_effects_plot(range_analysis(table, "te_arcmin")), png)
     assert png.read_bytes() == data and data[:4] == b"\x89PNG"
     assert os.listdir(tmp_path) == ["effects.png"]     # no temporary file left beside it
+
+
+def test_names_and_numbers_a_hostile_review_found(tmp_path, cli, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    # Python's float() reads "1_0" as 10
+    res = cli("params", "--set", "H=1_0")
+    assert res.code == 2 and "'1_0' is not a number" in res.err
+    # "need inf GB"
+    res = cli("simulate", "--duration", "1e308")
+    assert res.code == 2 and "need more memory than any machine has" in res.err
+    # a name that is only its ending: "unsupported profile format ''"
+    res = cli("profile", "--out", ".dxf", "--points", "117")
+    assert res.code == 0, res.err
+    assert (tmp_path / ".dxf").read_text().startswith("  0\nSECTION")
+    # upper-case .NPZ was refused by the save, naming its temporary file
+    res = cli("simulate", "--duration", "1.6", "--scheme", "implicit-bearings", "--save",
+              "RUN.NPZ")
+    assert res.code == 0, res.err
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".dxf", "RUN.NPZ"]

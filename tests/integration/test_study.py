@@ -98,6 +98,17 @@ def test_study_input_errors_before_any_run(tmp_path, cli, factors, words):
     assert not (out / "results.sqlite").exists()
 
 
+def test_samples_of_a_design_that_takes_none_are_refused(tmp_path, cli):
+    # found by a hostile review: `samples = 7` in a full-factorial study did nothing, silently
+    path = write_study(tmp_path, design="full", extra="samples = 7",
+                       factors='[factors.H]\nparameter = "H"\nlevels = [0.0, 0.01]\n')
+    res = cli("study", str(path), "--out", str(tmp_path / "out"))
+    assert res.code == 2 and res.err == (
+        "rvsim: error: parameter 'samples': only the lhs and sobol designs take samples (this "
+        "study's design is full: its runs are its table's)\n")
+    assert not (tmp_path / "out").exists()
+
+
 def test_kill_9_mid_study_loses_only_runs_in_flight(tmp_path):
     path = write_study(tmp_path, design="L9", factors=factors(
         H=("H", [0.0, 0.01, 0.02]), I=("I", [0.0, 0.016, 0.032]), E=("E", [100, 200, 300])))

@@ -15,7 +15,7 @@ __all__ = ["register"]
 def _simulate(args: argparse.Namespace) -> int:
     from ..dynamics import simulate
 
-    if args.save and not args.save.endswith(".npz"):
+    if args.save and not args.save.lower().endswith(".npz"):
         raise ParameterError("--save", "histories are written as .npz (numpy.load reads them)")
     if args.report and not args.report.endswith(".html"):
         raise ParameterError("--report", "the report is an .html file")

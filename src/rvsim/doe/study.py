@@ -262,6 +262,9 @@ def load_study(path: str | Path) -> Study:
                   design=design, base=base, fixed=tuple(fixed), samples=samples, seed=seed,
                   time_step=None if time_step is None else float(time_step), engine=engine,
                   hysteresis=hysteresis, scheme=scheme)
+    if samples is not None and not study.is_sampling:    # a key that would do nothing
+        raise ParameterError("samples", f"only the lhs and sobol designs take samples (this "
+                             f"study's design is {study.design}: its runs are its table's)")
     study.reducers()  # validate every run now
     return study
 

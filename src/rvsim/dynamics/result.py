@@ -176,7 +176,7 @@ class Result:
     def save(self, path: str | Path) -> Path:
         """Write histories and summary to a NumPy ``.npz`` file (atomically)."""
         path = Path(path)
-        if path.suffix != ".npz":
+        if path.suffix.lower() != ".npz":
             raise InputFileError(f"{path}: histories are saved as .npz (numpy.load reads them)")
         if not path.parent.exists():
             raise InputFileError(f"{path}: folder {path.parent} does not exist")

@@ -98,10 +98,12 @@ def check_run_options(reducer: Reducer, duration: float | None = None,
                              f"are taken, by at least two samples (got {duration:g} s)")
     per_second = rate * (L.N_CHANNELS + 2 * reducer.cycloid.pin_count) * 8
     if duration * per_second > MAX_HISTORY_BYTES:
+        need = duration * per_second / 1e9
+        size = f"{need:.3g} GB" if math.isfinite(need) else "more memory than any machine has"
         raise ParameterError("duration", f"{duration:g} s of histories at {rate:g} Hz need "
-                             f"{duration * per_second / 1e9:.3g} GB, more than the "
-                             f"{MAX_HISTORY_BYTES / 1e9:.3g} GB limit (at most "
-                             f"{MAX_HISTORY_BYTES / per_second:.0f} s at this sample rate)")
+                             f"{size}, more than the {MAX_HISTORY_BYTES / 1e9:.3g} GB limit "
+                             f"(at most {MAX_HISTORY_BYTES / per_second:.0f} s at this sample "
+                             "rate)")
     # after the histories' limit, which names a duration too long for any step
     if duration / time_step > MAX_STEPS:
         # enough digits that a count just above the limit shows as above it

@@ -48,7 +48,10 @@ def least_points(reducer: Reducer) -> int:
 def export_profile(reducer: Reducer, path: str | Path, *, points: int = 36000) -> dict:
     """Write the disc profile to ``path`` (.csv or .dxf); return a summary dict."""
     path = Path(path)
-    suffix = path.suffix.lower()
+    # the name's ending, also of a name that is only the ending (".dxf", whose suffix Python
+    # reads as empty)
+    suffix = next((s for s in SUPPORTED_SUFFIXES if path.name.lower().endswith(s)),
+                  path.suffix.lower())
     if suffix not in SUPPORTED_SUFFIXES:
         raise InputFileError(f"{path}: unsupported profile format '{path.suffix}' "
                              f"(use {' or '.join(SUPPORTED_SUFFIXES)})")

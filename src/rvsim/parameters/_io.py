@@ -78,6 +78,9 @@ def _coerce(spec: FieldSpec, raw: Any) -> Any:
     if isinstance(raw, bool):
         raise ParameterError(spec.name, f"'{raw}' is not a number")
     try:
+        # Python's float() reads "1_0" as 10: a digit grouping no data file means
+        if isinstance(raw, str) and "_" in raw:
+            raise ValueError(raw)
         value = float(raw)
     except (TypeError, ValueError):
         raise ParameterError(spec.name, f"'{raw}' is not a number") from None
