@@ -14,8 +14,15 @@ each command's wall time splits into
   last runs' spare core);
 * ``after``: from the last result to the process's end (analysis, figures, files, report);
 
-and ``cpu`` is the CPU time of the command and its worker processes.  Prints one JSON line
-per command, then per variant the median and range of each phase.
+and ``cpu`` is the CPU time of the command and its worker processes.  The runs phase is
+split further from each run's own times (the worker's call wrapped, the store's ``put``
+timed in the parent): ``kernel`` is the larger of the two workers' sums of the runs'
+``wall_s`` (the simulations themselves), ``per_run_overhead`` the median of a run's time in
+its worker beyond its ``wall_s`` (model set-up, summary, history compaction), ``gaps`` the
+larger worker's total wait between a result and its next run (the parent's store write and
+dispatch), ``end_idle`` the time one worker waits for the other's last run, ``store`` the
+parent's time in the store's writes.  Prints one JSON line per command, then per variant
+the median and range of each figure.
 
 Usage:  python benchmarks/bench_study_command.py [--repeat 3]
                                                  [--variant ""] [--variant "--time-step 2.5e-5"]
@@ -37,8 +44,25 @@ from _timing import machine
 
 #: the command, with the pool's start and end printed to stderr as "PHASE name time"
 _CHILD = """
-import sys, time
+import json, os, sys, time
+import rvsim.doe._workers as workers
 import rvsim.doe.runner as runner
+import rvsim.doe.store as store
+runs = []
+evaluate = workers.evaluate_task
+def evaluate_timed(key, *args, **kwargs):
+    start = time.time()
+    key, outcome = evaluate(key, *args, **kwargs)
+    outcome['_timing'] = (os.getpid(), start, time.time())
+    return key, outcome
+workers.evaluate_task = evaluate_timed        # the workers are forked: they inherit it
+put = store.ResultStore.put
+def put_timed(self, key, outcome):
+    pid, start, end = outcome.pop('_timing', (0, 0.0, 0.0))
+    begin = time.time()
+    put(self, key, outcome)
+    runs.append((pid, start, end, outcome.get('wall_s') or 0.0, time.time() - begin))
+store.ResultStore.put = put_timed
 pool = runner._run_local
 def timed(*args, **kwargs):
     print(f"PHASE start {time.time():.6f}", file=sys.stderr, flush=True)
@@ -46,6 +70,7 @@ def timed(*args, **kwargs):
         return pool(*args, **kwargs)
     finally:
         print(f"PHASE end {time.time():.6f}", file=sys.stderr, flush=True)
+        print("RUNS " + json.dumps(runs), file=sys.stderr, flush=True)
 runner._run_local = timed
 from rvsim.__main__ import main
 sys.argv = ["rvsim"] + sys.argv[1:]
@@ -66,12 +91,33 @@ def _command(folder: str, variant: str) -> dict:
     marks = dict(line.split()[1:] for line in done.stderr.splitlines()
                  if line.startswith("PHASE "))
     pool_start, pool_end = float(marks["start"]), float(marks["end"])
+    runs = next(json.loads(line[5:]) for line in done.stderr.splitlines()
+                if line.startswith("RUNS "))
     return {"variant": variant, "wall_s": round(end - start, 2),
             "before_s": round(pool_start - start, 2), "runs_s": round(pool_end - pool_start, 2),
             "after_s": round(end - pool_end, 2),
             # children's user + system time: the command and the workers it has reaped
             "cpu_s": round(after[2] + after[3] - before[2] - before[3], 1),
-            "load_average_1min": round(os.getloadavg()[0], 2)}
+            **_split(runs, pool_end), "load_average_1min": round(os.getloadavg()[0], 2)}
+
+
+def _split(runs: list, pool_end: float) -> dict:
+    """The runs phase by worker: see the module's text."""
+    by_worker: dict[int, list] = {}
+    for pid, start, end, wall, _ in runs:
+        by_worker.setdefault(pid, []).append((start, end, wall))
+    kernel, gaps, ends = [], [], []
+    for rows in by_worker.values():
+        rows.sort()
+        kernel.append(sum(wall for _, _, wall in rows))
+        gaps.append(sum(rows[i + 1][0] - rows[i][1] for i in range(len(rows) - 1)))
+        ends.append(pool_end - rows[-1][1])
+    overhead = [end - start - wall for _, start, end, wall, _ in runs]
+    return {"kernel_s": round(max(kernel), 2),
+            "per_run_overhead_s": round(statistics.median(overhead), 3),
+            "gaps_s": round(max(gaps), 2),
+            "end_idle_s": round(max(ends) - min(ends), 2),
+            "store_s": round(sum(r[4] for r in runs), 3)}
 
 
 def main() -> None:
@@ -96,9 +142,10 @@ def main() -> None:
         mine = [r for r in rows if r["variant"] == variant]
         summary = {"variant": variant, "machine": machine(), "date": time.strftime("%Y-%m-%d"),
                    "commands": len(mine)}
-        for phase in ("wall_s", "before_s", "runs_s", "after_s", "cpu_s"):
+        for phase in ("wall_s", "before_s", "runs_s", "after_s", "cpu_s", "kernel_s",
+                      "per_run_overhead_s", "gaps_s", "end_idle_s", "store_s"):
             values = [r[phase] for r in mine]
-            summary[phase] = {"median": round(statistics.median(values), 2),
+            summary[phase] = {"median": round(statistics.median(values), 3),
                               "range": [min(values), max(values)]}
         print(json.dumps(summary))
 
