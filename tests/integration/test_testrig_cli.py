@@ -301,3 +301,13 @@ def test_calibrate_status_says_when_a_parameter_is_not_fitted(tmp_path, capsys):
     assert low == 0.0 and high > 0.02
     assert any("differs from 121.5" in n for n in payload["notes"])
     assert any("is cut at its bound 0 mm" in n for n in payload["notes"])
+
+
+def test_an_input_angle_in_radians_labelled_degrees_is_a_unit_error(tmp_path, capsys):
+    # it was read as a torque reversal (the input hardly turns, the torque changes sign) and
+    # refused for a loop it is not
+    frame = pd.read_csv(f"{EXAMPLE}/te_15rpm_300Nm_40C.csv")
+    frame["input_angle_deg"] = np.radians(frame["input_angle_deg"])
+    code, out = _bad(tmp_path, capsys, frame)
+    assert code == 2 and "the measured ratio 2.1116 differs from 121 by -98.3 %" in out.err
+    assert "check the angle units" in out.err

@@ -32,6 +32,8 @@ RATIO_TOLERANCE = 0.01
 #: (a TE of 1 arcmin moves a one-revolution measurement of the ratio by 5e-5)
 RATIO_NOTE = 2e-4
 MANIFEST = "manifest.csv"
+#: most output travel of a torque-reversal recording [rad] (a reversal moves it by arcminutes)
+REVERSAL_TRAVEL = math.radians(18.0)
 _SUFFIXES = (".csv", ".parquet", ".pq", ".tsv", ".txt")
 _RPM = 2.0 * math.pi / 60.0
 
@@ -152,7 +154,11 @@ def _classify(rec: Recording, declared: dict, ratio: float) -> str:
     if rec.output_torque is not None:
         turns = (0.0 if rec.input_angle is None
                  else np.ptp(rec.input_angle) / abs(ratio) / (2.0 * math.pi))
-        if turns < 0.5 and rec.output_torque.min() < 0.0 < rec.output_torque.max():
+        # a reversal turns the output by arcminutes: one that turns it by tens of degrees
+        # while the input hardly turns is a TE recording with the input's unit wrong (the
+        # ratio check then says so)
+        if turns < 0.5 and rec.output_torque.min() < 0.0 < rec.output_torque.max() \
+                and np.ptp(rec.output_angle) < REVERSAL_TRAVEL:
             return "torque_reversal"
     return "transmission_error"
 
