@@ -104,9 +104,13 @@ def test_samples_of_a_design_that_takes_none_are_refused(tmp_path, cli):
                        factors='[factors.H]\nparameter = "H"\nlevels = [0.0, 0.01]\n')
     res = cli("study", str(path), "--out", str(tmp_path / "out"))
     assert res.code == 2 and res.err == (
-        "rvsim: error: parameter 'samples': only the lhs and sobol designs take samples (this "
+        "rvsim: error: parameter 'samples': is for the lhs and sobol designs only (this "
         "study's design is full: its runs are its table's)\n")
     assert not (tmp_path / "out").exists()
+    path.write_text(path.read_text().replace("samples = 7", "seed = 3"))
+    res = cli("study", str(path), "--out", str(tmp_path / "out"))
+    assert res.code == 2 and "parameter 'seed': is for the lhs and sobol designs only" \
+        in res.err
 
 
 def test_kill_9_mid_study_loses_only_runs_in_flight(tmp_path):

@@ -311,3 +311,28 @@ def test_an_input_angle_in_radians_labelled_degrees_is_a_unit_error(tmp_path, ca
     code, out = _bad(tmp_path, capsys, frame)
     assert code == 2 and "the measured ratio 2.1116 differs from 121 by -98.3 %" in out.err
     assert "check the angle units" in out.err
+
+
+def test_a_logger_clock_in_unix_time_is_a_time(tmp_path, capsys):
+    # a reviewer's case: the bound on values refused a time column of Unix time (1.76e9 s)
+    frame = pd.read_csv(f"{EXAMPLE}/te_15rpm_300Nm_40C.csv")
+    assert main(["testrig", f"{EXAMPLE}/te_15rpm_300Nm_40C.csv", "--json"]) == 0
+    reference = json.loads(capsys.readouterr().out)
+    frame["time_s"] += 1764230400.0
+    frame.to_csv(tmp_path / "clock.csv", index=False)
+    assert main(["testrig", str(tmp_path / "clock.csv"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["ate_pp_arcmin"] == pytest.approx(reference["ate_pp_arcmin"], rel=1e-9)
+
+
+def test_a_given_ratio_takes_the_parameter_sets_sense(tmp_path, capsys):
+    # a reviewer's case: a cycloid drive's recording (output = -input / 29) with --ratio 29
+    # was refused as counting against the ratio's sense
+    frame = _frame(ratio=-29.0)
+    frame.to_csv(tmp_path / "cycloid.csv", index=False)
+    for extra in ([], ["--ratio", "29"]):
+        assert main(["testrig", str(tmp_path / "cycloid.csv"), "--params", "cycloid-drive",
+                     "--json", *extra]) == 0
+        summary = json.loads(capsys.readouterr().out)
+        assert summary["ratio_measured"] == pytest.approx(29.0, rel=1e-4)
+        assert summary["ate_pp_arcmin"] == pytest.approx(2e-5 / (np.pi / 10800), rel=1e-3)

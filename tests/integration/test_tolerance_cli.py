@@ -364,6 +364,11 @@ def test_tolerance_files_checked_alike_and_folders_not_mixed(tmp_path, small, cl
     assert res.code == 2 and res.err == (
         "rvsim: error: parameter 'cost.nosuch': not a toleranced error of this study\n")
     assert not (tmp_path / "t").exists()
+    # and the bounds too (a reviewer's case: they were checked by allocate alone)
+    bad.write_text(SMALL + "[cost.pin_radius]\ntightest = 5.0\nloosest = 1.0\n")
+    res = cli("tolerance", str(bad), "--out", str(tmp_path / "t"), "--workers", "1")
+    assert res.code == 2 and res.err == (
+        "rvsim: error: parameter 'cost.pin_radius': tightest must be below loosest\n")
     # an impossible target in a folder that was there: it keeps what it held, and no more
     kept = tmp_path / "kept"
     kept.mkdir()

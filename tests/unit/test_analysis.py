@@ -255,6 +255,26 @@ def test_factors_with_longer_labels_are_found_beside_single_letters(table3, tmp_
 
     assert data["anova"] == json.loads(json.dumps(to_json_safe(reference["anova"]))
                                        .replace('"J"', '"mod"'))
+    assert "taken as factors by their level codes: mod (name the factors" in data["notes"][0]
+    # a run-order column (each code once, Minitab's RunOrder) is not a factor (a reviewer's
+    # case: it was, and the table was refused for too few runs)
+    table["RunOrder"] = range(36, 0, -1)
+    table.to_csv(tmp_path / "results.csv", index=False)
+    again = json.loads(cli("analyze", str(tmp_path / "results.csv"), "--json").out)
+    assert _p_values(again) == pytest.approx(_p_values(data), rel=1e-9)
+    # beside a study's study.json, its own factor labels are the factors, without a note
+    (tmp_path / "study.json").write_text(json.dumps(
+        {"factors": [{"label": f} for f in table3.columns if len(f) == 1 and f != "J"]
+         + [{"label": "mod"}]}))
+    table["batch"] = [1, 2] * 18            # a user's column of codes: not the study's
+    table.to_csv(tmp_path / "results.csv", index=False)
+    study = json.loads(cli("analyze", str(tmp_path / "results.csv"), "--json").out)
+    assert _p_values(study) == pytest.approx(_p_values(data), rel=1e-9)
+    assert "notes" not in study
+
+
+def _p_values(result):
+    return {f: row["p"] for f, row in result["anova"].items() if row["p"] is not None}
 
 
 def test_a_zero_response_has_no_sn_ratios_and_says_so(tmp_path, cli):

@@ -52,6 +52,14 @@ def test_parameter_table_lists_every_field_with_unit():
     assert all(row["unit"] for row in rows)
 
 
+def test_a_seed_is_no_count():
+    # a reviewer's case: the count ceiling refused a seed of 123456
+    seeded = with_values(RV40E, {"errors.pin_position_seed": 20261127})
+    assert seeded.errors.pin_position_seed == 20261127
+    with pytest.raises(ParameterError, match="123456 is beyond any reducer"):
+        with_values(RV40E, {"cycloid.pillar_hole_count": 123456})
+
+
 @pytest.mark.parametrize("values, field, words", [
     ({"nonsense.key": 1}, "nonsense.key", "unknown parameter"),
     ({"cycloid.eccentricity": "abc"}, "cycloid.eccentricity", "not a number"),

@@ -40,6 +40,11 @@ def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
     from .anova import ZERO_RESPONSE_NOTE
 
     notes = list(dict.fromkeys(list(ra.notes) + list(table_anova.notes)))
+    if factors is None:                 # say which columns were taken by their level codes
+        coded = [f for f in ra.level_means if not (len(str(f)) == 1 and str(f).isalpha())]
+        if coded:
+            notes.append(f"taken as factors by their level codes: {', '.join(coded)} (name "
+                         "the factors with --factors if that is wrong)")
     sn = sn_response_table(table, response, factors)
     if sn is None:
         notes.append(ZERO_RESPONSE_NOTE)

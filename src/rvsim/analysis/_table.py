@@ -7,6 +7,7 @@ import pandas as pd
 from ..errors import InputFileError
 
 __all__ = ["check_design_table", "drop_failed_runs", "factor_columns", "read_table",
+           "RESULT_COLUMNS", "is_coded",
            "is_balanced", "UNBALANCED_NOTE", "MAX_LEVEL"]
 
 #: largest response magnitude analysed: sums of squares of larger values overflow doubles
@@ -56,10 +57,38 @@ def read_table(path) -> pd.DataFrame:
     return frame
 
 
+#: columns of a study's results.csv besides its factors: a factor label must not be one of
+#: them (doe.study refuses it), and `rvsim analyze` does not take them for factors.  Every
+#: metric column starts with ``te_`` or is listed here (tests/integration/test_study_engines.py
+#: checks the list against real runs of each engine).
+RESULT_COLUMNS = frozenset({
+    "run", "status", "error", "key", "reducer", "steps", "wall_s",
+    # the dynamic engine
+    "sim_time_s", "speed_ratio", "energy_residual", "max_pin_force_n", "guard_substep_checks",
+    "guard_substep_checks_steady", "guard_peak_omega_dt", "implicit_factorisations",
+    "implicit_alerts", "implicit_fallbacks",
+    # the quasi-static engine and its torque reversal
+    "max_contact_stress_mpa", "pins_in_contact_max", "pins_in_contact_min", "positions",
+    "torque_nm", "torsional_stiffness_nm_per_arcmin", "backlash_arcmin",
+    "hysteresis_loss_arcmin", "lost_motion_arcmin", "points", "rated_torque_nm",
+    "torsional_rigidity_nm_per_arcmin"})
+
+
+def is_coded(values: pd.Series) -> bool:
+    """A column of level codes 1..k (k >= 2), each code on two runs or more: a run-order or
+    run-number column (each code once: Minitab's StdOrder, RunOrder) is not a factor."""
+    numbers = pd.to_numeric(values, errors="coerce")
+    if not numbers.notna().all():
+        return False
+    counts = numbers.value_counts()
+    return (len(counts) >= 2 and set(counts.index) == set(range(1, len(counts) + 1))
+            and counts.min() >= 2)
+
+
 def factor_columns(table: pd.DataFrame, response: str, factors=None) -> list[str]:
     """The factor columns: given, or every single-letter column A-Z other than the response and
-    every other column of level codes 1..k that is not one of a study's result columns (a
-    study's factor may have any label)."""
+    every other column of level codes (:func:`is_coded`) that is not one of a study's result
+    columns (a study's factor may have any label)."""
     if factors is not None:
         repeated = sorted({f for f in factors if list(factors).count(f) > 1})
         if repeated:
@@ -70,19 +99,13 @@ def factor_columns(table: pd.DataFrame, response: str, factors=None) -> list[str
         if missing:
             raise InputFileError(f"factor column(s) {', '.join(missing)} not in the table")
         return list(factors)
-    from ..doe.study import RESULT_COLUMNS
-
     def is_factor(column) -> bool:
         name = str(column)
         if column == response or name.lower() in RESULT_COLUMNS or name.lower().startswith("te_"):
             return False
         if len(name) == 1 and name.isalpha():
             return True
-        # a study's factor of a longer label: its column holds the level codes 1..k
-        values = pd.to_numeric(table[column], errors="coerce")
-        codes = set(values.dropna())
-        return (values.notna().all() and len(codes) >= 2
-                and codes == set(range(1, len(codes) + 1)))
+        return is_coded(table[column])
 
     cols = [c for c in table.columns if is_factor(c)]
     if not cols:

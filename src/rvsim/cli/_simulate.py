@@ -17,7 +17,7 @@ def _simulate(args: argparse.Namespace) -> int:
 
     if args.save and not args.save.lower().endswith(".npz"):
         raise ParameterError("--save", "histories are written as .npz (numpy.load reads them)")
-    if args.report and not args.report.endswith(".html"):
+    if args.report and not args.report.lower().endswith(".html"):
         raise ParameterError("--report", "the report is an .html file")
     for option, path in (("--save", args.save), ("--report", args.report)):
         if path is not None:

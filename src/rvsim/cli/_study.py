@@ -137,6 +137,22 @@ def _names(option: str, text: str | None) -> list[str] | None:
     return names
 
 
+def _study_factors(path: str, table) -> list[str] | None:
+    """The factor labels of the study whose results.csv ``path`` is (its study.json beside
+    it), where the table has them all; None otherwise (the table's own columns decide)."""
+    import json
+    from pathlib import Path
+
+    try:
+        stored = json.loads((Path(path).parent / "study.json").read_text(encoding="utf-8"))
+        labels = [f["label"] for f in stored["factors"]]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    if labels and all(isinstance(x, str) and x in table.columns for x in labels):
+        return labels
+    return None
+
+
 def _analyze(args: argparse.Namespace) -> int:
     from ..analysis import analyze_table, anova, range_analysis
     from ..analysis._table import drop_failed_runs, read_table
@@ -144,6 +160,8 @@ def _analyze(args: argparse.Namespace) -> int:
     # a failed run's numbers are no response (rvsim study leaves them out the same way)
     table, failed = drop_failed_runs(read_table(args.table))
     factors = _names("--factors", args.factors)
+    if factors is None:
+        factors = _study_factors(args.table, table)
     pool = tuple(_names("--pool", args.pool) or ())
     response = _response_column(table, args.response)
     result = analyze_table(table, response, factors, pool=pool, alpha=args.alpha)
@@ -240,8 +258,9 @@ def register(sub) -> None:
                     "rvsim analyze table3.csv --response te_arcmin --pool B,C"])
     p.add_argument("table", type=path_text, help="CSV file")
     p.add_argument("--response", help="response column (default te_mean_arcmin or te_arcmin)")
-    p.add_argument("--factors", help="comma-separated factor columns (default: single-letter "
-                   "columns)")
+    p.add_argument("--factors", help="comma-separated factor columns (default: a study "
+                   "folder's own factors, else the single-letter columns and the columns of "
+                   "level codes)")
     p.add_argument("--pool", help="comma-separated factors pooled into error")
     p.add_argument("--alpha", type=probability, default=0.1,
                    help="significance level (default 0.1)")

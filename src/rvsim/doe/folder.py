@@ -67,7 +67,8 @@ def held_lock_fds() -> list[int]:
 
 
 #: files a study writes into its folder besides its store and study.json
-STUDY_OUTPUTS = ("results.csv", "analysis.json", "report.html", "main_effects.png")
+STUDY_OUTPUTS = ("results.csv", "analysis.json", "report.html", "main_effects.png",
+                 "interactions.png")
 
 
 def check_not_foreign(folder: Path) -> None:

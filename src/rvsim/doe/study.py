@@ -39,6 +39,7 @@ from .._files import read_toml
 from ..errors import InputFileError, ParameterError
 from ..parameters import (BUILT_IN_SETS, RV40E, TABLE2_FACTORS, Reducer, load_toml, resolve_name,
                           with_values)
+from ..analysis._table import RESULT_COLUMNS   # the columns besides the factors (re-exported)
 from . import designs
 
 __all__ = ["StudyFactor", "Study", "paper_l36", "load_study", "BUILT_IN_STUDIES", "MAX_RUNS",
@@ -47,19 +48,6 @@ __all__ = ["StudyFactor", "Study", "paper_l36", "load_study", "BUILT_IN_STUDIES"
 #: most runs a study may have: beyond this the design table alone strains memory and the runs
 #: would take weeks (docs/decisions.md)
 MAX_RUNS = 100_000
-#: columns of results.csv besides the factors (a factor label must not be one of them); every
-#: metric column starts with ``te_`` or is listed here
-RESULT_COLUMNS = frozenset({
-    "run", "status", "error", "key", "reducer", "steps", "wall_s",
-    # the dynamic engine (tests/unit/test_study_file.py checks them against real runs)
-    "sim_time_s", "speed_ratio", "energy_residual", "max_pin_force_n", "guard_substep_checks",
-    "guard_substep_checks_steady", "guard_peak_omega_dt", "implicit_factorisations",
-    "implicit_alerts", "implicit_fallbacks",
-    # the quasi-static engine and its torque reversal
-    "max_contact_stress_mpa", "pins_in_contact_max", "pins_in_contact_min", "positions",
-    "torque_nm", "torsional_stiffness_nm_per_arcmin", "backlash_arcmin",
-    "hysteresis_loss_arcmin", "lost_motion_arcmin", "points", "rated_torque_nm",
-    "torsional_rigidity_nm_per_arcmin"})
 
 
 @dataclasses.dataclass(frozen=True)
@@ -262,9 +250,11 @@ def load_study(path: str | Path) -> Study:
                   design=design, base=base, fixed=tuple(fixed), samples=samples, seed=seed,
                   time_step=None if time_step is None else float(time_step), engine=engine,
                   hysteresis=hysteresis, scheme=scheme)
-    if samples is not None and not study.is_sampling:    # a key that would do nothing
-        raise ParameterError("samples", f"only the lhs and sobol designs take samples (this "
-                             f"study's design is {study.design}: its runs are its table's)")
+    for key in ("samples", "seed"):               # a key that would do nothing
+        if key in data and not study.is_sampling:
+            raise ParameterError(key, f"is for the lhs and sobol designs only (this "
+                                 f"study's design is {study.design}: its runs are its "
+                                 "table's)")
     study.reducers()  # validate every run now
     return study
 

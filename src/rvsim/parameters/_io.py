@@ -215,10 +215,14 @@ def validate(reducer: Reducer, *, assembly: bool = True) -> Reducer:
             shown = "" if spec.unit in ("-", "count") else f" {spec.unit}"
             raise ParameterError(spec.name, f"must not exceed {spec.maximum / unit:g}{shown} "
                                  f"(got {value / unit:g})")
-        ceiling = COUNT_CEILING if spec.kind == "int" else SI_CEILING
+        # a seed is a whole number but no count: any value up to the general ceiling
+        counted = spec.kind == "int" and not spec.name.endswith("_seed")
+        ceiling = COUNT_CEILING if counted else SI_CEILING
         if abs(value) > ceiling:          # before any formula overflows on it
             shown = "" if spec.unit in ("-", "count") else f" {spec.unit}"
-            raise ParameterError(spec.name, f"{value / unit:.3g}{shown} is beyond any reducer "
+            size = f"{value:.0f}" if spec.kind == "int" and abs(value) < 1e18 else \
+                f"{value / unit:.3g}"
+            raise ParameterError(spec.name, f"{size}{shown} is beyond any reducer "
                                  f"(at most {ceiling / unit:g}{shown})")
     _check_consistency(reducer, assembly)
     return reducer

@@ -142,7 +142,7 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
     loads = _values("torques", np.array(DEFAULT_TORQUE_FRACTIONS) * rated if torques is None
                     else torques, allow_zero=False)
     floor = RESOLVED_TORQUE_FRACTION * rated
-    if np.any(loads < floor):
+    if np.any(loads < floor * (1.0 - 1e-9)):     # the floor itself, as printed, is in
         raise ParameterError("torques", f"output torques from {floor:.3g} N*m, "
                              f"{RESOLVED_TORQUE_FRACTION:g} of the rated {rated:g} N*m (got "
                              f"{loads.min():g}): below it the solver's tolerance is more than "

@@ -173,7 +173,10 @@ def _need(rec: Recording, names: tuple, test: str) -> None:
 def analyse_recording(rec: Recording, declared: dict, reducer, *, points: int = A.DEFAULT_POINTS
                       ) -> FileResult:
     """The standard analyses of one recording (its test found from its columns, or given)."""
-    expected = declared.get("ratio") or rec.ratio or reducer.ratio
+    # a ratio given (manifest, map, --ratio) is a magnitude: its sense is the parameter set's
+    # (the cycloid drive's output turns against its input)
+    given = declared.get("ratio") or rec.ratio
+    expected = math.copysign(given, reducer.ratio) if given else reducer.ratio
     test = _classify(rec, declared, expected)
     measured: dict = {}
     if rec.oil_temperature is not None:
@@ -243,7 +246,7 @@ def _check_ratio(rec: Recording, result: FileResult, a: int, b: int, expected: f
         raise InputFileError(f"{rec.path}: the output turns against the ratio's sense "
                              f"(measured ratio {measured:.5g}, expected {expected:+g}): the "
                              "encoders count in opposite directions; negate one of the angle "
-                             "columns")
+                             "columns in the file")
     result.ratio_measured = abs(measured)
     off = measured / expected - 1.0
     if abs(off) > RATIO_TOLERANCE:

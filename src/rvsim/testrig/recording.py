@@ -60,7 +60,8 @@ UNITS: dict[str, tuple[str, float]] = {
     "-": ("direction", 1.0),
 }
 #: kind -> the largest magnitude in SI that any bench records (an hour at 10,000 rpm is 4e6
-#: rad); a value beyond it is a unit or export error, refused before it overflows an analysis
+#: rad; of a time, its distance from the first: 30 years); a value beyond it is a unit or
+#: export error, refused before it overflows an analysis
 LIMITS: dict[str, float] = {"time": 1e9, "angle": 1e9, "torque": 1e9, "speed": 1e6,
                             "temperature": 1e4, "direction": 1.0}
 _KIND = {"time": "time", "input_angle": "angle", "output_angle": "angle", "te": "angle",
@@ -312,7 +313,9 @@ def _column(frame, path: Path, quantity: str, spec: ColumnSpec):
         return numbers
     numbers = numbers * spec.factor()
     limit = LIMITS[_KIND[quantity]]
-    huge = np.flatnonzero(~(np.abs(numbers) <= limit))
+    # a time may be a logger's clock (Unix time, 1.8e9 s): only its span counts
+    huge = np.flatnonzero(~(np.abs(numbers - (numbers[0] if quantity == "time" else 0.0))
+                            <= limit))
     if huge.size:
         row = int(huge[0])
         raise InputFileError(f"{path}: column '{spec.column}' data row {row + 1}: "

@@ -132,6 +132,18 @@ def cost_table(study: ToleranceStudy, table: dict | None = None) -> dict:
                     or not math.isfinite(value) or value <= 0:
                 raise ParameterError(f"cost.{name}.{key}", "must be a positive number")
         out[name] = {key: float(value) for key, value in spec.items()}
+    # the bounds a table gives, against each other and the feature's largest tolerance, with
+    # the defaults for what it leaves out (those of CostModel.default)
+    for name, spec in out.items():
+        ref = next(t.tolerance for t in study.tolerances if t.name == name)
+        tightest = spec.get("tightest", 0.25 * ref)
+        loosest = spec.get("loosest", min(4.0 * ref, largest_tolerance(name)))
+        largest = largest_tolerance(name)
+        if loosest > largest:
+            raise ParameterError(f"cost.{name}.loosest", f"must be at most {largest:g} "
+                                 f"{FEATURES[name][0]} (got {loosest:g})")
+        if not tightest < loosest:
+            raise ParameterError(f"cost.{name}", "tightest must be below loosest")
     return out
 
 
