@@ -84,6 +84,10 @@ def test_quasi_static_te_equals_dynamic_mean_at_low_speed():
     assert path.status == "ok"
     te = theta_in / reducer.ratio - path.q[:, L.CARRIER]
     assert te.mean() == pytest.approx(dynamic.te[window].mean(), rel=1e-5)  # measured 1.1e-6
+    # the spectrum's orders are the drive's own 30 pins' (a review found them the RV-40E's 40
+    # whatever the reducer)
+    assert dynamic.spectrum().equals(dynamic.spectrum(pin_count=30))
+    assert not dynamic.spectrum().equals(dynamic.spectrum(pin_count=40))
 
 
 def test_rigid_bearings_follow_textbook_ring_and_output_pin_loads():

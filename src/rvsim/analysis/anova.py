@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 
 import numpy as np
 import pandas as pd
@@ -38,6 +39,7 @@ class AnovaTable:
     notes: tuple[str, ...] = ()
 
     def significant(self, alpha: float = 0.1) -> list[str]:
+        alpha = check_alpha(alpha)
         return [s for s, r in self.rows.items()
                 if s not in ("Error", "Total") and not math.isnan(r["p"]) and r["p"] < alpha]
 
@@ -132,6 +134,16 @@ def signal_to_noise_smaller(values) -> float:
     """Taguchi smaller-is-better S/N ratio: -10 log10(mean(y^2)) [dB]."""
     y = np.asarray(values, dtype=float)
     return float(-10.0 * np.log10(np.mean(y * y)))
+
+
+def check_alpha(alpha) -> float:
+    """A significance level strictly between 0 and 1 (ParameterError): alpha = 5, a percent
+    typed as a number, made every factor significant."""
+    from ..errors import ParameterError
+
+    if isinstance(alpha, bool) or not isinstance(alpha, numbers.Real) or not 0 < alpha < 1:
+        raise ParameterError("alpha", f"must be a number between 0 and 1 (got {alpha!r})")
+    return float(alpha)
 
 
 #: why a table has no S/N ratios

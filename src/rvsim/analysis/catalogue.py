@@ -58,7 +58,8 @@ def _vector(name: str, values, n: int | None = None) -> np.ndarray:
 
 
 def _rated(rated: float) -> float:
-    if not (isinstance(rated, (int, float, np.number)) and math.isfinite(rated) and rated > 0):
+    if isinstance(rated, bool) or not (isinstance(rated, (int, float, np.number))
+                                       and math.isfinite(rated) and rated > 0):
         raise CurveError("rated", f"rated torque must be a positive finite number (got {rated!r})")
     return float(rated)
 
@@ -302,6 +303,10 @@ def lost_motion(torque, angle, branch, rated: float,
     """Lost motion [rad]: the angle between the mid-points of the hysteresis width at
     +``fraction`` and -``fraction`` of rated torque (3 %)."""
     rated = _rated(rated)
+    if isinstance(fraction, bool) or not (isinstance(fraction, (int, float, np.number))
+                                          and 0.0 < fraction < 1.0):
+        raise CurveError("fraction", f"must be a fraction of rated torque between 0 and 1 "
+                         f"(got {fraction!r})")
     up, down = loop_branches(torque, angle, branch)
     what = f"lost motion (+-{fraction:.0%} of rated)"
     mids = []

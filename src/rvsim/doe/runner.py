@@ -46,6 +46,10 @@ def evaluate(reducer: Reducer, time_step: float, engine: str = "dynamic",
     Monte Carlo reducer (:func:`rvsim.tolerance.engine.evaluate_sample`, ``positions`` per
     output revolution).
     """
+    if engine not in ("dynamic", "quasi-static", "tolerance"):   # a caller's mistake: said
+        return {"status": "error", "metrics": {},
+                "error": f"ParameterError: unknown engine {engine!r} (dynamic, quasi-static "
+                         "or tolerance)"}
     if engine == "tolerance":
         from ..tolerance.engine import evaluate_sample
 

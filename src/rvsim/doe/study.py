@@ -98,12 +98,16 @@ class Study:
             if f.label in seen_labels:
                 raise ParameterError(f"factors.{f.label}", "label used twice")
             seen_labels.add(f.label)
-            if f.parameter in by_parameter:
-                raise ParameterError(f"factors.{f.label}", f"sets {f.parameter}, which factor "
-                                     f"{by_parameter[f.parameter]} already varies")
-            by_parameter[f.parameter] = f.label
+            # the dotted name, whatever alias a Study built in Python gives (load_study
+            # resolves them; "H" and "errors.pin_circle_radius" are one parameter)
+            parameter = resolve_name(f.parameter)
+            if parameter in by_parameter:
+                raise ParameterError(f"factors.{f.label}", f"sets {parameter}, which factor "
+                                     f"{by_parameter[parameter]} already varies")
+            by_parameter[parameter] = f.label
         fixed_names: set[str] = set()
         for name, _ in self.fixed:
+            name = resolve_name(name)
             if name in by_parameter:
                 raise ParameterError(f"set.{name}", f"is also varied by factor "
                                      f"{by_parameter[name]}: remove one of them")
@@ -115,6 +119,15 @@ class Study:
         from ..dynamics.simulate import MAX_TIME_STEP, check_scheme
 
         check_scheme(self.scheme)
+        from .engines import ENGINES
+
+        if self.engine not in ENGINES:
+            raise ParameterError("engine", f"must be one of {', '.join(ENGINES)} (got "
+                                 f"{self.engine!r})")
+        if not isinstance(self.hysteresis, bool) or (self.hysteresis
+                                                     and self.engine != "quasi-static"):
+            raise ParameterError("hysteresis", "true or false, and true only with the "
+                                 f"quasi-static engine (got {self.hysteresis!r})")
         if self.scheme != EXPLICIT and self.engine != "dynamic":
             raise ParameterError("scheme", f"the study runs the {self.engine} engine: the "
                                  "integration scheme is the dynamic engine's (set "

@@ -141,8 +141,8 @@ class Result:
         m = te_metrics(self.time, self.te, self.omega_in, self.omega_out, self.steady_start)
         window = self.time >= self.steady_start - 1e-12
         m["energy_residual"] = self.energy.get("relative_residual", float("nan"))
-        if not window.any():
-            m["max_pin_force_n"] = 0.0
+        if not window.any():                # stopped before the window: no answer
+            m["max_pin_force_n"] = float("nan")
         elif np.isfinite(self.pin_force_peak):      # every step's, not the samples'
             m["max_pin_force_n"] = self.pin_force_peak
         else:
@@ -155,11 +155,14 @@ class Result:
                 "steps": self.steps, "wall_s": self.wall_s, "status": self.status,
                 "reducer": self.reducer_name, **self.guard}
 
-    def spectrum(self, pin_count: int = 40):
+    def spectrum(self, pin_count: int | None = None):
         """Steady-window TE spectrum: DataFrame of ``order`` (crank rotation relative to the
-        carrier) and ``amplitude_arcmin``."""
+        carrier) and ``amplitude_arcmin``; ``pin_count`` defaults to the run's own (it was a
+        fixed 40, the RV-40E's, whatever the reducer)."""
         import pandas as pd
 
+        if pin_count is None:
+            pin_count = self.pin_forces.shape[-1]
         orders, amplitude = te_spectrum(self.time, self.te, self.omega_out, self.steady_start,
                                         pin_count)
         return pd.DataFrame({"order": orders, "amplitude_arcmin": amplitude})

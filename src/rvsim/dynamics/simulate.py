@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import numbers
 import time as _time
 
 import numpy as np
@@ -63,6 +64,12 @@ def check_run_options(reducer: Reducer, duration: float | None = None,
     step, sampling, a finite duration past the steady window whose histories fit in memory);
     a study checks every run with it before anything is simulated.  ``time_step`` None: the
     scheme's default."""
+    for name, value in (("duration", duration), ("time_step", time_step),
+                        ("sample_rate", sample_rate)):
+        # a number, not a string that float() would read, nor a one-element array
+        if value is not None and (isinstance(value, bool) or not isinstance(value,
+                                                                            numbers.Real)):
+            raise ParameterError(name, f"must be a number (got {value!r})")
     duration = float(reducer.operating.duration if duration is None else duration)
     check_scheme(scheme)            # also where a step is given
     time_step = SCHEMES[scheme] if time_step is None else time_step
@@ -219,6 +226,8 @@ def _progress_bar(duration: float):
 def _check_finished_run(result: Result) -> tuple[int, str]:
     """Status of a run that finished: energy balance and speed ratio (docs/model.md 9)."""
     residual = result.energy["relative_residual"]
+    if math.isnan(residual) and result.energy["residual"] == 0.0:
+        residual = 0.0          # nothing moved and nothing was lost: nothing to balance
     if not abs(residual) <= ENERGY_RESIDUAL_LIMIT:
         return L.STATUS_ENERGY, (
             f"energy balance off by {100 * residual:.3g} % of the input work (or, larger, the "
@@ -267,8 +276,9 @@ def _energy_balance(e: np.ndarray) -> dict[str, float]:
     # relative to the input work; without load, to the kinetic energy (the input work is then
     # only the small damping loss, and the residual over it meaningless: 0.47 at no load).
     # The run's status is judged on this same figure.
+    # NaN where there is nothing to relate it to (a run stopped before its steady window)
     scale = max(abs(terms["input_work"]), terms["kinetic_start"])
-    terms["relative_residual"] = float(residual / scale) if scale > 0 else 0.0
+    terms["relative_residual"] = float(residual / scale) if scale > 0 else float("nan")
     return terms
 
 

@@ -107,8 +107,17 @@ def profile_offset(reducer: Reducer, disc: int) -> tuple[float, float]:
     return half * math.cos(angle), half * math.sin(angle)
 
 
+def check_disc(disc) -> int:
+    """A disc index, 0 or 1 (ParameterError): a reducer has at most two discs, and another
+    index would place a disc where none is (a reviewer's disc=2 gave a 40 mm overlap)."""
+    if isinstance(disc, bool) or disc not in (0, 1):
+        raise ParameterError("disc", f"must be 0 or 1 (got {disc!r})")
+    return int(disc)
+
+
 def nominal_disc_pose(reducer: Reducer, crank_angle: float, disc: int = 0):
     """Kinematic pose (x, y, rotation) of disc ``disc`` at eccentric angle ``crank_angle``."""
+    disc = check_disc(disc)
     a = reducer.cycloid.eccentricity - reducer.errors.eccentricity
     beta = crank_angle + disc * math.pi
     return a * math.cos(beta), a * math.sin(beta), -crank_angle / reducer.cycloid.disc_teeth
@@ -117,6 +126,7 @@ def nominal_disc_pose(reducer: Reducer, crank_angle: float, disc: int = 0):
 def _disc_gaps(reducer: Reducer, crank_angle: float, disc: int, extra_rotation: float,
                offset: tuple[float, float]):
     """:func:`~rvsim.geometry._curve.pin_gaps_at` of every pin, and the profile angle."""
+    disc = check_disc(disc)
     prof = profile_of(reducer)
     x, y, rot = nominal_disc_pose(reducer, crank_angle, disc)
     angle = rot + extra_rotation - disc * math.pi / reducer.cycloid.disc_teeth + prof.rotation

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from pathlib import Path
 from typing import Any
 
@@ -190,15 +191,30 @@ def validate(reducer: Reducer, *, assembly: bool = True) -> Reducer:
     leaves out the check that the parts do not overlap at the assembled pose (a tolerance
     study counts such reducers as binding, not as invalid).
     """
+    if not isinstance(reducer, Reducer):
+        raise ParameterError("reducer", f"must be a parameter set (rvsim.parameters.Reducer; "
+                             f"got {type(reducer).__name__})")
     for spec in SPECS.values():
-        value = get_value(reducer, spec.name, user_units=False)
+        try:
+            value = get_value(reducer, spec.name, user_units=False)
+        except AttributeError:     # a group replaced by something else (dataclasses.replace)
+            raise ParameterError(spec.name, "missing: its group is not a parameter group")
         if spec.kind == "choice":
-            if value not in spec.options:
+            if not isinstance(value, str) or value not in spec.options:
                 raise ParameterError(spec.name, f"'{value}' is not one of "
                                      f"{', '.join(spec.options)}")
             continue
+        # a value set in Python (dataclasses.replace) has not been through _coerce: its type
+        # is checked here ("no" for a flag was taken as true)
+        is_flag = isinstance(value, bool) or type(value).__name__ == "bool_"   # numpy's too
         if spec.kind == "bool":
+            if not is_flag:
+                raise ParameterError(spec.name, f"must be true or false (got {value!r})")
             continue
+        if is_flag or not isinstance(value, numbers.Real):
+            raise ParameterError(spec.name, f"must be a number (got {value!r})")
+        if spec.kind == "int" and not isinstance(value, numbers.Integral):
+            raise ParameterError(spec.name, f"must be a whole number (got {value!r})")
         if not math.isfinite(value):
             raise ParameterError(spec.name, "must be a finite number")
         unit = TO_SI[spec.unit]

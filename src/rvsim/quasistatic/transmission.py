@@ -88,6 +88,10 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
     validate(reducer)
     angle = np.ascontiguousarray(input_angle, dtype=float)
     load = np.ascontiguousarray(torque, dtype=float)
+    if angle.ndim != 1 or load.shape != angle.shape or angle.size == 0:
+        # the compiled sweep reads torque[k] for every angle: a shorter array was read past
+        raise ParameterError("torque", f"needs one torque per input angle, both 1-D and not "
+                             f"empty (got {load.shape} and {angle.shape})")
     if not (np.all(np.isfinite(angle)) and np.all(np.isfinite(load))):
         raise ParameterError("torque", "the input angles and torques must be finite")
     model = build_model(reducer, 1e-5)
