@@ -93,3 +93,19 @@ def test_a_run_stopped_before_its_window_has_no_numbers():
     assert stopped.status != "ok"
     assert np.isnan(stopped.metrics["energy_residual"])      # it read a perfect 0.0
     assert np.isnan(stopped.metrics["max_pin_force_n"])      # and 0.0 N
+
+
+def test_a_tolerance_built_in_python_is_checked_as_a_file_is():
+    from rvsim.tolerance import Tolerance
+
+    # a misspelled distribution was drawn as normal, a NaN tolerance drew NaN parts, and
+    # a letter alias failed later with a bare KeyError
+    with pytest.raises(ParameterError, match="unknown distribution 'normall'"):
+        Tolerance("pin_radius", 0.005, distribution="normall")
+    with pytest.raises(ParameterError, match="'per'|\\.per'"):
+        Tolerance("pin_radius", 0.005, per="features")
+    with pytest.raises(ParameterError, match="needs a finite number"):
+        Tolerance("pin_radius", float("nan"))
+    with pytest.raises(ParameterError, match="unknown error"):
+        Tolerance("nope", 0.005)
+    assert Tolerance("H", 0.005).name == "errors.pin_circle_radius"

@@ -83,6 +83,13 @@ class Tolerance:
     per: str = "part"
     orders: tuple = ()             # profile_form only
 
+    def __post_init__(self):
+        # checked here, so that one built in Python is checked as a study file's is (a
+        # misspelled distribution was drawn as normal, a NaN tolerance drew NaN parts)
+        for field, value in zip(("name", "tolerance", "distribution", "per", "orders"),
+                                _checked(self)):
+            object.__setattr__(self, field, value)
+
     @property
     def is_parameter(self) -> bool:
         return self.name not in FEATURES
@@ -279,20 +286,36 @@ def _tolerance(name: str, spec, path) -> Tolerance:
     if unknown:
         raise ParameterError(where, f"unknown key(s) {', '.join(sorted(unknown))} (known: "
                              f"{', '.join(sorted(_KEYS))})")
-    if name not in FEATURES:
-        try:
-            name = resolve_name(name)
-        except ParameterError:
-            name = None
-        if name is None or name not in SPECS or SPECS[name].kind != "float":
-            raise ParameterError(where, f"unknown error (per-part errors: "
-                                 f"{', '.join(FEATURES)}; or a numeric parameter of "
-                                 "'rvsim params')")
-        where = f"tolerances.{name}"
+    name = _error_name(name)
+    where = f"tolerances.{name}"
     if "tolerance" not in spec:
         raise ParameterError(f"{where}.tolerance", "missing (the tolerance of the error, in "
                              "its unit)")
-    tol = spec.get("tolerance")
+    return Tolerance(name, spec.get("tolerance"), spec.get("distribution", "uniform"),
+                     spec.get("per", "part"), spec.get("orders", []))
+
+
+def _error_name(name) -> str:
+    """A FEATURES key, or the dotted name of a numeric parameter (its letter alias resolved)."""
+    if name in FEATURES:
+        return name
+    try:
+        resolved = resolve_name(name) if isinstance(name, str) else None
+    except ParameterError:
+        resolved = None
+    if resolved is None or resolved not in SPECS or SPECS[resolved].kind != "float":
+        raise ParameterError(f"tolerances.{name}", f"unknown error (per-part errors: "
+                             f"{', '.join(FEATURES)}; or a numeric parameter of "
+                             "'rvsim params')")
+    return resolved
+
+
+def _checked(tolerance: "Tolerance") -> tuple:
+    """The fields of a Tolerance, checked (a study file's and one built in Python alike)."""
+    name = _error_name(tolerance.name)
+    where = f"tolerances.{name}"
+    tol, distribution, per, orders = (tolerance.tolerance, tolerance.distribution,
+                                       tolerance.per, tolerance.orders)
     if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not math.isfinite(tol):
         raise ParameterError(f"{where}.tolerance", f"needs a finite number (got {tol!r})")
     if tol < 0:
@@ -300,19 +323,16 @@ def _tolerance(name: str, spec, path) -> Tolerance:
     if tol > largest_tolerance(name):
         raise ParameterError(f"{where}.tolerance", f"must be at most "
                              f"{largest_tolerance(name):g} {FEATURES[name][0]} (got {tol:g})")
-    distribution = spec.get("distribution", "uniform")
     if distribution not in DISTRIBUTIONS:
         raise ParameterError(f"{where}.distribution", f"unknown distribution {distribution!r} "
                              f"(known: {', '.join(DISTRIBUTIONS)})")
-    per = spec.get("per", "part")
     if per not in PER:
         raise ParameterError(f"{where}.per", f"must be 'part' or 'feature' (got {per!r})")
-    orders = spec.get("orders", [])
-    if orders and (name != "profile_form" or not isinstance(orders, list) or not all(
+    if orders and (name != "profile_form" or not isinstance(orders, (list, tuple)) or not all(
             isinstance(o, int) and not isinstance(o, bool) and o >= 1 for o in orders)):
         raise ParameterError(f"{where}.orders", "profile_form only: a list of whole numbers "
                              ">= 1")
-    return Tolerance(name, float(tol), distribution, per, tuple(orders))
+    return name, float(tol), distribution, per, tuple(orders)
 
 
 def is_tolerance_file(path: str | Path) -> bool:
