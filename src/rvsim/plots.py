@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 
 
-__all__ = ["main_effects_plot", "speed_plot", "te_plot", "spectrum_plot", "figure_to_png",
+__all__ = ["plain", "main_effects_plot", "speed_plot", "te_plot", "spectrum_plot", "figure_to_png",
            "pin_load_map", "te_revolution_plot", "order_spectrum_plot", "hysteresis_plot"]
 
 _ARCMIN = math.pi / 10800.0
@@ -21,6 +21,13 @@ def _pyplot():
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def plain(text) -> str:
+    """A user's text (a factor label, a column name) as matplotlib draws it literally: a "$"
+    would start its mathtext, and a label like "x$_$" failed the whole figure (a reviewer's
+    study ended in a traceback after all its runs)."""
+    return str(text).replace("$", r"\$")
 
 
 def main_effects_plot(analysis, ax=None, *, factors=None, ylabel=None):
@@ -38,13 +45,13 @@ def main_effects_plot(analysis, ax=None, *, factors=None, ylabel=None):
     else:
         axes = [ax] * len(factors)
         fig = ax.figure
-    label = ylabel or f"mean of {analysis.response}"
+    label = ylabel or f"mean of {plain(analysis.response)}"
     for axis, factor in zip(axes, factors):
         k = analysis.level_means[factor]
         levels = getattr(analysis, "levels", {}).get(factor) or list(range(1, len(k) + 1))
         axis.plot(levels, k, "o-", color="C0")
         axis.axhline(analysis.grand_mean, color="0.6", lw=0.8, ls="--")
-        axis.set_title(factor)
+        axis.set_title(plain(factor))
         axis.set_xticks(levels)
         axis.set_xlabel("level")
     axes[0].set_ylabel(label)
@@ -73,7 +80,7 @@ def te_plot(results: dict, steady_start: float, ax=None):
     fig, ax = (plt.subplots(figsize=(7, 3.4)) if ax is None else (ax.figure, ax))
     arcmin = 180.0 * 60.0 / math.pi
     for label, result in results.items():
-        ax.plot(result.time, result.te * arcmin, lw=0.8, label=str(label))
+        ax.plot(result.time, result.te * arcmin, lw=0.8, label=plain(label))
     ax.axvspan(steady_start, max(r.time[-1] for r in results.values()), color="0.9",
                label="steady window")
     ax.set_xlabel("time [s]")

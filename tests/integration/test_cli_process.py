@@ -277,3 +277,19 @@ def test_an_ignored_signal_stays_ignored(tmp_path):
             proc.wait()
     assert (proc.returncode, out, err) == (143, b"", b"rvsim: terminated (SIGTERM)\n")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_out_of_memory_is_one_line(monkeypatch, capsys):
+    # a reviewer's finite-element disc of 0.4 mm elements under a 2.5 GB limit ended in
+    # numpy's _ArrayMemoryError traceback after 40 s
+    import rvsim.quasistatic
+    from rvsim.cli import main
+
+    def exhausted(*args, **kwargs):
+        raise MemoryError("Unable to allocate 513. MiB for an array with shape (8400, 8000)")
+
+    monkeypatch.setattr(rvsim.quasistatic, "ltca", exhausted)
+    assert main(["ltca", "--positions", "8"]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("rvsim: error: out of memory (Unable to allocate 513. MiB")
+    assert err.count("\n") == 1 and "flexibility.fe_element_size" in err

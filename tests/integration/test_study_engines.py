@@ -92,3 +92,11 @@ def test_no_factor_label_can_overwrite_a_metric_column(tmp_path):
     path.write_text(STUDY.format(extra="").replace("[factors.H]", "[factors.energy_residual]"))
     with pytest.raises(ParameterError, match="factors.energy_residual"):
         load_study(path)
+
+
+def test_a_time_step_in_a_quasi_static_study_is_refused(tmp_path):
+    # it entered the folder's identity, which the command line (refusing --time-step for
+    # this engine) could then never match: the folder was locked to the file
+    path = _study(tmp_path, 'engine = "quasi-static"\ntime_step = 1e-5')
+    with pytest.raises(ParameterError, match="quasi-static engine, which takes no time step"):
+        load_study(path)

@@ -285,3 +285,17 @@ def test_a_zero_response_has_no_sn_ratios_and_says_so(tmp_path, cli):
     assert res.code == 0 and res.err == ""
     data = json.loads(res.out)
     assert data["sn_response"] is None and any("no S/N ratios" in n for n in data["notes"])
+
+
+def test_a_label_with_dollars_is_drawn_as_written(table3, tmp_path):
+    # a reviewer's factor "x$_$" started matplotlib's mathtext and failed the figure (the
+    # study ended in a traceback after all its runs, with no results.csv)
+    from rvsim.analysis.interactions import interaction_plots
+    from rvsim.plots import figure_to_png, main_effects_plot
+
+    table = table3.rename(columns={"H": "x$_$", "te_arcmin": "te $y$"})
+    figure = main_effects_plot(range_analysis(table, "te $y$"))
+    figure_to_png(figure, tmp_path / "effects.png")
+    figure = interaction_plots(table, "te $y$", [("x$_$", "I")])
+    figure_to_png(figure, tmp_path / "interactions.png")
+    assert (tmp_path / "effects.png").stat().st_size > 1000

@@ -119,3 +119,11 @@ def test_a_load_step_inside_the_steady_window_is_refused():
     # a step after the run's end is none; one that ends where the window starts is the default
     with_values(RV40E, {"operating.duration": 0.4, "operating.steady_start": 0.3})
     validate(RV40E)
+
+
+def test_a_finite_element_disc_on_the_single_stage_drive_is_refused_at_once():
+    # it passed validation and failed at the first run: a study ran its other runs first
+    from rvsim.parameters import BUILT_IN_SETS
+
+    with pytest.raises(ParameterError, match="built for the RV reducer only so far"):
+        with_values(BUILT_IN_SETS["cycloid-drive"], {"A": 1, "flexibility.model": "fe"})

@@ -508,3 +508,24 @@ def test_free_interface_modes_with_residual_flexibility():
         errors.append(np.max(np.abs(model.with_springs(springs)[:6] / full - 1)))
     assert errors[0] > errors[1] > errors[2]
     assert errors[1] < 0.01 and errors[2] < 0.003
+
+
+def test_the_stop_signals_survive_gmsh():
+    # a reviewer's case: gmsh's initialize and finalize reset the C handlers of SIGINT and
+    # SIGTERM, so a command that meshed was killed outright (-15) instead of ending with its
+    # line and exit code 143
+    import subprocess
+    import sys
+
+    script = (
+        "import os, signal, time\n"
+        "from rvsim.fe.mesh import gmsh_model\n"
+        "signal.signal(signal.SIGTERM, lambda *a: print('handled', flush=True))\n"
+        "with gmsh_model('probe'):\n"
+        "    pass\n"
+        "os.kill(os.getpid(), signal.SIGTERM)\n"
+        "time.sleep(0.5)\n"
+        "print('alive', flush=True)\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0 and done.stdout.split() == ["handled", "alive"], done

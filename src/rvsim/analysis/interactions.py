@@ -70,7 +70,7 @@ def interaction_plots(table: pd.DataFrame, response: str, pairs: list[tuple[str,
                       ylabel: str | None = None):
     """One panel per pair (A, B): the mean response at each level of A, a line per level of B
     (parallel lines: no interaction)."""
-    from ..plots import _pyplot
+    from ..plots import _pyplot, plain
 
     plt = _pyplot()
     n = max(1, len(pairs))
@@ -80,11 +80,12 @@ def interaction_plots(table: pd.DataFrame, response: str, pairs: list[tuple[str,
     for ax, (a, b) in zip(axes.flat, pairs):
         means = table.groupby([b, a])[response].mean().unstack(a)
         for level, row in means.iterrows():
-            ax.plot(range(1, row.size + 1), row.values, marker="o", label=f"{b} = {level}")
+            ax.plot(range(1, row.size + 1), row.values, marker="o",
+                    label=plain(f"{b} = {level}"))
         ax.set_xticks(range(1, means.shape[1] + 1), [str(c) for c in means.columns])
-        ax.set_xlabel(f"level of {a}")
-        ax.set_ylabel(ylabel or response)
-        ax.set_title(f"{a} x {b}")
+        ax.set_xlabel(plain(f"level of {a}"))
+        ax.set_ylabel(plain(ylabel or response))
+        ax.set_title(plain(f"{a} x {b}"))
         ax.legend(fontsize=7)
     for ax in list(axes.flat)[n:]:
         ax.set_visible(False)

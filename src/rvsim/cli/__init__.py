@@ -77,6 +77,14 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
         return 130, at_once
     except BrokenPipeError:
         return 0, at_once
+    except MemoryError as exc:
+        # numpy's and scipy's own (a finite-element mesh too fine for this machine, a
+        # reviewer's fe_element_size 0.4 mm under a 2.5 GB limit): one line, not a traceback
+        said = " ".join(str(exc).split())
+        print(f"rvsim: error: out of memory{f' ({said})' if said else ''}: a coarser "
+              "finite-element mesh (flexibility.fe_element_size, fe_crank_element_size) or "
+              "shorter histories need less", file=sys.stderr)
+        return 1, at_once
     except OSError as exc:
         if exc.errno not in _OUTPUT_ERRORS:
             raise

@@ -128,6 +128,11 @@ class Study:
                                                      and self.engine != "quasi-static"):
             raise ParameterError("hysteresis", "true or false, and true only with the "
                                  f"quasi-static engine (got {self.hysteresis!r})")
+        if self.time_step is not None and self.engine != "dynamic":
+            # it did nothing but enter the folder's identity, which the command line (that
+            # refuses --time-step here) then could not match
+            raise ParameterError("time_step", f"the study runs the {self.engine} engine, "
+                                 "which takes no time step")
         if self.scheme != EXPLICIT and self.engine != "dynamic":
             raise ParameterError("scheme", f"the study runs the {self.engine} engine: the "
                                  "integration scheme is the dynamic engine's (set "

@@ -69,7 +69,9 @@ def gmsh_model(name: str):
 
     own = not gmsh.isInitialized()
     if own:
+        handlers = _signal_handlers()
         gmsh.initialize(readConfigFiles=False)
+        _restore(handlers)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.NumThreads", 1)
@@ -81,6 +83,32 @@ def gmsh_model(name: str):
     finally:
         if own:
             gmsh.finalize()
+            _restore(handlers)
+
+
+def _signal_handlers() -> dict:
+    """The Python handlers of the stop signals, where they can be set (the main thread).
+
+    gmsh's initialize and finalize replace the C handlers of SIGINT and SIGTERM (finalize
+    leaves the default: the process killed outright, without rvsim's line and clean-up, a
+    reviewer's ltca of a finite-element disc ended -15 on SIGTERM); Python's table still holds
+    its own, which :func:`_restore` installs again."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+    names = ("SIGINT", "SIGTERM", "SIGHUP")
+    return {getattr(signal, n): signal.getsignal(getattr(signal, n)) for n in names
+            if hasattr(signal, n)}
+
+
+def _restore(handlers: dict) -> None:
+    import signal
+
+    for number, handler in handlers.items():
+        if handler is not None:             # None: a handler not set from Python
+            signal.signal(number, handler)
 
 
 def gmsh_elements(gmsh, element_type: int, nodes_per_element: int
