@@ -111,16 +111,6 @@ def test_a_tolerance_built_in_python_is_checked_as_a_file_is():
     assert Tolerance("H", 0.005).name == "errors.pin_circle_radius"
 
 
-def test_a_load_step_inside_the_steady_window_is_refused():
-    # the window mixed two loads: mean TE 0.145 arcmin where the loaded answer is 0.45
-    short = with_values(RV40E, {"operating.duration": 1.6})
-    with pytest.raises(ParameterError, match="reaches into the steady window"):
-        with_values(short, {"operating.load_start": 1.55, "operating.load_ramp_end": 1.59})
-    # a step after the run's end is none; one that ends where the window starts is the default
-    with_values(RV40E, {"operating.duration": 0.4, "operating.steady_start": 0.3})
-    validate(RV40E)
-
-
 def test_a_finite_element_disc_on_the_single_stage_drive_is_refused_at_once():
     # it passed validation and failed at the first run: a study ran its other runs first
     from rvsim.parameters import BUILT_IN_SETS
