@@ -168,6 +168,12 @@ def _read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
                              "'rvsim study')")
     needed = [folder / n for n in ("results.csv", "analysis.json", "study.json")]
     missing = [p.name for p in needed if not p.is_file()]
+    if missing and (folder / "allocation.json").is_file():
+        # its report.html is the allocation's, written by the command from its optimiser's
+        # history, which the folder does not keep
+        raise InputFileError(f"{folder}: a tolerance allocation's folder: its report.html is "
+                             "written by 'rvsim allocate' (run the same command again to "
+                             "write it; the evaluated reducers are reused)")
     if missing:
         raise InputFileError(f"{folder}: not a study folder (missing {', '.join(missing)}; "
                              "run 'rvsim study' first)")

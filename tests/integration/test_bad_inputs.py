@@ -323,3 +323,11 @@ def test_names_and_numbers_a_hostile_review_found(tmp_path, cli, monkeypatch):
               "RUN.NPZ")
     assert res.code == 0, res.err
     assert sorted(p.name for p in tmp_path.iterdir()) == [".dxf", "RUN.NPZ"]
+
+
+@pytest.mark.parametrize("args", [("ltca", "--torque", "1_0"), ("simulate", "--time-step", "1_0"),
+                                  ("analyze", "x.csv", "--alpha", "0_1")])
+def test_digit_groups_are_no_numbers_on_the_command_line(cli, args):
+    # Python reads "1_0" as 10: --set and parameter files refused it, the options did not
+    res = cli(*args)
+    assert res.code == 2 and "is not a number" in res.err and res.err.count("\n") == 1

@@ -390,3 +390,15 @@ def test_tolerance_files_checked_alike_and_folders_not_mixed(tmp_path, small, cl
     (out / "allocation.json").write_text("{}")
     res = cli("tolerance", str(small), "--out", str(out), "--workers", "1")
     assert res.code == 2 and "holds a tolerance allocation (allocation.json)" in res.err
+
+
+def test_report_of_an_allocation_folder_says_what_writes_it(tmp_path, small, cli):
+    # it said "not a study folder (missing results.csv, analysis.json; run 'rvsim study'
+    # first)" of a folder 'rvsim allocate' had written
+    out = tmp_path / "alloc"
+    res = cli("allocate", str(small), "--out", str(out), "--workers", "1", "--samples", "4",
+              "--max-evaluations", "5", "--target", "ate_p95=0.5")
+    assert res.code == 0, res.err
+    res = cli("report", str(out))
+    assert res.code == 2 and "a tolerance allocation's folder: its report.html is written by " \
+        "'rvsim allocate'" in res.err

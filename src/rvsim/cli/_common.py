@@ -17,7 +17,7 @@ from ..parameters import (BUILT_IN_SETS, RV40E, Reducer, load_toml, parse_assign
                           with_values)
 
 __all__ = ["Parser", "UsageError", "stopped_line", "add_command", "add_reducer_options",
-           "reducer_from_args", "print_json", "EXAMPLES", "positive_int", "probability",
+           "reducer_from_args", "print_json", "EXAMPLES", "number", "positive_int", "probability",
            "path_text", "scheduler_address", "check_output_file", "check_output_folder"]
 
 
@@ -97,9 +97,22 @@ def print_json(payload: Any) -> None:
     sys.stdout.write("\n")
 
 
+def number(text: str) -> float:
+    """argparse type: a number as float() reads it, but not with digit groups ("1_0", which
+    Python reads as 10; --set and parameter files refuse it too)."""
+    try:
+        if "_" in text:
+            raise ValueError(text)
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+
+
 def positive_int(text: str) -> int:
     """argparse type: a whole number >= 1."""
     try:
+        if "_" in text:
+            raise ValueError(text)
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
@@ -111,8 +124,8 @@ def positive_int(text: str) -> int:
 def probability(text: str) -> float:
     """argparse type: a significance level strictly between 0 and 1."""
     try:
-        value = float(text)
-    except ValueError:
+        value = number(text)
+    except argparse.ArgumentTypeError:
         raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
     if not 0.0 < value < 1.0:
         raise argparse.ArgumentTypeError(f"must be between 0 and 1, exclusive (got {text})")

@@ -12,7 +12,7 @@ import sys
 from pathlib import Path
 
 from ..errors import InputFileError, ParameterError
-from ._common import (add_command, add_reducer_options, check_output_file, print_json,
+from ._common import (number, add_command, add_reducer_options, check_output_file, print_json,
                       reducer_from_args)
 
 __all__ = ["register", "MIN_POSITIONS", "MAX_POSITIONS"]
@@ -183,7 +183,7 @@ def register(sub) -> None:
                      "rvsim ltca --torque 412 --positions 720 --report ltca.html",
                      "rvsim ltca --paper-run 2 --json"])
     _common(p)
-    p.add_argument("--torque", type=float, metavar="NM",
+    p.add_argument("--torque", type=number, metavar="NM",
                    help="output torque [N*m] (default: operating.load_torque; negative: the load "
                         "on the other flanks, as in a torque reversal)")
     p.add_argument("--positions", type=int, default=360, metavar="N",
@@ -199,7 +199,7 @@ def register(sub) -> None:
                      "rvsim hysteresis --paper-run 5 --report loop.html",
                      "rvsim hysteresis --export joint.json"])
     _common(p)
-    p.add_argument("--rated-torque", type=float, metavar="NM",
+    p.add_argument("--rated-torque", type=number, metavar="NM",
                    help="rated torque [N*m] (default: the reducer's rating.rated_torque, "
                         "412 N*m for the RV-40E)")
     p.add_argument("--export", metavar="FILE.json",

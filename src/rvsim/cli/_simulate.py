@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from ..errors import ParameterError, SimulationError
-from ._common import (add_command, add_reducer_options, check_output_file, path_text,
+from ._common import (number, add_command, add_reducer_options, check_output_file, path_text,
                       print_json, reducer_from_args)
 
 __all__ = ["register"]
@@ -70,9 +70,9 @@ def register(sub) -> None:
                    help="write the time histories (numpy .npz)")
     p.add_argument("--report", metavar="FILE.html", type=path_text,
                    help="write a self-contained HTML report")
-    p.add_argument("--duration", type=float, help="simulated time [s] (default: "
+    p.add_argument("--duration", type=number, help="simulated time [s] (default: "
                    "operating.duration, 4 s)")
-    p.add_argument("--time-step", type=float,
+    p.add_argument("--time-step", type=number,
                    help="integration step [s] (default: the scheme's, 5e-6 s explicit, 2e-5 s "
                    "implicit-bearings)")
     p.add_argument("--scheme", choices=("explicit", "implicit-bearings"), default="explicit",

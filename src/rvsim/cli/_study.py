@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 from ..errors import InputFileError, ParameterError
-from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
+from ._common import (number, add_command, check_output_folder, path_text, positive_int, print_json,
                       probability, scheduler_address, stopped_line)
 
 __all__ = ["register"]
@@ -239,7 +239,7 @@ def register(sub) -> None:
                    "paper-l36: implicit-bearings, about half the explicit scheme's time, "
                    "mean TE within 7.2e-5 relative; a study file: explicit unless it names one; "
                    "docs/model.md section 9)")
-    p.add_argument("--time-step", type=float, metavar="SECONDS",
+    p.add_argument("--time-step", type=number, metavar="SECONDS",
                    help="integration step of the dynamic runs [s] (default: the study's, "
                    "else the scheme's: 2e-5 s implicit-bearings, 5e-6 s explicit; paper-l36 "
                    "at 2.5e-5 s: 12-16 %% less CPU, its energy residuals up to 1.3e-4 "

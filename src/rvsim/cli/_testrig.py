@@ -16,7 +16,7 @@ from pathlib import Path
 
 from .._json import to_json_safe
 from ..errors import ParameterError
-from ._common import (add_command, add_reducer_options, check_output_file,
+from ._common import (number, add_command, add_reducer_options, check_output_file,
                       check_output_folder, path_text, print_json, reducer_from_args)
 
 __all__ = ["register"]
@@ -168,7 +168,7 @@ def _inputs(p: argparse.ArgumentParser) -> None:
                    default=[], dest="columns",
                    help="map one quantity, e.g. input_angle=enc1:counts:4096 (repeatable; "
                         "wins over --map)")
-    p.add_argument("--ratio", type=float, metavar="I",
+    p.add_argument("--ratio", type=number, metavar="I",
                    help="reduction ratio of the bench reducer (default: the parameter set's)")
     add_reducer_options(p)
     p.add_argument("--json", action="store_true", help="machine-readable output")
