@@ -321,7 +321,7 @@ def test_scheme_belongs_to_the_dynamic_engine():
     ("", ("--time-step", "0"), "parameter '--time-step': must be a number of seconds in"),
     ("", ("--time-step", "nan"), "parameter '--time-step': must be a number of seconds in"),
     ("", ("--time-step", "1"), "parameter '--time-step': must be a number of seconds in"),
-    ("", ("--time-step", "fast"), "argument --time-step: invalid float value"),
+    ("", ("--time-step", "fast"), "argument --time-step: 'fast' is not a number"),
     ('engine = "quasi-static"', ("--time-step", "1e-5"),
      "parameter '--time-step': the study runs the quasi-static engine"),
     ("", ("--time-step", "1e-12"), "parameter '--time-step': 0.4 s at 1e-12 s per step is "
