@@ -126,9 +126,8 @@ def nominal_disc_pose(reducer: Reducer, crank_angle: float, disc: int = 0):
 def _disc_gaps(reducer: Reducer, crank_angle: float, disc: int, extra_rotation: float,
                offset: tuple[float, float]):
     """:func:`~rvsim.geometry._curve.pin_gaps_at` of every pin, and the profile angle."""
-    disc = check_disc(disc)
     prof = profile_of(reducer)
-    x, y, rot = nominal_disc_pose(reducer, crank_angle, disc)
+    x, y, rot = nominal_disc_pose(reducer, crank_angle, disc)     # checks the disc index
     angle = rot + extra_rotation - disc * math.pi / reducer.cycloid.disc_teeth + prof.rotation
     shift_x, shift_y = profile_offset(reducer, disc)
     clearance = prof.offset - (reducer.cycloid.pin_radius - reducer.errors.pin_radius)

@@ -229,19 +229,24 @@ def _travel(rec: Recording, ratio: float, test: str) -> float:
     return abs(position[b - 1] - position[a]) / (2.0 * math.pi)
 
 
+def _ratio_over(rec: Recording, i: int, j: int) -> float | None:
+    """Input travel over output travel from sample i to sample j (signed; None where the output
+    stands still)."""
+    turned = rec.output_angle[j] - rec.output_angle[i]
+    return None if turned == 0.0 else (rec.input_angle[j] - rec.input_angle[i]) / turned
+
+
 def _check_ratio(rec: Recording, result: FileResult, a: int, b: int, expected: float) -> None:
     """The ratio measured over the longest run (input over output travel, signed) against the
     expected one: an output that stands still or turns against the input, or a ratio more
     than RATIO_TOLERANCE off, is refused (encoders, units, counts); one more than RATIO_NOTE
     off is noted, since the TE then carries its trend."""
-    travel_in = rec.input_angle[b - 1] - rec.input_angle[a]
-    turned = rec.output_angle[b - 1] - rec.output_angle[a]
-    turns = abs(travel_in / expected) / (2.0 * math.pi)
-    if turned == 0.0:
+    measured = _ratio_over(rec, a, b - 1)
+    if measured is None:
+        turns = abs((rec.input_angle[b - 1] - rec.input_angle[a]) / expected) / (2.0 * math.pi)
         raise InputFileError(f"{rec.path}: the output angle stands still while the input "
                              f"turns {turns:.3g} output revolutions: check the output encoder "
                              "and its column")
-    measured = travel_in / turned
     if measured / expected < 0:
         raise InputFileError(f"{rec.path}: the output turns against the ratio's sense "
                              f"(measured ratio {measured:.5g}, expected {expected:+g}): the "
@@ -252,16 +257,14 @@ def _check_ratio(rec: Recording, result: FileResult, a: int, b: int, expected: f
     if abs(off) > RATIO_TOLERANCE:
         raise InputFileError(
             f"{rec.path}: the measured ratio {abs(measured):.5g} differs from "
-            f"{abs(expected):g} by {100 * off:+.3g} % (more than {100 * RATIO_TOLERANCE:g} %): check the angle "
-            "units and counts per revolution")
+            f"{abs(expected):g} by {100 * off:+.3g} % (more than {100 * RATIO_TOLERANCE:g} %): "
+            "check the angle units and counts per revolution")
     # the trend from the run's middle 80 %: its start holds the lost motion taken up after a
     # reversal (a few arcmin over the run's revolution on the example recording)
     progress = np.abs(rec.input_angle[a:b] - rec.input_angle[a])
-    i0 = a + int(np.argmax(progress >= 0.1 * progress[-1]))
-    i1 = a + int(np.argmax(progress >= 0.9 * progress[-1]))
-    turned = rec.output_angle[i1] - rec.output_angle[i0]
-    trend = 0.0 if turned == 0.0 else (rec.input_angle[i1] - rec.input_angle[i0]) / turned \
-        / expected - 1.0
+    middle = _ratio_over(rec, a + int(np.argmax(progress >= 0.1 * progress[-1])),
+                         a + int(np.argmax(progress >= 0.9 * progress[-1])))
+    trend = 0.0 if middle is None else middle / expected - 1.0
     if abs(trend) > RATIO_NOTE:
         result.notes.append(
             f"{rec.path.name}: the measured ratio {abs(expected) * (1.0 + trend):.6g} differs "

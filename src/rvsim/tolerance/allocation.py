@@ -114,6 +114,12 @@ def parse_targets(text: str) -> list[Target]:
 _COST_KEYS = ("weight", "exponent", "tightest", "loosest")
 
 
+def _default_bounds(name: str, reference: float) -> tuple[float, float]:
+    """(tightest, loosest) of an error its [cost] table does not bound: a quarter of and four
+    times the study's tolerance (within the feature's largest)."""
+    return 0.25 * reference, min(4.0 * reference, largest_tolerance(name))
+
+
 def cost_table(study: ToleranceStudy, table: dict | None = None) -> dict:
     """The study file's ``[cost.NAME]`` tables (or ``table``), checked: names of the study's
     toleranced errors, keys of :data:`_COST_KEYS`, positive numbers (ParameterError).  Both
@@ -133,11 +139,11 @@ def cost_table(study: ToleranceStudy, table: dict | None = None) -> dict:
                 raise ParameterError(f"cost.{name}.{key}", "must be a positive number")
         out[name] = {key: float(value) for key, value in spec.items()}
     # the bounds a table gives, against each other and the feature's largest tolerance, with
-    # the defaults for what it leaves out (those of CostModel.default)
+    # the defaults for what it leaves out
     for name, spec in out.items():
         ref = next(t.tolerance for t in study.tolerances if t.name == name)
-        tightest = spec.get("tightest", 0.25 * ref)
-        loosest = spec.get("loosest", min(4.0 * ref, largest_tolerance(name)))
+        tightest, loosest = _default_bounds(name, ref)
+        tightest, loosest = spec.get("tightest", tightest), spec.get("loosest", loosest)
         largest = largest_tolerance(name)
         if loosest > largest:
             raise ParameterError(f"cost.{name}.loosest", f"must be at most {largest:g} "
@@ -161,22 +167,19 @@ class CostModel:
     def default(cls, study: ToleranceStudy, table: dict | None = None) -> "CostModel":
         names = [t.name for t in study.tolerances]
         ref = {t.name: t.tolerance for t in study.tolerances}
-        out = {"weight": {n: 1.0 for n in names}, "exponent": {n: 1.0 for n in names},
-               "tightest": {n: 0.25 * ref[n] for n in names},
-               "loosest": {n: min(4.0 * ref[n], largest_tolerance(n)) for n in names}}
-        for name, spec in cost_table(study, table or {}).items():
-            for key, value in spec.items():
-                out[key][name] = value
         for n in names:
             if ref[n] <= 0:
                 raise ParameterError(f"tolerances.{n}.tolerance", "allocation needs a "
                                      "positive tolerance to scale")
-            largest = largest_tolerance(n)
-            if out["loosest"][n] > largest:
-                raise ParameterError(f"cost.{n}.loosest", f"must be at most {largest:g} "
-                                     f"{FEATURES[n][0]} (got {out['loosest'][n]:g})")
-            if not out["tightest"][n] < out["loosest"][n]:
-                raise ParameterError(f"cost.{n}", "tightest must be below loosest")
+        bounds = {n: _default_bounds(n, ref[n]) for n in names}
+        out = {"weight": {n: 1.0 for n in names}, "exponent": {n: 1.0 for n in names},
+               "tightest": {n: bounds[n][0] for n in names},
+               "loosest": {n: bounds[n][1] for n in names}}
+        # the table's values, checked by cost_table (bounds included); the defaults meet
+        # those checks by construction for a positive tolerance within the feature's largest
+        for name, spec in cost_table(study, table or {}).items():
+            for key, value in spec.items():
+                out[key][name] = value
         return cls(reference=ref, **out)
 
     def cost(self, tolerances: dict) -> float:
