@@ -97,7 +97,8 @@ def read_toml(path: str | Path, what: str = "TOML file") -> dict:
         if len(data) > MAX_TOML_BYTES:
             raise InputFileError(f"{path}: larger than {MAX_TOML_BYTES // 2 ** 20} MiB: not a "
                                  f"{what}")
-        return tomllib.loads(data.decode("utf-8"))
+        # a UTF-8 byte-order mark (Windows editors, Excel) is not part of the text
+        return tomllib.loads(data.decode("utf-8-sig"))
     except FileNotFoundError:
         raise InputFileError(f"{path}: file not found") from None
     except IsADirectoryError:

@@ -14,6 +14,7 @@ from typing import Any
 from .._json import to_json_safe
 from ..errors import InputFileError, ParameterError, RvsimError, Terminated
 from ..parameters import (BUILT_IN_SETS, RV40E, Reducer, load_toml, parse_assignment,
+                          plain_number,
                           with_values)
 
 __all__ = ["Parser", "UsageError", "stopped_line", "add_command", "add_reducer_options",
@@ -101,9 +102,7 @@ def number(text: str) -> float:
     """argparse type: a number as float() reads it, but not with digit groups ("1_0", which
     Python reads as 10; --set and parameter files refuse it too)."""
     try:
-        if "_" in text:
-            raise ValueError(text)
-        return float(text)
+        return plain_number(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
 

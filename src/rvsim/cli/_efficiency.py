@@ -11,6 +11,7 @@ import math
 import sys
 
 from ..errors import ParameterError
+from ..parameters import plain_number
 from ._common import add_command, add_reducer_options, print_json, reducer_from_args
 from ._quasistatic import _output_path, _solve, _write
 
@@ -30,7 +31,7 @@ def parse_list(option: str, text: str | None) -> list[float] | None:
     values = []
     for p in parts:
         try:
-            value = float(p)
+            value = plain_number(p)           # as --torque: no digit groups
         except ValueError:
             raise ParameterError(option, f"'{p}' is not a number") from None
         if not math.isfinite(value) or value <= 0:

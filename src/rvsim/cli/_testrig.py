@@ -120,28 +120,31 @@ def _calibrate(args: argparse.Namespace) -> int:
     names = [n.strip() for n in args.fit.split(",") if n.strip()]
     reducer = reducer_from_args(args)
     column_map = _column_map(args)
-    from ..parameters import resolve_name
     from ..parameters._io import toml_text
     from ..testrig.bench import analyse_path
-    from ..testrig.calibration import calibrate
+    from ..testrig.calibration import calibrate, fitted_names
 
-    for name in names:
-        resolve_name(name)
+    fitted_names(names)                    # before the recordings are read
     analysed = analyse_path(args.path, reducer, column_map)
     result = calibrate(analysed, reducer, names, positions=args.positions)
     from .._files import atomic_outputs
 
     out.mkdir(parents=True, exist_ok=True)
     payload = result.to_dict()
-    fitted = out / "fitted.toml"
+    # only a fit is written as a parameter file: a guess under the name "calibrated" would be
+    # used with --params as one (an earlier run's fitted.toml is removed with it)
+    fitted = out / "fitted.toml" if payload["status"] == "ok" else None
     # the fitted set says what it is (its name shows in every report made with it)
     calibrated = dataclasses.replace(result.reducer, name=f"{reducer.name}, calibrated to "
                                      f"{Path(args.path).name}")
-    payload["fitted_params"] = str(fitted)
+    payload["fitted_params"] = None if fitted is None else str(fitted)
     with atomic_outputs(fitted, out / "calibration.json") as (fitted_tmp, payload_tmp):
-        fitted_tmp.write_text(toml_text(calibrated), encoding="utf-8")      # both or neither
+        if fitted_tmp is not None:
+            fitted_tmp.write_text(toml_text(calibrated), encoding="utf-8")  # both or neither
         payload_tmp.write_text(json.dumps(to_json_safe(payload), indent=2, allow_nan=False)
                                + "\n", encoding="utf-8")
+    if fitted is None:
+        (out / "fitted.toml").unlink(missing_ok=True)
     if args.json:
         print_json(payload)
     else:
@@ -154,7 +157,11 @@ def _calibrate(args: argparse.Namespace) -> int:
             print(f"  {name} = {p['estimate']:.6g} {p['unit']} ({interval})")
         for note in payload["notes"]:
             print(f"  note: {note}")
-        print(f"wrote {fitted} (use it with --params) and {out / 'calibration.json'}")
+        if fitted is None:
+            print(f"wrote {out / 'calibration.json'}; no fitted.toml: status "
+                  f"{payload['status']} is not a fit")
+        else:
+            print(f"wrote {fitted} (use it with --params) and {out / 'calibration.json'}")
     return 0 if payload["status"] == "ok" else 1
 
 

@@ -6,13 +6,13 @@ from ._types import (Bearings, Clearances, ContactModel, Crankshaft, CycloidStag
 from .rv40e import (CITATION, RV40E, TABLE2_FACTORS, FactorSpec, paper_l36_scheme,
                     paper_run_values)
 from ._io import (BUILT_IN_SETS, SPECS, get_value, load_toml, parameter_table, parse_assignment,
-                  resolve_name, validate, with_values)
+                  plain_number, resolve_name, validate, with_values)
 
 __all__ = [
     "Reducer", "Bearings", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances",
     "Flexibility", "Operating", "ContactModel", "Rating", "Friction", "Material", "Materials",
     "PartErrors", "RV40E", "CITATION",
     "TABLE2_FACTORS",
-    "FactorSpec", "paper_l36_scheme", "paper_run_values", "BUILT_IN_SETS", "SPECS", "get_value", "load_toml", "parameter_table",
+    "FactorSpec", "paper_l36_scheme", "paper_run_values", "plain_number", "BUILT_IN_SETS", "SPECS", "get_value", "load_toml", "parameter_table",
     "parse_assignment", "resolve_name", "validate", "with_values",
 ]

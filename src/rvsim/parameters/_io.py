@@ -26,7 +26,8 @@ from .friction_values import TYPICAL_FRICTION
 from .rv40e_bearings import RV40E_ROLLING
 
 __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assignment",
-           "load_toml", "validate", "resolve_name", "BUILT_IN_SETS", "toml_string", "toml_text"]
+           "load_toml", "validate", "resolve_name", "BUILT_IN_SETS", "toml_string", "toml_text",
+           "plain_number"]
 
 #: every leaf parameter of :class:`Reducer`, by dotted name
 SPECS: dict[str, FieldSpec] = {s.name: s for s in field_specs(Reducer)}
@@ -79,10 +80,7 @@ def _coerce(spec: FieldSpec, raw: Any) -> Any:
     if isinstance(raw, bool):
         raise ParameterError(spec.name, f"'{raw}' is not a number")
     try:
-        # Python's float() reads "1_0" as 10: a digit grouping no data file means
-        if isinstance(raw, str) and "_" in raw:
-            raise ValueError(raw)
-        value = float(raw)
+        value = plain_number(raw)
     except (TypeError, ValueError):
         raise ParameterError(spec.name, f"'{raw}' is not a number") from None
     if not math.isfinite(value):
@@ -92,6 +90,15 @@ def _coerce(spec: FieldSpec, raw: Any) -> Any:
             raise ParameterError(spec.name, f"'{raw}' is not a whole number")
         return int(value)
     return value * TO_SI[spec.unit]
+
+
+def plain_number(raw) -> float:
+    """``float(raw)``, except that a text with digit groups is no number (ValueError): Python
+    reads "1_0" as 10, a grouping no data file or command line means.  The one check of every
+    number read from text (--set, files, the command line's options and lists)."""
+    if isinstance(raw, str) and "_" in raw:
+        raise ValueError(raw)
+    return float(raw)
 
 
 def _replace_path(obj: Any, parts: list[str], value: Any) -> Any:

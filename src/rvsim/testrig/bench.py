@@ -19,6 +19,7 @@ import numpy as np
 
 from ..analysis.catalogue import CurveError
 from ..errors import InputFileError
+from ..parameters import plain_number
 from . import analysis as A
 from .recording import (ColumnMap, Recording, check_ratio, missing_mapped, no_column_error,
                         point_from_name, read_recording)
@@ -124,7 +125,7 @@ def _read_manifest(manifest: Path) -> list[tuple[Path, dict]]:
                 value = check_ratio(value, f"{manifest}: row {row}")
             else:
                 try:
-                    value = float(value)
+                    value = plain_number(value)
                 except ValueError:
                     raise InputFileError(f"{manifest}: row {row}: {key} '{value}' is not a "
                                          "number") from None

@@ -30,7 +30,8 @@ from . import analysis as A
 from .bench import check_model_ratio
 from .model import model_loop, model_te
 
-__all__ = ["calibrate", "Calibration", "CalibrationError", "residuals", "CORRELATION_LIMIT"]
+__all__ = ["calibrate", "Calibration", "CalibrationError", "residuals", "CORRELATION_LIMIT",
+           "NOT_FITTED", "fitted_names"]
 
 #: |correlation| above which two fitted parameters are reported as hardly separable
 CORRELATION_LIMIT = 0.95
@@ -40,6 +41,18 @@ SAME_LIMIT = 0.999
 #: singular values of the scaled Jacobian below this fraction of the largest: not identifiable
 RANK_TOLERANCE = 1e-6
 _LEVELS = np.linspace(0.02, 0.98, 24)
+#: a parameter whose 95 % interval covers this fraction of what it can be (both bounds
+#: finite, e.g. a Poisson ratio 0-0.5) is not fixed by the data: they rule out less than the
+#: bounds already do
+RANGE_COVERED = 0.5
+#: a Jacobian column (per change of the parameter by its scale) below this fraction of the
+#: largest: the curves do not depend on it beside the others (docs/decisions.md, issue 30)
+NIL_SENSITIVITY = 1e-3
+#: sections that describe the test or the run, not the reducer on the bench: refused by --fit
+NOT_FITTED = {"rating": "the rated torque sets the extent of the model's torque-reversal "
+                        "test, it is not a property of the reducer",
+              "operating": "the recordings give the operating points and the model is "
+                           "quasi-static: the dynamic run's settings do not enter it"}
 #: step of the finite-difference Jacobian in scaled units (1e-3 of a parameter's scale)
 JACOBIAN_STEP = 1e-3
 #: scale of a parameter that starts at zero, by unit
@@ -144,24 +157,36 @@ def _scale(spec, start: float) -> float:
     return abs(start) if start != 0 else _TYPICAL.get(spec.unit, 1.0)
 
 
+def fitted_names(fit: list[str]) -> list[str]:
+    """The dotted names of ``fit`` (names or factor letters), checked: named once each,
+    continuous, properties of the reducer (not NOT_FITTED's test settings)."""
+    names = [resolve_name(n) for n in fit]
+    if not names:
+        raise ParameterError("--fit", "name at least one parameter")
+    if len(set(names)) != len(names):
+        raise ParameterError("--fit", "a parameter is named twice")
+    for spec in (SPECS[n] for n in names):
+        section = spec.name.split(".")[0]
+        if section in NOT_FITTED:
+            raise ParameterError(spec.name, f"cannot be fitted ({NOT_FITTED[section]}); fit "
+                                 "the reducer's continuous properties: errors.*, "
+                                 "clearances.*, contact.*, materials.*, geometry, bearings")
+        if spec.kind != "float":
+            what = {"int": "a whole number", "bool": "a yes/no switch",
+                    "choice": "a choice"}.get(spec.kind, f"of kind {spec.kind}")
+            raise ParameterError(spec.name, f"cannot be fitted ({what}; only continuous "
+                                 "quantities can be)")
+    return names
+
+
 def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
               max_evaluations: int = 200) -> Calibration:
     """Fit the parameters ``fit`` (dotted names or factor letters, as ``--set`` takes) of
     ``reducer`` to the analysed recordings ``points`` (:func:`rvsim.testrig.analyse_path`)."""
     from scipy import optimize, stats
 
-    names = [resolve_name(n) for n in fit]
-    if not names:
-        raise ParameterError("--fit", "name at least one parameter")
-    if len(set(names)) != len(names):
-        raise ParameterError("--fit", "a parameter is named twice")
+    names = fitted_names(fit)
     specs = [SPECS[n] for n in names]
-    for spec in specs:
-        if spec.kind != "float":
-            what = {"int": "a whole number", "bool": "a yes/no switch",
-                    "choice": "a choice"}.get(spec.kind, f"of kind {spec.kind}")
-            raise ParameterError(spec.name, f"cannot be fitted ({what}; only continuous "
-                                 "quantities can be)")
     start = np.array([float(get_value(reducer, n)) for n in names])
     scale = np.array([_scale(s, v) for s, v in zip(specs, start)])
     lower = np.array([-np.inf if s.minimum is None else s.minimum / TO_SI[s.unit]
@@ -258,11 +283,13 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
         corr = cov / np.outer(std, std)
     corr[~np.isfinite(corr)] = np.nan
     np.fill_diagonal(corr, 1.0)
+    unfixed = {j for j in range(p) if not np.isfinite(std[j]) and j not in blocked}
     for i in range(p):
         for j in range(i + 1, p):
             if not np.isfinite(corr[i, j]):
                 continue
             if abs(corr[i, j]) >= SAME_LIMIT:
+                unfixed.update((i, j))
                 notes.append(f"the data cannot tell {names[i]} and {names[j]} apart "
                              f"(correlation {corr[i, j]:+.4f}): fix one of them")
             elif abs(corr[i, j]) > CORRELATION_LIMIT:
@@ -277,18 +304,56 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     finite = np.isfinite(half)             # no interval stays no interval
     low = np.where(finite, np.maximum(estimate - half, lower * scale), np.nan)
     high = np.where(finite, np.minimum(estimate + half, upper * scale), np.nan)
+    more, unfixed = _not_fixed(J, scale, low, high, lower, upper, names, specs, unfixed,
+                               blocked)
     for j in np.flatnonzero(finite & ((low > estimate - half)
-                                                 | (high < estimate + half))):
+                                      | (high < estimate + half))):
+        if j in unfixed:                   # said by _not_fixed
+            continue
         cut = [f"{b:g}" for b, moved in ((low[j], low[j] > estimate[j] - half[j]),
                                          (high[j], high[j] < estimate[j] + half[j])) if moved]
         notes.append(f"the 95 % interval of {names[j]} is cut at its bound "
                      f"{' and '.join(cut)} {specs[j].unit}: the data hardly fix it")
+    notes += more
+    for j in unfixed:                      # an interval of a parameter not fixed is no interval
+        low[j] = high[j] = np.nan
     fitted = model_at(result.x)
     # a parameter the data do not fix is not fitted, whatever the optimiser says
-    status = ("model_fails" if blocked else "not_identifiable" if not np.all(np.isfinite(std))
+    status = ("model_fails" if blocked else "not_identifiable" if unfixed
               else "ok" if result.success else "not_converged")
     return Calibration(names, [s.unit for s in specs], start, estimate, std, low,
                        high, corr, notes,
                        float(np.sqrt(np.mean(r0 ** 2))),
                        float(np.sqrt(np.mean(result.fun ** 2))), m, evaluations[0], status,
                        fitted)
+
+
+def _not_fixed(J, scale, low, high, lower, upper, names, specs, unfixed, blocked):
+    """(notes, indices) of the fitted parameters the data do not fix, beside ``unfixed``
+    (no interval, or not separable from another): a Jacobian column nil beside the others',
+    or a 95 % interval (``low`` .. ``high``, user units) over RANGE_COVERED of a parameter's
+    finite range (``lower`` .. ``upper``, scaled)."""
+    unfixed, notes = set(unfixed), []
+    size = np.linalg.norm(J, axis=0)       # the curves' change per change by one scale
+    top = int(np.argmax(size))
+    for j, spec in enumerate(specs):
+        if j in unfixed or j in blocked:
+            continue
+        if size.size > 1 and size[j] < NIL_SENSITIVITY * size[top]:
+            unfixed.add(j)
+            notes.append(f"the curves hardly depend on {names[j]} ({size[j] / size[top]:.1e}"
+                         f" of their change with {names[top]}, each changed by its scale): "
+                         "it cannot be fitted")
+            continue
+        span = (upper[j] - lower[j]) * scale[j]
+        if math.isfinite(span) and high[j] - low[j] >= RANGE_COVERED * span:
+            unfixed.add(j)
+            notes.append(f"the 95 % interval of {names[j]} ({low[j]:g} .. {high[j]:g}"
+                         f"{_unit(spec)}) covers {(high[j] - low[j]) / span:.0%} of what it can "
+                         f"be ({lower[j] * scale[j]:g} .. {upper[j] * scale[j]:g}): the data "
+                         "do not fix it")
+    return notes, unfixed
+
+
+def _unit(spec) -> str:
+    return "" if spec.unit == "-" else f" {spec.unit}"

@@ -25,6 +25,7 @@ import numpy as np
 
 from .._files import read_toml
 from ..errors import InputFileError
+from ..parameters import plain_number
 
 __all__ = ["Recording", "ColumnMap", "ColumnSpec", "read_recording", "read_column_map",
            "parse_column_option", "point_from_name", "unwrapped", "check_ratio",
@@ -117,10 +118,12 @@ def _spec(quantity: str, column, unit: str | None, cpr, where: str) -> ColumnSpe
                              f"(for {quantity})")
     if unit == "counts":
         try:
-            cpr = float(cpr)
+            cpr = plain_number(cpr)
         except (TypeError, ValueError):
-            raise InputFileError(f"{where}: {quantity} in counts needs the counts per "
-                                 f"revolution (got {cpr!r})") from None
+            need = "needs the counts per revolution" if cpr is None else \
+                "needs the counts per revolution as a number"
+            raise InputFileError(f"{where}: {quantity} in counts {need} (got {cpr!r})") \
+                from None
         if not (math.isfinite(cpr) and cpr > 0):
             raise InputFileError(f"{where}: counts per revolution of {quantity} must be a "
                                  f"finite positive number (got {cpr:g})")
@@ -149,7 +152,7 @@ def parse_column_option(text: str) -> tuple[str, ColumnSpec]:
 def check_ratio(value, where: str) -> float:
     """A bench reducer's ratio from a file: a finite number above 1 (InputFileError)."""
     try:
-        value = float(value)
+        value = plain_number(value)
     except (TypeError, ValueError):
         raise InputFileError(f"{where}: ratio must be a number (got {value!r})") from None
     if not (math.isfinite(value) and value > 1):       # as --ratio: a negative one is a typo

@@ -30,6 +30,7 @@ import shutil
 import numpy as np
 
 from ..errors import InputFileError, ParameterError
+from ..parameters import plain_number
 from .engine import METRICS
 from .spec import FEATURES, ToleranceStudy, largest_tolerance
 
@@ -76,7 +77,7 @@ def parse_targets(text: str) -> list[Target]:
             continue
         if item.split("=")[0].strip() == BINDING:
             try:
-                value = float(item.split("=", 1)[1])
+                value = plain_number(item.split("=", 1)[1])
             except (IndexError, ValueError):
                 raise ParameterError("--target", f"'{item}': value is not a number") from None
             if not 0.0 <= value < 1.0:
@@ -95,7 +96,7 @@ def parse_targets(text: str) -> list[Target]:
         if not 0 < percentile < 100:
             raise ParameterError("--target", f"'{item}': percentile must be between 0 and 100")
         try:
-            value = float(match.group(3))
+            value = plain_number(match.group(3))
         except ValueError:
             raise ParameterError("--target", f"'{item}': value is not a number") from None
         if not math.isfinite(value) or value <= 0:

@@ -28,7 +28,6 @@ import dataclasses
 import hashlib
 import json
 import math
-import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -337,9 +336,12 @@ def _checked(tolerance: "Tolerance") -> tuple:
 
 def is_tolerance_file(path: str | Path) -> bool:
     """Whether a TOML study file has a [tolerances] table (False if it cannot be read)."""
+    from .._files import read_toml       # the one reader (bounded, a BOM stripped)
+    from ..errors import RvsimError
+
     try:
-        return "tolerances" in tomllib.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return "tolerances" in read_toml(path)
+    except RvsimError:
         return False
 
 
