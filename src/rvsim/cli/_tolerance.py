@@ -36,7 +36,7 @@ def load_any_tolerance_study(name: str):
 def run_tolerance_command(study, args) -> int:
     """Shared by ``rvsim tolerance`` and ``rvsim study`` given a tolerance study."""
     from ..tolerance.analysis import tolerance_analysis
-    from ..tolerance.montecarlo import failure_line, share_text
+    from ..tolerance.montecarlo import failure_line, share_text, torque_text
 
     check_output_folder(args.out, "--out")
     folder = Path(args.out)
@@ -67,6 +67,8 @@ def run_tolerance_command(study, args) -> int:
     print(f"{study.name}: {summary['samples']} reducers, {summary['ok']} analysed, "
           f"{summary['binds']} bind on assembly ({share_text(summary['binding_share'])}), "
           f"{summary['failed']} failed -> {folder}/summary.json, results.csv, report.html")
+    if summary.get("torque_drawn"):
+        print(f"  output torque {torque_text(summary)}")
     if failed:
         print(f"rvsim: note: failed reducers: {failed} (each one's reason: results.csv)",
               file=sys.stderr)

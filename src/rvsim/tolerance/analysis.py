@@ -10,7 +10,7 @@ import json
 from pathlib import Path
 
 from ..errors import InputFileError
-from .montecarlo import (collect, monte_carlo_units, run_samples, summarise,
+from .montecarlo import (collect, study_torque, monte_carlo_units, run_samples, summarise,
                          write_json, write_results_csv)
 from .sensitivity import check_base, check_groups, sobol_count, sobol_indices, sobol_units
 from .spec import ToleranceStudy, check_samples
@@ -62,7 +62,7 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
                                progress=progress, store=store)
             status, values, errors = collect(store, keys["monte-carlo"])
             summary = {"study": study.name, "reducer": study.base.name,
-                       "torque_nm": study.nominal.operating.load_torque,
+                       **study_torque(study),
                        "positions": study.positions, "seed": study.seed,
                        "tolerances": definition["tolerances"], **summarise(status, values, errors)}
             write_results_csv(folder / "results.csv", status, values, keys["monte-carlo"],

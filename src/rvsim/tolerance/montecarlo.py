@@ -22,7 +22,8 @@ from .engine import BINDS, METRICS
 from .spec import ToleranceStudy
 
 __all__ = ["run_samples", "monte_carlo_units", "summarise", "CHUNK", "collect", "failures",
-           "failure_line", "first_line", "share_text"]
+           "failure_line", "first_line", "share_text",
+           "study_torque", "torque_text"]
 
 #: samples realised and dispatched at a time
 CHUNK = 2000
@@ -166,6 +167,31 @@ def failures(status: np.ndarray, errors: np.ndarray) -> dict:
                                                 "reason": errors[k] or ""})
         entry["count"] += 1
     return out
+
+
+def study_torque(study) -> dict:
+    """The summary's torque: ``torque_nm``, the nominal output torque every reducer runs at,
+    or, when the load torque is itself toleranced, ``torque_nm`` None and ``torque_drawn``
+    (the nominal, the tolerance, its distribution and the range drawn from, N*m)."""
+    nominal = study.nominal.operating.load_torque
+    for t in study.tolerances:
+        if t.name == "operating.load_torque":
+            low = max(nominal - t.tolerance, 0.0)      # realise() keeps a torque >= 0
+            return {"torque_nm": None, "torque_drawn": {
+                "nominal_nm": nominal, "tolerance_nm": t.tolerance,
+                "distribution": t.distribution, "low_nm": low, "high_nm": nominal + t.tolerance}}
+    return {"torque_nm": nominal}
+
+
+def torque_text(summary: dict) -> str:
+    """'412 N*m', or the torques drawn ('212 to 612 N*m, drawn uniform around 412 N*m')."""
+    drawn = summary.get("torque_drawn")
+    if not drawn:
+        return f"{summary['torque_nm']:g} N*m"
+    shape = {"uniform": "uniform", "normal": "normal, the tolerance at 3 sigma"}.get(
+        drawn["distribution"], drawn["distribution"])
+    return (f"{drawn['low_nm']:g} to {drawn['high_nm']:g} N*m (toleranced: {shape} around "
+            f"{drawn['nominal_nm']:g} N*m, each reducer at its own)")
 
 
 def share_text(share: float | None) -> str:

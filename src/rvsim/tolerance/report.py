@@ -10,7 +10,7 @@ import pandas as pd
 
 from .._files import atomic_write_text
 from .engine import METRICS
-from .montecarlo import failure_line, share_text
+from .montecarlo import failure_line, share_text, torque_text
 
 __all__ = ["write_tolerance_report", "distribution_figure", "sobol_figure",
            "write_allocation_report"]
@@ -69,7 +69,8 @@ def write_tolerance_report(folder: Path, summary: dict, values: dict, status) ->
             f"{summary['binds']} bind on assembly (binding share "
             f"{share_text(summary['binding_share'])}), {summary['failed']} failed"
             f"{html.escape(': ' + failure_line(summary) if summary['failed'] else '')}. "
-            f"Transmission error at {summary['torque_nm']:g} N*m over one output revolution "
+            f"Transmission error at {html.escape(torque_text(summary))} over one output "
+            "revolution "
             f"({summary['positions']} positions); lost motion and rigidity from the "
             "torque-reversal test (quasi-static engine).</p>",
             "<h2>Tolerances</h2>",
