@@ -112,6 +112,8 @@ def _allocate(args: argparse.Namespace) -> int:
         print(f"  {t['name']}: {t['given']:g} -> {t['allocated']:.4g} {t['unit']}")
     for t in result["targets"]:
         print(f"  {t['target']}: achieved {t['achieved']:.4g}")
+    for note in result.get("notes", []):
+        print(f"  note: {note}")
     return 0
 
 

@@ -285,16 +285,22 @@ def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_eva
                                 "cost": cost.cost(tol)})
                 return achieved
 
-            start = np.clip(np.log([cost.reference[n] for n in names]), low, high)
-            run(start)                                      # the tolerances as given
+            given_x = np.log([cost.reference[n] for n in names])
+            start = np.clip(given_x, low, high)
+            run(start)                  # the tolerances as given (within their cost bounds)
+            notes = [f"{n}: given {cost.reference[n]:g} {t.unit}, outside its cost bounds "
+                     f"({cost.tightest[n]:g} .. {cost.loosest[n]:g}): the search starts at "
+                     f"{math.exp(x):g}" for n, t, x, g in zip(names, study.tolerances, start,
+                                                             given_x) if x != g]
+            label = "at the start" if notes else "as given"
             added = []
             if not any(t.metric == BINDING for t in targets):
                 # no more scrap than the tolerances as given
                 given = history[-1]["binding_share"]
                 added.append(Target(BINDING, math.nan, given,
-                                    f"{BINDING}<={given:.4g} (as given)"))
+                                    f"{BINDING}<={given:.4g} ({label})"))
             given = history[-1]["failed_share"]
-            added.append(Target(FAILED, math.nan, given, f"{FAILED}<={given:.4g} (as given)"))
+            added.append(Target(FAILED, math.nan, given, f"{FAILED}<={given:.4g} ({label})"))
             targets = [*targets, *added]
             for t in added:
                 history[-1]["achieved"][t.text] = history[-1][t.metric]
@@ -345,7 +351,9 @@ def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_eva
     return {
         "study": study.name, "samples": samples, "evaluations": len(history),
         "status": "ok" if result.success else f"stopped: {result.message}",
-        "cost": best["cost"], "cost_start": cost.cost(dict(zip(names, np.exp(start)))),
+        # the cost of the tolerances as given, not of the start moved into the cost bounds
+        "cost": best["cost"], "cost_start": cost.cost(dict(cost.reference)),
+        "notes": notes,
         "binding_share": best["binding_share"],
         "failed_share": best["failed_share"],
         "tolerances": [{"name": n, "unit": t.unit, "given": t.tolerance,

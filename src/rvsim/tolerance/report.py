@@ -112,6 +112,7 @@ def write_allocation_report(folder: Path, result: dict) -> Path:
             f"{result['cost']:.4g} (all tolerances as given: {result['cost_start']:.4g}); "
             f"{result['evaluations']} Monte Carlo evaluations of {result['samples']} reducers "
             "each (common random numbers).</p>",
+            *(f"<p class='note'>{html.escape(n)}</p>" for n in result.get("notes", [])),
             "<h2>Tolerances</h2>",
             _table(pd.DataFrame(result["tolerances"]), index=False),
             "<h2>Targets</h2>",
