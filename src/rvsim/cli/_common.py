@@ -18,7 +18,7 @@ from ..parameters import (BUILT_IN_SETS, RV40E, Reducer, load_toml, parse_assign
                           with_values)
 
 __all__ = ["Parser", "UsageError", "stopped_line", "add_command", "add_reducer_options",
-           "reducer_from_args", "print_json", "EXAMPLES", "number", "positive_int", "probability",
+           "reducer_from_args", "print_json", "EXAMPLES", "number", "positive_int", "whole", "probability",
            "path_text", "scheduler_address", "check_output_file", "check_output_folder"]
 
 
@@ -118,6 +118,17 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be at least 1 (got {value})")
     return value
+
+
+def whole(text: str) -> int:
+    """argparse type: a whole number, its range checked by the command (int() reads "1_0"
+    as 10: refused, as ``number`` does)."""
+    try:
+        if "_" in text:
+            raise ValueError(text)
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
 
 
 def probability(text: str) -> float:

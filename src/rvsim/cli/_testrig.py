@@ -17,7 +17,7 @@ from pathlib import Path
 from .._json import to_json_safe
 from ..errors import ParameterError
 from ._common import (number, add_command, add_reducer_options, check_output_file,
-                      check_output_folder, path_text, print_json, reducer_from_args)
+                      check_output_folder, path_text, print_json, reducer_from_args, whole)
 
 __all__ = ["register"]
 
@@ -196,7 +196,7 @@ def register(sub) -> None:
                    help="run the model (quasi-static) at the same operating points")
     p.add_argument("--report", metavar="FILE.html",
                    help="write an HTML report (measured and model curves on the same axes)")
-    p.add_argument("--points", type=int, default=4096, metavar="N",
+    p.add_argument("--points", type=whole, default=4096, metavar="N",
                    help="nodes per output revolution (64 to 65536, default 4096)")
     p.set_defaults(func=_testrig)
 

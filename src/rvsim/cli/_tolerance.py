@@ -8,17 +8,9 @@ from pathlib import Path
 
 from ..errors import InputFileError
 from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
-                      scheduler_address, stopped_line)
+                      scheduler_address, stopped_line, whole)
 
 __all__ = ["register", "load_any_tolerance_study"]
-
-
-def _whole(text: str) -> int:
-    """argparse type: a whole number (its range is checked by the command)."""
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
 
 
 def load_any_tolerance_study(name: str):
@@ -121,7 +113,7 @@ def _common(p) -> None:
     p.add_argument("study", help="'rv40e-tolerances', 'cycloid-drive-tolerances' or a "
                    "tolerance study .toml file")
     p.add_argument("--out", required=True, metavar="DIR", type=path_text, help="output folder")
-    p.add_argument("--samples", type=_whole, metavar="N",
+    p.add_argument("--samples", type=whole, metavar="N",
                    help="Monte Carlo reducers (2 .. 1000000; default: the study's)")
     p.add_argument("--workers", type=positive_int,
                    help="local worker processes (default: one per core)")
@@ -145,7 +137,7 @@ def register(sub) -> None:
                      "rvsim tolerance my_tolerances.toml --out tol --scheduler "
                      "tcp://127.0.0.1:8786"])
     _common(p)
-    p.add_argument("--sobol", type=_whole, metavar="BASE", default=0,
+    p.add_argument("--sobol", type=whole, metavar="BASE", default=0,
                    help="also compute Sobol indices from BASE x (2 x errors + 2) reducers "
                         "(BASE a power of 2; 0, the default: no Sobol indices)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
