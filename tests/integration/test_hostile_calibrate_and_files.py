@@ -15,6 +15,7 @@ import shutil
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from .test_bad_inputs import expect_one_line_error, listing
@@ -81,6 +82,16 @@ def test_a_parameter_nil_beside_the_others_is_not_fixed():
     assert notes == ["the curves hardly depend on clearances.support_flange (6.2e-05 of their "
                      "change with errors.disc_runout, each changed by its scale): it cannot "
                      "be fitted"]
+
+
+def test_a_calibration_without_a_torque_says_the_model_ran_at_zero(workdir, cli):
+    # testrig --compare said so; calibrate fitted the model at 0 N*m without a word
+    frame = pd.read_csv(f"{EXAMPLE}/te_15rpm_300Nm_40C.csv")
+    frame[["time_s", "input_angle_deg", "output_angle_deg"]].to_csv("te.csv", index=False)
+    res = cli("calibrate", "te.csv", "--params", START, "--fit", "errors.disc_runout",
+              "--positions", "32", "--out", "fit", "--json")
+    assert ("te.csv: no torque in the recording, its name or the manifest: the model ran at "
+            "0 N*m") in json.loads(res.out)["notes"]
 
 
 # command line -> words the one-line error must contain (exit 2, nothing written)

@@ -264,6 +264,9 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     cov = s2 * inv * np.outer(scale, scale)
     std = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     notes = [n for point in points for f in point.files for n in f.notes]   # the recordings'
+    notes += [f"{', '.join(f.path.name for f in point.files)}: no torque in the recording, its "
+              "name or the manifest: the model ran at 0 N*m" for point in points
+              if "torque_nm" not in point.point and any(f.directions for f in point.files)]
     for j, why in blocked.items():
         std[j] = np.inf
         notes.append(f"the model fails on both sides of the estimate of {names[j]} ({why}): "
