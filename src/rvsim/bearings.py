@@ -19,7 +19,8 @@ import math
 from .dynamics.compliance import effective_modulus, palmgren_coefficient
 from .parameters import Reducer
 
-__all__ = ["arm_play", "support_play", "roller_pitch_diameter", "conforming_constants", "roller_coefficient",
+__all__ = ["arm_play", "support_play", "roller_pitch_diameter", "conforming_constants",
+           "roller_coefficient",
            "MainBearingStiffness", "main_bearing_stiffness", "ball_contact_coefficient",
            "RAD_PER_ARCMIN"]
 
