@@ -18,7 +18,8 @@ from ..parameters import (BUILT_IN_SETS, RV40E, Reducer, load_toml, parse_assign
 
 __all__ = ["Parser", "UsageError", "stopped_line", "add_command", "add_reducer_options",
            "reducer_from_args", "print_json", "EXAMPLES", "number", "positive_int", "probability",
-           "path_text", "scheduler_address", "check_output_file", "check_output_folder"]
+           "path_text", "scheduler_address", "check_output_file", "check_output_folder", "warn",
+           "check_load"]
 
 
 class UsageError(RvsimError):
@@ -89,6 +90,21 @@ def _reducer_of(params: str | None) -> Reducer:
     if params in BUILT_IN_SETS and not Path(params).exists():
         return BUILT_IN_SETS[params]
     return load_toml(params)
+
+
+def warn(text: str) -> None:
+    """One ``rvsim: warning: ...`` line on stderr: the command goes on."""
+    print(f"rvsim: warning: {' '.join(text.split())}", file=sys.stderr)
+
+
+def check_load(reducer: Reducer, torque: float, field: str) -> None:
+    """An output torque against the reducer's rating (rvsim.parameters.rating.check_torque):
+    refused above the momentary maximum, one warning line above the rated torque."""
+    from ..parameters.rating import check_torque
+
+    note = check_torque(reducer, torque, field)
+    if note:
+        warn(note)
 
 
 def print_json(payload: Any) -> None:
