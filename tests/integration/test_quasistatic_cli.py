@@ -85,10 +85,11 @@ def test_report_folder_rejected(cli, standin, tmp_path):
 
 def test_failed_solve_exits_1_with_status(cli, standin, tmp_path):
     page = tmp_path / "x.html"
-    res = cli("ltca", "--torque", "2e5", "--json", "--report", str(page))
+    res = cli("ltca", "--torque", "2e5", "--json", "--report", str(page), "--set",
+              "rating.momentary_torque=1e6")     # above it a load is refused (issue 30)
     assert res.code == 1 and json.loads(res.out)["status"] == "not_converged"
     assert "not_converged" in res.err and not page.exists()
-    res = cli("hysteresis", "--rated-torque", "2e5")
+    res = cli("hysteresis", "--rated-torque", "2e5", "--set", "rating.momentary_torque=1e6")
     assert res.code == 1 and "status not_converged" in res.err
 
 

@@ -70,7 +70,7 @@ def test_commands_on_the_engine(cli, tmp_path):
     from rvsim.joint_model import load_joint_model
 
     assert load_joint_model(joint)["reducer"]["rated_torque_nm"] == pytest.approx(412.0)
-    res = cli("ltca", "--positions", "72", "--json", "--report", str(tmp_path / "l.html"))
+    res = cli("ltca", "--positions", "81", "--json", "--report", str(tmp_path / "l.html"))
     assert res.code == 0, res.err
     assert LTCA_KEYS <= set(json.loads(res.out))
 

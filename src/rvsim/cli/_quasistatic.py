@@ -195,7 +195,8 @@ def register(sub) -> None:
                         "on the other flanks, as in a torque reversal)")
     p.add_argument("--positions", type=int, default=360, metavar="N",
                    help=f"input positions over one output revolution ({MIN_POSITIONS} to "
-                        f"{MAX_POSITIONS}, default 360)")
+                        f"{MAX_POSITIONS}, default 360; at least 2 zp + 1, 81 for the "
+                        "RV-40E: fewer alias the pin order)")
     p.set_defaults(func=_ltca)
 
     p = add_command(sub, "hysteresis", "torque-reversal test: rigidity, lost motion, backlash",

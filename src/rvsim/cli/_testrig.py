@@ -227,5 +227,6 @@ def register(sub) -> None:
     p.add_argument("--out", required=True, metavar="DIR", type=path_text,
                    help="folder for fitted.toml and calibration.json")
     p.add_argument("--positions", type=int, default=1024, metavar="N",
-                   help="model positions per output revolution (32 to 8192, default 1024)")
+                   help="model positions per output revolution (32 to 8192, default 1024; "
+                        "at least 2 zp + 1, 81 for the RV-40E: fewer alias the pin order)")
     p.set_defaults(func=_calibrate)
