@@ -23,9 +23,9 @@ def _simulate(args: argparse.Namespace) -> int:
         if path is not None:
             check_output_file(path, option)     # before the run, not after it
     reducer = reducer_from_args(args)
-    from ..parameters.rating import LOAD_FIELD, peak_load
+    from ..parameters.rating import peak_load
 
-    check_load(reducer, peak_load(reducer), LOAD_FIELD)
+    check_load(reducer, *peak_load(reducer))
     try:
         # a progress bar only for a person watching (stderr is a terminal)
         result = simulate(reducer, duration=args.duration, time_step=args.time_step,

@@ -33,13 +33,16 @@ def _as_option(exc: ParameterError, args: argparse.Namespace) -> ParameterError:
 
 def _check_loads(study) -> None:
     """The study's heaviest run against its rating (one warning line, or the refusal)."""
-    from ..parameters.rating import LOAD_FIELD, peak_load
+    from ..parameters.rating import peak_load
 
     def load(r):
-        return peak_load(r) if study.engine == "dynamic" else abs(r.operating.load_torque)
+        return (peak_load(r) if study.engine == "dynamic"
+                else (abs(r.operating.load_torque), "operating.load_torque"))
 
-    heaviest = max(study.reducers(), key=lambda r: load(r) / r.rating.momentary_torque)
-    check_load(heaviest, load(heaviest), LOAD_FIELD)
+    runs = zip(study.table()["run"], study.reducers())
+    run, heaviest = max(runs, key=lambda p: load(p[1])[0] / p[1].rating.momentary_torque)
+    torque, field = load(heaviest)
+    check_load(heaviest, torque, f"{field} (study run {int(run)})")
 
 
 def _study(args: argparse.Namespace) -> int:

@@ -14,18 +14,17 @@ import math
 
 from ..errors import ParameterError
 
-__all__ = ["check_torque", "check_rating", "peak_load", "LOAD_FIELD"]
-
-#: the field a dynamic run's load is named by
-LOAD_FIELD = "operating.load_torque"
+__all__ = ["check_torque", "check_rating", "peak_load"]
 
 
-def peak_load(reducer) -> float:
-    """The largest output load of a dynamic run [N*m]: the load torque, plus the fluctuation's
-    amplitude when ``operating.load_fluctuation`` is on."""
+def peak_load(reducer) -> tuple[float, str]:
+    """(the largest output load of a dynamic run [N*m], the fields that set it): the load
+    torque, plus the fluctuation's amplitude when ``operating.load_fluctuation`` is on."""
     op = reducer.operating
-    return abs(op.load_torque) + (abs(op.fluctuation_amplitude) if op.load_fluctuation
-                                  else 0.0)
+    if op.load_fluctuation and op.fluctuation_amplitude:
+        return (abs(op.load_torque) + abs(op.fluctuation_amplitude),
+                "operating.load_torque + operating.fluctuation_amplitude")
+    return abs(op.load_torque), "operating.load_torque"
 
 
 def check_rating(reducer) -> None:
