@@ -165,3 +165,13 @@ def test_the_paper_runs_at_400_n_m_with_fluctuation_are_above_rated():
         "torque of RV-40E, 412 N*m (within the allowable start/stop torque; rating.*)")
     steady = with_values(RV40E, {"E": 400})
     assert check_torque(steady, *peak_load(steady)) is None
+
+
+def test_a_refusal_after_a_warning_is_still_one_line(tmp_path, cli):
+    # a load above rated (a warning) and an output that cannot be written (a refusal): the
+    # refusal alone, as for any bad input
+    (tmp_path / "t.toml").write_text(_tolerance_file(
+        body='[tolerances."operating.load_torque"]\ntolerance = 200\n'))
+    (tmp_path / "out").write_text("a file, not a folder")
+    res = cli("tolerance", str(tmp_path / "t.toml"), "--out", str(tmp_path / "out"))
+    expect_one_line_error(res, "exists and is not a folder")
