@@ -20,7 +20,7 @@ SHORT = ("--set", "operating.duration=0.3", "--set", "operating.speed_ramp_time=
 
 
 def _ltca(cli, *extra):
-    result = cli("ltca", "--positions", "24", "--torque", "412", "--json", "--set", "A=1",
+    result = cli("ltca", "--positions", "81", "--torque", "412", "--json", "--set", "A=1",
                  *extra)
     assert result.code == 0, result.err
     return json.loads(result.out)
@@ -39,8 +39,8 @@ def test_ltca_with_the_fe_disc_is_softer_than_the_tooth_model(cli):
 
 
 def test_switch_a_off_leaves_the_model_unchanged(cli):
-    rigid = cli("ltca", "--positions", "12", "--json")
-    fe = cli("ltca", "--positions", "12", "--json", "--set", "flexibility.model=fe", *COARSE,
+    rigid = cli("ltca", "--positions", "81", "--json")
+    fe = cli("ltca", "--positions", "81", "--json", "--set", "flexibility.model=fe", *COARSE,
              "--set", "flexibility.fe_carrier=false")
     drop = ("wall_s",)
     a, b = json.loads(rigid.out), json.loads(fe.out)

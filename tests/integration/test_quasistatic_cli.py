@@ -111,7 +111,7 @@ def test_failed_solve_exits_1_with_status(cli, engine, tmp_path, monkeypatch):
     monkeypatch.setattr(engine, "ltca", _not_converged(real_ltca))
     monkeypatch.setattr(engine, "hysteresis", _not_converged(real_hysteresis))
     page = tmp_path / "x.html"
-    res = cli("ltca", "--positions", "72", "--json", "--report", str(page))
+    res = cli("ltca", "--positions", "81", "--json", "--report", str(page))
     assert res.code == 1 and json.loads(res.out)["status"] == "not_converged"
     assert "not_converged" in res.err and not page.exists()
     res = cli("hysteresis")

@@ -195,7 +195,7 @@ def test_the_quasi_static_engine_does_not_read_the_modes(cli):
     """Static: the modes' statics is the condensed table, so ltca is the same with any n."""
     import json
 
-    args = ("ltca", "--positions", "8", "--json", "--set", "A=1", "--set",
+    args = ("ltca", "--positions", "81", "--json", "--set", "A=1", "--set",
             "flexibility.model=fe", "--set", "flexibility.fe_element_size=4", "--set",
             "flexibility.fe_segments_per_tooth=2", "--set", "flexibility.fe_crank=false",
             "--set", "flexibility.fe_carrier=false")

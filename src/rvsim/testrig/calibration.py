@@ -150,6 +150,9 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     ``reducer`` to the analysed recordings ``points`` (:func:`rvsim.testrig.analyse_path`)."""
     from scipy import optimize, stats
 
+    from ..analysis.sampling import check_positions
+
+    check_positions(reducer, positions, "positions")     # the pin order unaliased
     names = [resolve_name(n) for n in fit]
     if not names:
         raise ParameterError("--fit", "name at least one parameter")
