@@ -2,7 +2,14 @@
 
 from __future__ import annotations
 
+import importlib.util
 import io
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
 from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
@@ -13,6 +20,106 @@ from rvsim.cli import main
 from rvsim.parameters import RV40E
 
 REFERENCE = Path(__file__).parent / "reference" / "data"
+
+
+#: the finite-element extra (rvsim[fe]) is installed: scikit-fem and gmsh import
+def _has_fe() -> bool:
+    try:
+        return all(importlib.util.find_spec(name) is not None for name in ("skfem", "gmsh"))
+    except ValueError:          # a module set to None in sys.modules (hidden on purpose)
+        return False
+
+
+HAS_FE = _has_fe()
+#: the reason FE tests give when they are skipped
+NO_FE = "needs the finite-element extra: pip install 'rvsim[fe]'"
+
+#: environment variable naming the test run's one FE cache (set by the first process, so
+#: pytest-xdist's workers share it; never the user's own cache)
+_TEST_CACHE = "RVSIM_TEST_FE_CACHE"
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "fe: needs the finite-element extra (skipped without it)")
+    _default_signals()
+    _one_fe_cache(config)
+    _compile_kernels_once(config)
+
+
+def pytest_unconfigure(config):
+    folder = getattr(config, "_rvsim_fe_cache", None)
+    if folder is not None:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def pytest_collection_modifyitems(config, items):
+    if HAS_FE:
+        return
+    skip = pytest.mark.skip(reason=NO_FE)
+    for item in items:
+        if item.get_closest_marker("fe") is not None:
+            item.add_marker(skip)
+
+
+def _one_fe_cache(config) -> None:
+    """One FE cache for the whole test run (meshes are built once, not once per test), in a
+    temporary folder: the user's ~/.cache/rvsim is neither read nor written.  The process that
+    creates it (the only one, or pytest-xdist's controller) removes it at the end; workers
+    inherit it through the environment.  Tests that must see a cache miss use the
+    ``fresh_fe_cache`` fixture."""
+    folder = os.environ.get(_TEST_CACHE)
+    if folder is None:
+        folder = tempfile.mkdtemp(prefix="rvsim-test-fe-cache-")
+        os.environ[_TEST_CACHE] = folder
+        config._rvsim_fe_cache = folder
+    os.environ["RVSIM_CACHE_DIR"] = folder
+
+
+def _compile_kernels_once(config) -> None:
+    """Compile the numba kernels into their on-disk cache before any test runs, the dynamic
+    engine's and the quasi-static solver's side by side (tests/_warmup.py), so that no test
+    (and no pair of pytest-xdist workers at once) pays for compiling them.  Only in the first
+    process (not in xdist's workers), not for --collect-only; RVSIM_TEST_NO_WARMUP=1 leaves it
+    out.  A warm-up that fails is reported and the tests run anyway (they show the fault)."""
+    if hasattr(config, "workerinput") or config.option.collectonly \
+            or os.environ.get("RVSIM_TEST_NO_WARMUP"):
+        return
+    root = Path(__file__).resolve().parents[1]
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(root / "src"), str(root)] + [os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep)}
+    sys.stderr.write("rvsim tests: compiling the numba kernels once (a few seconds when "
+                     "cached)\n")
+    procs = [subprocess.Popen([sys.executable, "-m", "tests._warmup", kind], cwd=root, env=env,
+                              stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE, text=True)
+             for kind in ("dynamic", "quasistatic")]
+    for proc in procs:
+        _, err = proc.communicate()
+        if proc.returncode != 0:
+            tail = "\n".join(err.strip().splitlines()[-5:])
+            sys.stderr.write(f"rvsim tests: warm-up {proc.args[-1]} failed "
+                             f"(exit {proc.returncode}):\n{tail}\n")
+
+
+@pytest.fixture
+def fresh_fe_cache(tmp_path, monkeypatch):
+    """An empty FE cache of this test's own (a cache miss is part of what it checks)."""
+    folder = tmp_path / "fe-cache"
+    monkeypatch.setenv("RVSIM_CACHE_DIR", str(folder))
+    return folder
+
+
+def _default_signals() -> None:
+    """Stop signals at their interactive defaults in the test process (and so in every child it
+    starts): a run in a background job (``nohup ... &``, many CI runners) inherits SIGINT and
+    SIGHUP as *ignored*, and an ignored signal stays ignored across exec, so the tests that send
+    real signals to rvsim processes would see nothing happen.  rvsim itself keeps an ignored
+    signal ignored on purpose (tests/unit/test_stopping.py); the tests want the defaults."""
+    if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    for sig in (signal.SIGTERM, signal.SIGHUP):
+        if signal.getsignal(sig) is signal.SIG_IGN:
+            signal.signal(sig, signal.SIG_DFL)
 
 
 @pytest.fixture

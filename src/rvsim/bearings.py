@@ -19,7 +19,8 @@ import math
 from .dynamics.compliance import effective_modulus, palmgren_coefficient
 from .parameters import Reducer
 
-__all__ = ["arm_play", "support_play", "conforming_constants", "roller_coefficient",
+__all__ = ["arm_play", "support_play", "roller_pitch_diameter", "conforming_constants",
+           "roller_coefficient",
            "MainBearingStiffness", "main_bearing_stiffness", "ball_contact_coefficient",
            "RAD_PER_ARCMIN"]
 
@@ -44,6 +45,12 @@ def support_play(r: Reducer, upper: bool) -> float:
     if r.bearings.support_rollers:
         play += 0.5 * r.bearings.support_clearance
     return play
+
+
+def roller_pitch_diameter(inner_radius: float, roller_diameter: float) -> float:
+    """Pitch (roller-centre) diameter of a set of rollers running directly on a shaft of
+    ``inner_radius`` (the eccentric or the journal is the inner raceway) [m]."""
+    return 2.0 * inner_radius + roller_diameter
 
 
 def conforming_constants(length: float, m1, m2, radial_difference: float,

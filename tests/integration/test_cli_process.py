@@ -30,10 +30,10 @@ def _rvsim(*args, cwd):
 
 
 def test_quick_exit_leaves_complete_outputs(tmp_path):
-    res = _rvsim("ltca", "--positions", "36", "--json", "--report", "ltca.html", cwd=tmp_path)
+    res = _rvsim("ltca", "--positions", "81", "--json", "--report", "ltca.html", cwd=tmp_path)
     assert res.returncode == 0, res.stderr
     data = json.loads(res.stdout)
-    assert data["status"] == "ok" and data["positions"] == 36
+    assert data["status"] == "ok" and data["positions"] == 81
     page = (tmp_path / "ltca.html").read_text()
     assert page.rstrip().endswith("</html>")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["ltca.html"]
@@ -114,7 +114,7 @@ def test_local_tolerance_and_allocation_end_without_teardown(tmp_path):
 def test_standard_output_full_or_closed_is_one_line(tmp_path):
     # found by a hostile review: a traceback ending in OSError ENOSPC, or AttributeError on a
     # closed standard output (Python's sys.stdout is then None)
-    for args in (("params",), ("ltca", "--positions", "8", "--json")):
+    for args in (("params",), ("ltca", "--positions", "81", "--json")):
         with open("/dev/full", "w") as full:
             res = subprocess.run([sys.executable, "-m", "rvsim", *args], stdout=full,
                                  stderr=subprocess.PIPE, cwd=tmp_path, env=ENV, timeout=300)
@@ -289,7 +289,7 @@ def test_out_of_memory_is_one_line(monkeypatch, capsys):
         raise MemoryError("Unable to allocate 513. MiB for an array with shape (8400, 8000)")
 
     monkeypatch.setattr(rvsim.quasistatic, "ltca", exhausted)
-    assert main(["ltca", "--positions", "8"]) == 1
+    assert main(["ltca", "--positions", "81"]) == 1
     err = capsys.readouterr().err
     assert err.startswith("rvsim: error: out of memory (Unable to allocate 513. MiB")
     assert err.count("\n") == 1 and "flexibility.fe_element_size" in err

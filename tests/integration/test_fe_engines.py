@@ -6,6 +6,11 @@ import json
 
 import pytest
 
+from tests.conftest import HAS_FE, NO_FE
+
+if not HAS_FE:
+    pytest.skip(NO_FE, allow_module_level=True)
+
 # the disc's figures: the finite-element crank (on by default with model = fe) left out
 COARSE = ("--set", "flexibility.fe_element_size=4", "--set",
           "flexibility.fe_segments_per_tooth=2", "--set", "flexibility.fe_crank=false")
@@ -14,13 +19,8 @@ SHORT = ("--set", "operating.duration=0.3", "--set", "operating.speed_ramp_time=
          "--set", "operating.steady_start=0.2")
 
 
-@pytest.fixture(autouse=True)
-def _private_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("RVSIM_CACHE_DIR", str(tmp_path))
-
-
 def _ltca(cli, *extra):
-    result = cli("ltca", "--positions", "24", "--torque", "412", "--json", "--set", "A=1",
+    result = cli("ltca", "--positions", "81", "--torque", "412", "--json", "--set", "A=1",
                  *extra)
     assert result.code == 0, result.err
     return json.loads(result.out)
@@ -39,8 +39,8 @@ def test_ltca_with_the_fe_disc_is_softer_than_the_tooth_model(cli):
 
 
 def test_switch_a_off_leaves_the_model_unchanged(cli):
-    rigid = cli("ltca", "--positions", "12", "--json")
-    fe = cli("ltca", "--positions", "12", "--json", "--set", "flexibility.model=fe", *COARSE,
+    rigid = cli("ltca", "--positions", "81", "--json")
+    fe = cli("ltca", "--positions", "81", "--json", "--set", "flexibility.model=fe", *COARSE,
              "--set", "flexibility.fe_carrier=false")
     drop = ("wall_s",)
     a, b = json.loads(rigid.out), json.loads(fe.out)
@@ -126,7 +126,7 @@ def test_bad_fe_carrier_value_is_one_line(cli):
      "between 0.375 and 12 mm"),
 ])
 def test_element_sizes_out_of_range_are_refused_before_meshing(cli, tmp_path, setting, field,
-                                                               bounds):
+                                                               bounds, fresh_fe_cache):
     """A 30 mm crank mesh made scikit-fem raise, a 1 um one ran for hours: both one line, and
     before any body is meshed (a bad disc size used to be refused after the 3-D crank was
     meshed: 24 s with an empty cache)."""
@@ -134,10 +134,11 @@ def test_element_sizes_out_of_range_are_refused_before_meshing(cli, tmp_path, se
     assert result.code == 2
     assert result.err.startswith(f"rvsim: error: parameter '{field}': must lie {bounds}")
     assert result.err.count("\n") == 1
-    assert not any(tmp_path.rglob("*.npz"))        # the private cache: nothing was meshed
+    assert not any(tmp_path.rglob("*.npz"))        # the fresh cache: nothing was meshed
 
 
-def test_a_study_level_or_a_set_value_of_an_inadmissible_size_is_refused_at_once(cli, tmp_path):
+def test_a_study_level_or_a_set_value_of_an_inadmissible_size_is_refused_at_once(cli, tmp_path,
+                                                                                 fresh_fe_cache):
     """The sizes are part of the parameters' validation: a study refuses the run whose level
     is inadmissible before anything runs, and `rvsim params` does not print such a set (a
     hostile test found the study meshing, then storing the runs as failed)."""

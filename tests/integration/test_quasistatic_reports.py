@@ -1,9 +1,8 @@
-"""The ltca and hysteresis report pages in a real browser (stand-in engine until merged)."""
+"""The ltca and hysteresis report pages in a real browser."""
 
 import pytest
 
 from tests.integration.test_report_browser import CHROMIUM, _check, _open
-from tests.quasistatic_standin import standin  # noqa: F401  (fixture)
 
 pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed")
 
@@ -13,7 +12,7 @@ pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed
               "Largest lines", "Pin load distribution")),
     ("hysteresis", ("Catalogue quantities", "Torque-angle curve", "GB/T 35089-2018")),
 ])
-def test_quasistatic_pages_in_browser(tmp_path, cli, standin, command, headings):
+def test_quasistatic_pages_in_browser(tmp_path, cli, command, headings):
     page = tmp_path / f"{command}.html"
     res = cli(command, "--set", "I=0.01", "--report", str(page))
     assert res.code == 0, res.err

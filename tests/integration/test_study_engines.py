@@ -1,14 +1,14 @@
-"""``engine = "quasi-static"`` in a study file (issue 9, item 4), on the engine stand-in."""
+"""``engine = "quasi-static"`` in a study file (issue 9, item 4), on the real engine."""
 
 import textwrap
 
 import pytest
 
+import rvsim.quasistatic as qs
 from rvsim.doe import load_study, run
 from rvsim.doe.engines import evaluate_quasi_static
-from rvsim.errors import InputFileError, ParameterError
+from rvsim.errors import InputFileError, ParameterError, SimulationError
 from rvsim.parameters import RV40E, with_values
-from tests.quasistatic_standin import standin  # noqa: F401  (fixture)
 
 STUDY = """
 name = "qs"
@@ -29,7 +29,7 @@ def _study(tmp_path, extra):
     return path
 
 
-def test_quasi_static_study_runs_with_catalogue_responses(tmp_path, standin):
+def test_quasi_static_study_runs_with_catalogue_responses(tmp_path):
     study = load_study(_study(tmp_path, 'engine = "quasi-static"\nhysteresis = true'))
     assert (study.engine, study.hysteresis) == ("quasi-static", True)
     results = run(study, tmp_path / "out", workers=1, progress=False)
@@ -37,7 +37,8 @@ def test_quasi_static_study_runs_with_catalogue_responses(tmp_path, standin):
     for column in ("te_mean_arcmin", "te_pp_arcmin", "max_pin_force_n",
                    "torsional_rigidity_nm_per_arcmin", "lost_motion_arcmin", "backlash_arcmin"):
         assert results[column].notna().all(), column
-    # the stand-in's backlash grows with the clearance-opening H + I: the design sees it
+    # the backlash grows with the clearance-opening errors H (pin circle) and I (equidistant
+    # modification): the design sees it
     by_level = results.groupby("H")["backlash_arcmin"].mean()
     assert by_level.is_monotonic_increasing and by_level.iloc[-1] > by_level.iloc[0]
     # with and without the hysteresis test, the rows of one reducer are different store
@@ -58,17 +59,24 @@ def test_engine_key_errors(tmp_path, extra, words):
         load_study(_study(tmp_path, extra))
 
 
-def test_outcome_shape_and_failures(standin, monkeypatch):
+def test_outcome_shape_and_failures(monkeypatch):
     outcome = evaluate_quasi_static(RV40E)
     assert outcome["status"] == "ok" and "error" not in outcome and outcome["wall_s"] >= 0
     assert outcome["metrics"]["positions"] == 360 and "status" not in outcome["metrics"]
-    failed = evaluate_quasi_static(with_values(RV40E, {"E": 2e5}))
+
+    def stopped(*args, **kwargs):
+        raise SimulationError("not_converged", "quasi-static analysis stopped at position 3 "
+                              "of 360: not converged")
+
+    monkeypatch.setattr(qs, "ltca", stopped)
+    failed = evaluate_quasi_static(RV40E)
     assert failed["status"] == "not_converged" and "not converged" in failed["error"]
+    monkeypatch.undo()
 
     def broken(*args, **kwargs):
         raise RuntimeError("solver exploded")
 
-    monkeypatch.setattr(standin, "hysteresis", broken)
+    monkeypatch.setattr(qs, "hysteresis", broken)
     outcome = evaluate_quasi_static(RV40E, hysteresis=True)
     assert outcome["status"] == "error" and "solver exploded" in outcome["error"]
 

@@ -146,7 +146,7 @@ def test_calibrate_says_when_the_model_fails_next_to_the_start(tmp_path, capsys)
     # the RV-40E's teeth do not assemble with any disc runout: starting at zero, the fit must
     # say so (scipy's relative step, 1e-3 of |x|, stayed at 1e-15 m and claimed an interval)
     out = tmp_path / "fit"
-    assert main(["calibrate", EXAMPLE, "--fit", "errors.disc_runout", "--positions", "64",
+    assert main(["calibrate", EXAMPLE, "--fit", "errors.disc_runout", "--positions", "81",
                  "--out", str(out), "--json"]) == 1
     payload = json.loads(capsys.readouterr().out)
     assert payload["status"] == "model_fails"
@@ -286,7 +286,7 @@ def test_one_revolution_te_curve_sampled_periodically(tmp_path, capsys):
 def test_calibrate_status_says_when_a_parameter_is_not_fitted(tmp_path, capsys):
     # the data do not depend on the carrier's density: it was "status ok", exit 0
     assert main(["calibrate", EXAMPLE, "--params", "docs/examples/testrig_start.toml", "--fit",
-                 "materials.carrier.density", "--positions", "64", "--out",
+                 "materials.carrier.density", "--positions", "81", "--out",
                  str(tmp_path / "a"), "--json"]) == 1
     payload = json.loads(capsys.readouterr().out)
     assert payload["status"] == "not_identifiable"
@@ -294,7 +294,7 @@ def test_calibrate_status_says_when_a_parameter_is_not_fitted(tmp_path, capsys):
     # a ratio 0.4 % off: the recordings' trend note reaches the calibration, and an interval
     # that reached below zero for a runout is cut at zero, and said so
     assert main(["calibrate", EXAMPLE, "--params", "docs/examples/testrig_start.toml",
-                 "--ratio", "121.5", "--fit", "errors.disc_runout", "--positions", "64",
+                 "--ratio", "121.5", "--fit", "errors.disc_runout", "--positions", "81",
                  "--out", str(tmp_path / "b"), "--json"]) == 0
     payload = json.loads(capsys.readouterr().out)
     low, high = payload["parameters"]["errors.disc_runout"]["ci95"]

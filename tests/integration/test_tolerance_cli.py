@@ -7,7 +7,7 @@ import pytest
 SMALL = """name = "small"
 samples = 6
 seed = 3
-positions = 12
+positions = 81
 [set]
 "operating.load_torque" = 412
 "errors.equidistant_modification" = 0.010
@@ -181,7 +181,7 @@ def test_every_reducer_binding_is_reported_without_warnings(tmp_path, small, cli
 INVALID = """name = "invalid"
 samples = 3
 seed = 4
-positions = 12
+positions = 81
 [tolerances."materials.pin.poisson_ratio"]
 tolerance = 5
 distribution = "uniform"
@@ -243,7 +243,7 @@ def test_allocate_does_not_loosen_into_reducers_the_model_refuses(tmp_path, cli)
 SMALL_POISSON = """name = "poisson"
 samples = 4
 seed = 3
-positions = 12
+positions = 81
 [set]
 "errors.equidistant_modification" = 0.010
 [tolerances.pin_radius]
@@ -271,7 +271,7 @@ def test_single_stage_tolerance_study(tmp_path):
 
     from rvsim.tolerance import cycloid_drive_tolerances, tolerance_analysis
 
-    study = dataclasses.replace(cycloid_drive_tolerances(), positions=12)
+    study = dataclasses.replace(cycloid_drive_tolerances(), positions=61)
     summary = tolerance_analysis(study, tmp_path / "cd", samples=3, workers=1, report=False)
     assert summary["ok"] + summary["binds"] == 3 and summary["failed"] == 0
     assert summary["metrics"]["ate_arcmin"]["n"] == summary["ok"]

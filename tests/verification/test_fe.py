@@ -8,6 +8,11 @@ import math
 import numpy as np
 import pytest
 
+from tests.conftest import HAS_FE, NO_FE
+
+if not HAS_FE:
+    pytest.skip(NO_FE, allow_module_level=True)
+
 from rvsim.dynamics._fe_contacts import coupled_forces, lagged_forces, table_compliance
 from rvsim.dynamics.compliance import palmgren_coefficient, tooth_compliance
 from rvsim.fe.elasticity import PlaneStressBody, edge_load
@@ -15,11 +20,6 @@ from rvsim.fe.mesh import Circle, mesh_plane_region
 from rvsim.parameters import RV40E, with_values
 
 E, NU, T, A_IN, B_OUT = 2.0e11, 0.3, 0.01, 0.02, 0.05
-
-
-@pytest.fixture(autouse=True)
-def _private_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("RVSIM_CACHE_DIR", str(tmp_path))
 
 
 def _annulus(h):
@@ -102,7 +102,7 @@ def _coarse(**values):
     return with_values(RV40E, {**base, **values})
 
 
-def test_disc_table_is_cached_symmetric_and_stiffer_nowhere_than_the_tooth_model():
+def test_disc_table_is_cached_symmetric_and_stiffer_nowhere_than_the_tooth_model(fresh_fe_cache):
     from rvsim.fe.disc import disc_table
 
     r = _coarse()
@@ -379,7 +379,7 @@ def test_craig_bampton_keeps_the_statics_and_converges_to_the_full_frequencies()
     assert errors[2] < 0.005
 
 
-def test_disc_craig_bampton_is_cached():
+def test_disc_craig_bampton_is_cached(fresh_fe_cache):
     from rvsim.fe.modes import disc_craig_bampton
 
     r = _coarse(**{"flexibility.fe_element_size": 6.0})
@@ -449,7 +449,7 @@ def _cached_spd_table(build, size):
     return c
 
 
-def test_crank_table_of_the_rv40e():
+def test_crank_table_of_the_rv40e(fresh_fe_cache):
     """RV-40E crank (journal r = 10 mm, eccentrics r = 12.5 mm offset 1.5 mm, supports at 0
     and 42 mm, discs at 13 and 29 mm), h = 5 mm: 6.26e-10 m/N under a force along the
     eccentricity at disc 1, 6.53e-10 across it, 4.66e-10 to the other eccentric; 6.30, 6.58,
@@ -465,7 +465,7 @@ def test_crank_table_of_the_rv40e():
     assert c[4, 4] == pytest.approx(c[0, 0], rel=0.01)
 
 
-def test_carrier_bore_table():
+def test_carrier_bore_table(fresh_fe_cache):
     """RV-40E carrier plate (r = 80 mm, 15 mm thick, clamped at the rim; crank bores r = 13 mm
     on the 45 mm crank circle): a bore moves 1.4867e-10 m/N radially, 1.2843e-10 m/N
     tangentially under its own load (h = 1.6 mm; 1.4875 / 1.2925 at 6 mm, 1.4865 / 1.2836 at

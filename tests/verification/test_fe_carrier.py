@@ -1,7 +1,7 @@
 """Finite-element carrier and flange in both engines (issue 13; docs/model.md section 17,
 "Carrier / flange"): the plate element's stiffness and energy, its Gauss-Seidel sweep, its
 limits, the quasi-static engine against the dynamic one, the torsional rigidity against a hand
-estimate from the table.  Coarse meshes (h = 4 mm): the FE cache starts empty."""
+estimate from the table.  Coarse meshes (h = 4 mm), in the test run's one FE cache."""
 
 from __future__ import annotations
 
@@ -9,6 +9,11 @@ import math
 
 import numpy as np
 import pytest
+
+from tests.conftest import HAS_FE, NO_FE
+
+if not HAS_FE:
+    pytest.skip(NO_FE, allow_module_level=True)
 
 from rvsim.dynamics import _layout as L
 from rvsim.dynamics._bearings import conforming_force
@@ -25,11 +30,6 @@ COARSE = {"flexibility.model": "fe", "flexibility.fe_element_size": 4.0,
           "flexibility.fe_segments_per_tooth": 2, "flexibility.fe_crank": False}
 
 
-@pytest.fixture(autouse=True)
-def _private_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("RVSIM_CACHE_DIR", str(tmp_path))
-
-
 def _plate(model, q, upper, want=True, elastic=None):
     """One plate's support bushings alone: (Q, K, energy, forces)."""
     Q = np.zeros(L.N_DOF)
@@ -44,11 +44,9 @@ def _plate(model, q, upper, want=True, elastic=None):
 @pytest.fixture(scope="module")
 def loaded(tmp_path_factory):
     """RV-40E with support clearances at 300 N*m, the FE carrier on: (model, equilibrium)."""
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setenv("RVSIM_CACHE_DIR", str(tmp_path_factory.mktemp("fe")))
-        r = with_values(RV40E, {**COARSE, "N": 0.003, "O": 0.002})
-        q = solve_path(r, np.array([0.3]), np.array([300.0])).q[0]
-        return build_model(r, 5e-6), q
+    r = with_values(RV40E, {**COARSE, "N": 0.003, "O": 0.002})
+    q = solve_path(r, np.array([0.3]), np.array([300.0])).q[0]
+    return build_model(r, 5e-6), q
 
 
 @pytest.mark.parametrize("upper", [False, True])

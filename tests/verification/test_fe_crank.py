@@ -11,6 +11,11 @@ import math
 import numpy as np
 import pytest
 
+from tests.conftest import HAS_FE, NO_FE
+
+if not HAS_FE:
+    pytest.skip(NO_FE, allow_module_level=True)
+
 from rvsim.dynamics import _kernel as Kn
 from rvsim.dynamics import _layout as L
 from rvsim.dynamics._bearings import conforming_approach
@@ -24,13 +29,6 @@ TORQUE = 300.0
 BASE = {"flexibility.model": "fe", "flexibility.fe_crank_element_size": SIZE,
         "flexibility.fe_carrier": False}
 ANGLES = np.linspace(0.0, 2.0 * np.pi, 4)[:-1]
-
-
-@pytest.fixture(scope="module", autouse=True)
-def _private_cache(tmp_path_factory):
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setenv("RVSIM_CACHE_DIR", str(tmp_path_factory.mktemp("fe-crank")))
-        yield
 
 
 @pytest.fixture(scope="module")

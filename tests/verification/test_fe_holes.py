@@ -7,6 +7,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+
+from tests.conftest import HAS_FE, NO_FE
+
+if not HAS_FE:
+    pytest.skip(NO_FE, allow_module_level=True)
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
@@ -20,12 +25,7 @@ COARSE = {"flexibility.model": "fe", "flexibility.fe_element_size": 3.0,
           "flexibility.fe_carrier": False, "flexibility.fe_disc_holes": True}
 
 
-@pytest.fixture(autouse=True)
-def _private_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("RVSIM_CACHE_DIR", str(tmp_path))
-
-
-def test_hole_table_reproduces_the_full_model_and_has_the_stretch_structure():
+def test_hole_table_reproduces_the_full_model_and_has_the_stretch_structure(fresh_fe_cache):
     """Against the full FE model solved on its own (the saddle-point system K u + G lambda =
     b, G^T u = 0: the reference as Lagrange multipliers, SuperLU), for an unbalanced load
     on every segment and both holes: measured 2e-12 relative.  The 3 zero eigenvalues are the

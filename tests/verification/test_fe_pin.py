@@ -9,16 +9,16 @@ import math
 import numpy as np
 import pytest
 
+from tests.conftest import HAS_FE, NO_FE
+
+if not HAS_FE:
+    pytest.skip(NO_FE, allow_module_level=True)
+
 from rvsim.fe.elasticity import Factor, PlaneStressBody, edge_force
 from rvsim.fe.mesh import mesh_plane_region
 from rvsim.parameters import RV40E, with_values
 
 E, NU, T, R = 2.0e11, 0.3, 0.015, 0.003
-
-
-@pytest.fixture(autouse=True)
-def _private_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("RVSIM_CACHE_DIR", str(tmp_path))
 
 
 def michell_approach(alpha: float, terms: int = 20000) -> float:

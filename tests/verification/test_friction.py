@@ -40,6 +40,9 @@ QUICK = {"operating.speed_ramp_time": 0.2, "operating.load_start": 0.2,
 FE_DISC = {"A": 1, "flexibility.model": "fe", "flexibility.fe_element_size": 4.0,
            "flexibility.fe_segments_per_tooth": 2, "flexibility.fe_crank": False,
            "flexibility.fe_carrier": False}
+#: the closed-form tooth, and the finite-element disc (skipped without the FE extra)
+BODIES = [pytest.param({}, id="closed-form"),
+          pytest.param(FE_DISC, id="fe-disc", marks=pytest.mark.fe)]
 #: friction switched on everywhere with every coefficient zero
 ZERO_FRICTION = {"friction.pins_turn": True, "friction.oil_viscosity": 32.0,
                  "friction.arm_bearing_diameter": 30.0}
@@ -60,7 +63,7 @@ def test_zero_friction_quasistatic_is_the_frictionless_one():
     assert np.array_equal(a.te, b.te) and np.array_equal(a.pin_forces, b.pin_forces)
 
 
-@pytest.mark.parametrize("body", [{}, FE_DISC], ids=["closed-form", "fe-disc"])
+@pytest.mark.parametrize("body", BODIES)
 def test_energy_balance_with_friction(body):
     result = simulate(with_values(RV40E, {**QUICK, **TYPICAL_FRICTION, **body}))
     e = result.energy
@@ -70,7 +73,7 @@ def test_energy_balance_with_friction(body):
     assert abs(e["relative_residual"]) < 2e-4
 
 
-@pytest.mark.parametrize("body", [{}, FE_DISC], ids=["closed-form", "fe-disc"])
+@pytest.mark.parametrize("body", BODIES)
 def test_hysteresis_loop_area_is_the_friction_work(body):
     reducer = with_values(RV40E, {**TYPICAL_FRICTION, **body})
     torque, branch = sweep_torques(reducer.rating.rated_torque, 50)

@@ -129,7 +129,7 @@ def test_dynamic_ratio_unloaded_te_and_quasi_static_mean():
 
 def test_ring_output_on_the_command_line_and_refused_for_the_rv(capsys):
     assert main(["ltca", "--params", "cycloid-drive", "--set", "layout.ring_output=true",
-                 "--positions", "8", "--json"]) == 0
+                 "--positions", "61", "--json"]) == 0
     assert '"status": "ok"' in capsys.readouterr().out
     with pytest.raises(ParameterError, match="layout.ring_output"):
         with_values(BUILT_IN_SETS["RV-40E"], {"layout.ring_output": True})

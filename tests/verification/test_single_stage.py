@@ -149,7 +149,7 @@ def test_toml_base_and_set_name_on_the_command_line(tmp_path, capsys):
     path.write_text('base = "cycloid-drive"\n[layout]\noutput_pin_clearance = 0.005\n')
     reducer = load_toml(path)
     assert reducer.layout.single_stage and reducer.layout.output_pin_clearance == 5e-6
-    assert main(["ltca", "--params", str(path), "--positions", "8", "--json"]) == 0
+    assert main(["ltca", "--params", str(path), "--positions", "61", "--json"]) == 0
     assert '"status": "ok"' in capsys.readouterr().out
     assert main(["hysteresis", "--params", "cycloid-drive", "--json"]) == 0
     assert '"status": "ok"' in capsys.readouterr().out

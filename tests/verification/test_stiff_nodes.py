@@ -170,6 +170,7 @@ def test_substeps_for():
     assert substeps_for(1e6, 1.6) == MAX_SUBSTEPS and substeps_for(5.0, 0.0) == 1
 
 
+@pytest.mark.fe
 @pytest.mark.parametrize("bodies", [
     {"A": 1, "flexibility.fe_crank": False, "flexibility.fe_carrier": False},
     {"A": 0, "flexibility.fe_crank": True, "flexibility.fe_carrier": False},

@@ -108,7 +108,7 @@ def test_one_toleranced_error_matches_the_analytical_model(tmp_path):
 
     study = ToleranceStudy("h", (Tolerance("errors.pin_circle_radius", 0.01),), base=RV40E,
                            fixed=(("errors.pin_circle_radius", 0.02),), samples=24, seed=4,
-                           positions=12)
+                           positions=81)
     summary = tolerance_analysis(study, tmp_path / "h", workers=1, report=False)
     got = summary["metrics"]["te_mean_arcmin"]
     nominal = with_values(RV40E, {"H": 0.02})

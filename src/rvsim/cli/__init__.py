@@ -15,7 +15,7 @@ from .. import __version__
 from .._stopping import check_stop, stop_signals
 from ..errors import RvsimError, Terminated
 from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig, _tolerance
-from ._common import EXAMPLES, Parser
+from ._common import EXAMPLES, Parser, flush_warnings
 
 __all__ = ["main", "run", "build_parser"]
 
@@ -49,6 +49,7 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
     """(exit code, whether the process may end at once: :func:`_ends_at_once`)."""
     parser = build_parser()
     at_once = False
+    flush_warnings(show=False)
     try:
         args = parser.parse_args(argv)
         at_once = _ends_at_once(getattr(args, "command", None), args)
@@ -66,6 +67,7 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
         sys.stdout.flush()               # a full disk shows here, not lost at the exit
         return code, at_once
     except RvsimError as exc:
+        flush_warnings(show=False)       # a refusal is one line
         # one line, whatever a library's text inside it held (SQLite's integrity report)
         print(f"rvsim: error: {' '.join(str(exc).split())}", file=sys.stderr)
         return 2, at_once
@@ -80,6 +82,7 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
     except MemoryError as exc:
         # numpy's and scipy's own (a finite-element mesh too fine for this machine, a
         # reviewer's fe_element_size 0.4 mm under a 2.5 GB limit): one line, not a traceback
+        flush_warnings(show=False)       # an error is one line
         said = " ".join(str(exc).split())
         print(f"rvsim: error: out of memory{f' ({said})' if said else ''}: a coarser "
               "finite-element mesh (flexibility.fe_element_size, fe_crank_element_size) or "
@@ -89,8 +92,11 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
         if exc.errno not in _OUTPUT_ERRORS:
             raise
         # standard output on a full disk, a failed device, or closed (>&-)
+        flush_warnings(show=False)
         print(f"rvsim: error: cannot write the output ({exc.strerror or exc})", file=sys.stderr)
         return 1, at_once
+    finally:
+        flush_warnings()                 # the command ran (or stopped): its warnings
 
 
 #: errors of a write to standard output that end the command with one line

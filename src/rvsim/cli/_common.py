@@ -18,8 +18,9 @@ from ..parameters import (BUILT_IN_SETS, RV40E, Reducer, load_toml, parse_assign
                           with_values)
 
 __all__ = ["Parser", "UsageError", "stopped_line", "add_command", "add_reducer_options",
-           "reducer_from_args", "print_json", "EXAMPLES", "number", "positive_int", "whole", "probability",
-           "path_text", "scheduler_address", "check_output_file", "check_output_folder"]
+           "reducer_from_args", "print_json", "EXAMPLES", "number", "positive_int", "whole",
+           "probability", "path_text", "scheduler_address", "check_output_file",
+           "check_output_folder", "warn", "check_load", "flush_warnings"]
 
 
 class UsageError(RvsimError):
@@ -90,6 +91,35 @@ def _reducer_of(params: str | None) -> Reducer:
     if params in BUILT_IN_SETS and not Path(params).exists():
         return BUILT_IN_SETS[params]
     return load_toml(params)
+
+
+#: warnings of the running command, printed when it ends (rvsim.cli._main)
+_WARNINGS: list[str] = []
+
+
+def warn(text: str) -> None:
+    """One ``rvsim: warning: ...`` line on stderr, printed when the command ends (once per
+    text), unless the command is refused: a refusal is its one error line."""
+    _WARNINGS.append(f"rvsim: warning: {' '.join(text.split())}")
+
+
+def flush_warnings(show: bool = True) -> None:
+    """Print (``show``) or drop the warnings held so far."""
+    lines = list(dict.fromkeys(_WARNINGS))
+    _WARNINGS.clear()
+    if show:
+        for line in lines:
+            print(line, file=sys.stderr)
+
+
+def check_load(reducer: Reducer, torque: float, field: str) -> None:
+    """An output torque against the reducer's rating (rvsim.parameters.rating.check_torque):
+    refused above the momentary maximum, one warning line above the rated torque."""
+    from ..parameters.rating import check_torque
+
+    note = check_torque(reducer, torque, field)
+    if note:
+        warn(note)
 
 
 def print_json(payload: Any) -> None:

@@ -12,7 +12,7 @@ import sys
 
 from ..errors import ParameterError
 from ..parameters import plain_number
-from ._common import add_command, add_reducer_options, print_json, reducer_from_args
+from ._common import add_command, add_reducer_options, check_load, print_json, reducer_from_args
 from ._quasistatic import _output_path, _solve, _write
 
 __all__ = ["register", "parse_list", "MAX_POINTS"]
@@ -55,6 +55,8 @@ def _efficiency(args: argparse.Namespace) -> int:
         raise ParameterError("--speeds", f"{count} points: at most {MAX_POINTS} speeds x torques")
     report = _output_path("--report", args.report, ".html")
     reducer = reducer_from_args(args)
+    if torques:
+        check_load(reducer, max(torques), "--torques")
     from ..quasistatic import efficiency
 
     result, code = _solve(lambda: efficiency(reducer, speeds_rpm=speeds, torques=torques),

@@ -12,15 +12,16 @@ import sys
 from pathlib import Path
 
 from ..errors import InputFileError, ParameterError
-from ._common import (number, add_command, add_reducer_options, check_output_file, print_json,
-                      reducer_from_args)
+from ..analysis.sampling import MAX_POSITIONS, check_positions
+from ._common import (number, add_command, add_reducer_options, check_load, check_output_file,
+                      print_json, reducer_from_args)
 
 __all__ = ["register", "MIN_POSITIONS", "MAX_POSITIONS"]
 
 #: equally spaced input positions over one output revolution: at least enough for a spectrum
-#: up to a few orders, at most what a user could mean (0.01 deg of output per step at 36000)
+#: up to a few orders, at most what a user could mean (0.01 deg of output per step at 36000);
+#: the reducer's own floor (its pin order unaliased) is rvsim.analysis.sampling's
 MIN_POSITIONS = 8
-MAX_POSITIONS = 100_000
 
 
 
@@ -85,6 +86,9 @@ def _ltca(args: argparse.Namespace) -> int:
                              f"(got {args.positions})")
     report = _output_path("--report", args.report, ".html")
     reducer = reducer_from_args(args)
+    check_positions(reducer, args.positions, "--positions")
+    check_load(reducer, reducer.operating.load_torque if args.torque is None else args.torque,
+               "operating.load_torque" if args.torque is None else "--torque")
     from ..quasistatic import ltca
 
     result, code = _solve(lambda: ltca(reducer, torque=args.torque, positions=args.positions),
@@ -118,6 +122,9 @@ def _hysteresis(args: argparse.Namespace) -> int:
     report = _output_path("--report", args.report, ".html")
     export = _output_path("--export", args.export, ".json")
     reducer = reducer_from_args(args)
+    check_load(reducer, reducer.rating.rated_torque if args.rated_torque is None
+               else args.rated_torque,
+               "rating.rated_torque" if args.rated_torque is None else "--rated-torque")
     from ..quasistatic import hysteresis, ltca
 
     result, code = _solve(lambda: hysteresis(reducer, rated_torque=args.rated_torque), args,
@@ -188,7 +195,8 @@ def register(sub) -> None:
                         "on the other flanks, as in a torque reversal)")
     p.add_argument("--positions", type=int, default=360, metavar="N",
                    help=f"input positions over one output revolution ({MIN_POSITIONS} to "
-                        f"{MAX_POSITIONS}, default 360)")
+                        f"{MAX_POSITIONS}, default 360; at least 2 zp + 1, 81 for the "
+                        "RV-40E: fewer alias the pin order)")
     p.set_defaults(func=_ltca)
 
     p = add_command(sub, "hysteresis", "torque-reversal test: rigidity, lost motion, backlash",

@@ -6,8 +6,8 @@ import argparse
 import sys
 
 from ..errors import ParameterError, SimulationError
-from ._common import (number, add_command, add_reducer_options, check_output_file, path_text,
-                      print_json, reducer_from_args)
+from ._common import (number, add_command, add_reducer_options, check_load, check_output_file,
+                      path_text, print_json, reducer_from_args)
 
 __all__ = ["register"]
 
@@ -23,6 +23,9 @@ def _simulate(args: argparse.Namespace) -> int:
         if path is not None:
             check_output_file(path, option)     # before the run, not after it
     reducer = reducer_from_args(args)
+    from ..parameters.rating import peak_load
+
+    check_load(reducer, *peak_load(reducer))
     try:
         # a progress bar only for a person watching (stderr is a terminal)
         result = simulate(reducer, duration=args.duration, time_step=args.time_step,

@@ -8,8 +8,8 @@ import sys
 from pathlib import Path
 
 from ..errors import InputFileError, ParameterError
-from ._common import (number, add_command, check_output_folder, path_text, positive_int, print_json,
-                      probability, scheduler_address, stopped_line)
+from ._common import (number, add_command, check_load, check_output_folder, path_text,
+                      positive_int, print_json, probability, scheduler_address, stopped_line)
 
 __all__ = ["register"]
 
@@ -29,6 +29,20 @@ def _as_option(exc: ParameterError, args: argparse.Namespace) -> ParameterError:
     if exc.field == "time_step" and args.time_step is not None:
         return ParameterError("--time-step", exc.reason)
     return exc
+
+
+def _check_loads(study) -> None:
+    """The study's heaviest run against its rating (one warning line, or the refusal)."""
+    from ..parameters.rating import peak_load
+
+    def load(r):
+        return (peak_load(r) if study.engine == "dynamic"
+                else (abs(r.operating.load_torque), "operating.load_torque"))
+
+    runs = zip(study.table()["run"], study.reducers())
+    run, heaviest = max(runs, key=lambda p: load(p[1])[0] / p[1].rating.momentary_torque)
+    torque, field = load(heaviest)
+    check_load(heaviest, torque, f"{field} (study run {int(run)})")
 
 
 def _study(args: argparse.Namespace) -> int:
@@ -68,6 +82,7 @@ def _study(args: argparse.Namespace) -> int:
             study = dataclasses.replace(study, time_step=args.time_step)
         except ParameterError as exc:
             raise _as_option(exc, args) from None
+    _check_loads(study)
     check_output_folder(args.out, "--out")   # before the runs, not after them
     folder = Path(args.out)
     progress = not args.no_progress and sys.stderr.isatty()

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from .._json import to_json_safe
 from ..errors import ParameterError
-from ._common import (number, add_command, add_reducer_options, check_output_file,
+from ._common import (number, add_command, add_reducer_options, check_load, check_output_file,
                       check_output_folder, path_text, print_json, reducer_from_args, whole)
 
 __all__ = ["register"]
@@ -39,6 +39,14 @@ def _points_option(value: int) -> int:
     return value
 
 
+def _check_model_loads(analysed, reducer) -> None:
+    """The largest torque the model is loaded with (the recordings' points, and the rated
+    torque of a torque-reversal test) against the reducer's rating."""
+    loads = [abs(float(p.point.get("torque_nm", 0.0))) for p in analysed]
+    if loads:
+        check_load(reducer, max(loads), "torque_nm (of the recordings)")
+
+
 def _testrig(args: argparse.Namespace) -> int:
     report = None
     if args.report:
@@ -51,7 +59,13 @@ def _testrig(args: argparse.Namespace) -> int:
     from ..testrig.bench import analyse_path
     from ..testrig.model import compare_point, point_summary
 
+    if args.compare:
+        from ..analysis.sampling import check_positions
+
+        check_positions(reducer, points, "--points")   # the model's TE at that many
     analysed = analyse_path(args.path, reducer, column_map, points=points)
+    if args.compare:
+        _check_model_loads(analysed, reducer)
     results, code = [], 0
     for point in analysed:
         if args.compare:
@@ -119,6 +133,9 @@ def _calibrate(args: argparse.Namespace) -> int:
         raise ParameterError("--positions", f"must be 32 to 8192 (got {args.positions})")
     names = [n.strip() for n in args.fit.split(",") if n.strip()]
     reducer = reducer_from_args(args)
+    from ..analysis.sampling import check_positions
+
+    check_positions(reducer, args.positions, "--positions")
     column_map = _column_map(args)
     from ..parameters._io import toml_text
     from ..testrig.bench import analyse_path
@@ -126,6 +143,7 @@ def _calibrate(args: argparse.Namespace) -> int:
 
     fitted_names(names)                    # before the recordings are read
     analysed = analyse_path(args.path, reducer, column_map)
+    _check_model_loads(analysed, reducer)
     result = calibrate(analysed, reducer, names, positions=args.positions)
     from .._files import atomic_outputs
 
@@ -216,5 +234,6 @@ def register(sub) -> None:
     p.add_argument("--out", required=True, metavar="DIR", type=path_text,
                    help="folder for fitted.toml and calibration.json")
     p.add_argument("--positions", type=int, default=1024, metavar="N",
-                   help="model positions per output revolution (32 to 8192, default 1024)")
+                   help="model positions per output revolution (32 to 8192, default 1024; "
+                        "at least 2 zp + 1, 81 for the RV-40E: fewer alias the pin order)")
     p.set_defaults(func=_calibrate)

@@ -7,8 +7,8 @@ import sys
 from pathlib import Path
 
 from ..errors import InputFileError
-from ._common import (add_command, check_output_folder, path_text, positive_int, print_json,
-                      scheduler_address, stopped_line, whole)
+from ._common import (add_command, check_load, check_output_folder, path_text, positive_int,
+                      print_json, scheduler_address, stopped_line, whole)
 
 __all__ = ["register", "load_any_tolerance_study"]
 
@@ -18,11 +18,14 @@ def load_any_tolerance_study(name: str):
     from ..tolerance.spec import BUILT_IN_TOLERANCE_STUDIES, load_tolerance_study
 
     if name in BUILT_IN_TOLERANCE_STUDIES and not Path(name).exists():
-        return BUILT_IN_TOLERANCE_STUDIES[name]()
-    if Path(name).suffix == ".toml":
-        return load_tolerance_study(name)
-    raise InputFileError(f"unknown tolerance study '{name}' (built in: "
+        study = BUILT_IN_TOLERANCE_STUDIES[name]()
+    elif Path(name).suffix == ".toml":
+        study = load_tolerance_study(name)
+    else:
+        raise InputFileError(f"unknown tolerance study '{name}' (built in: "
                          f"{', '.join(BUILT_IN_TOLERANCE_STUDIES)}; or a .toml file)")
+    check_load(study.nominal, *study.largest_load())    # the largest load drawn
+    return study
 
 
 def run_tolerance_command(study, args) -> int:

@@ -431,7 +431,8 @@ def _fe_crank_constants(r: Reducer) -> np.ndarray:
 def _bearing_constants(r: Reducer, P: np.ndarray) -> None:
     """Constants of the arm and support elements: the paper's bushings (conforming contacts,
     docs/model.md "Bearings") or rolling bearings (per-roller Palmgren contacts)."""
-    from ..bearings import arm_play, conforming_constants, roller_coefficient, support_play
+    from ..bearings import (arm_play, conforming_constants, roller_coefficient,
+                            roller_pitch_diameter, support_play)
 
     c, k, cl, m, b = r.cycloid, r.crank, r.clearances, r.materials, r.bearings
     factor = r.contact.bushing_stiffness_factor
@@ -445,7 +446,7 @@ def _bearing_constants(r: Reducer, P: np.ndarray) -> None:
         P[L.ARM_C] = roller_coefficient(b.needle_length, m.crankshaft, m.bushing,
                                         m.cycloid_disc)
         inner = k.eccentric_radius
-        P[L.ARM_CAGE_IN] = inner / (2.0 * inner + b.needle_diameter)
+        P[L.ARM_CAGE_IN] = inner / roller_pitch_diameter(inner, b.needle_diameter)
     else:
         P[L.ARM_J1], P[L.ARM_A1] = conforming_constants(
             c.disc_width, m.crankshaft, m.bushing, max(cl.crank_arm_bushing, floor), factor)
@@ -461,7 +462,7 @@ def _bearing_constants(r: Reducer, P: np.ndarray) -> None:
         P[L.SUP_C] = roller_coefficient(b.support_roller_length, m.crankshaft, m.bushing,
                                         m.carrier)
         inner = k.journal_radius
-        P[L.SUP_CAGE_IN] = inner / (2.0 * inner + b.support_roller_diameter)
+        P[L.SUP_CAGE_IN] = inner / roller_pitch_diameter(inner, b.support_roller_diameter)
         P[L.SUP_COS_ALPHA] = math.cos(b.support_contact_angle)
     else:
         width = k.support_bushing_width

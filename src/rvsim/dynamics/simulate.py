@@ -142,6 +142,9 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     stops a run within a fraction of a second.
     """
     validate(reducer)
+    from ..parameters.rating import check_torque, peak_load
+
+    check_torque(reducer, *peak_load(reducer))
     duration = float(reducer.operating.duration if duration is None else duration)
     time_step = default_time_step(scheme) if time_step is None else time_step
     check_run_options(reducer, duration, time_step, sample_rate, scheme)   # the scheme too

@@ -19,12 +19,22 @@ import math
 from ..errors import ParameterError
 from ..parameters import Reducer
 
-__all__ = ["GearGeometry", "gear_geometry", "check_gear_stage", "involute", "MAX_GEAR_TEETH"]
+__all__ = ["GearGeometry", "gear_geometry", "check_gear_stage", "involute", "MAX_GEAR_TEETH",
+           "sun_mesh_force", "check_gear_strength", "LEWIS_Y_RACK", "STATIC_ROOT_STRENGTH"]
 
 #: most teeth a sun or planet gear may have: RV reducers use 10-100; above a few hundred the
 #: stage no longer fits any RV housing and the involute formulas lose precision (1e20 teeth
 #: gave a contact ratio of -1084).  docs/decisions.md
 MAX_GEAR_TEETH = 500
+
+#: Lewis form factor of the basic rack (20 deg, full depth), the largest of the table: the
+#: most favourable tooth shape (Budynas & Nisbett, *Shigley's Mechanical Engineering Design*,
+#: 10th ed., Table 14-2)
+LEWIS_Y_RACK = 0.485
+#: static (single-load) tooth-root bending strength of the strongest gear steel in ISO 6336:
+#: case-carburised, quality ME, sigma_Flim = 525 MPa (ISO 6336-5) x Y_ST = 2 x the static life
+#: factor Y_NT = 2.5 (ISO 6336-3) [Pa].  docs/parameters.md
+STATIC_ROOT_STRENGTH = 525e6 * 2.0 * 2.5
 
 _ISO6336_C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529,
               0.00182)
@@ -103,3 +113,30 @@ def check_gear_stage(reducer: Reducer) -> None:
         # the module scales the gears and leaves the contact ratio unchanged: name the stage
         raise ParameterError("gears", f"contact ratio {geo.contact_ratio:.3f} is not above 1 "
                              "(set by the tooth counts, profile shifts and pressure angle)")
+
+
+def sun_mesh_force(reducer: Reducer, output_torque: float) -> float:
+    """Tangential force of one sun-planet mesh at the sun's operating pitch circle when the
+    carrier delivers ``output_torque`` (no losses: the sun's torque is output / ratio, shared
+    by the planets) [N]."""
+    g = reducer.gears
+    sun_pitch_radius = gear_geometry(reducer).centre_distance * g.sun_teeth \
+        / (g.sun_teeth + g.planet_teeth)
+    return output_torque / reducer.ratio / g.planet_count / sun_pitch_radius
+
+
+def check_gear_strength(reducer: Reducer) -> None:
+    """Raise :class:`ParameterError` when the teeth cannot carry the rated torque even once:
+    the Lewis root stress F_t / (b m Y) with the most favourable form factor (the rack's)
+    above the static bending strength of the strongest gear steel (docs/parameters.md)."""
+    g = reducer.gears
+    force = sun_mesh_force(reducer, reducer.rating.rated_torque)
+    stress = force / (g.face_width * g.module * LEWIS_Y_RACK)
+    if stress > STATIC_ROOT_STRENGTH:
+        least = force / (STATIC_ROOT_STRENGTH * g.module * LEWIS_Y_RACK)
+        raise ParameterError("gears.face_width", f"{g.face_width * 1e3:g} mm cannot carry the "
+                             f"rated torque {reducer.rating.rated_torque:g} N*m: the Lewis "
+                             f"tooth-root stress would be {stress / 1e6:.3g} MPa, above the "
+                             f"static strength of any gear steel, "
+                             f"{STATIC_ROOT_STRENGTH / 1e6:g} MPa (ISO 6336; at least "
+                             f"{least * 1e3:.2g} mm)")

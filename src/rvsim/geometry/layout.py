@@ -14,7 +14,8 @@ import numpy as np
 
 from ..parameters import Reducer
 
-__all__ = ["crank_angles", "crank_holes", "disc_count", "output_pins", "output_hole_clearance"]
+__all__ = ["crank_angles", "crank_holes", "disc_count", "output_pins", "output_hole_clearance",
+           "crank_hole_radius", "pillar_angles", "neighbour_distance"]
 
 
 def crank_angles(reducer: Reducer) -> np.ndarray:
@@ -55,3 +56,22 @@ def output_hole_clearance(reducer: Reducer) -> float:
     centre, which is the actual eccentricity a - G when disc and flange turn together, so a
     pin touches its hole when |offset| exceeds a + clearance (G opens it by G)."""
     return reducer.cycloid.eccentricity + reducer.layout.output_pin_clearance
+
+
+def crank_hole_radius(reducer: Reducer) -> float:
+    """Radius of a crank hole of the disc (RV) or of its central bore (single-stage): the
+    eccentric plus the radial space of its arm bushing or needles [m]."""
+    return reducer.crank.eccentric_radius + reducer.crank.arm_bushing_thickness
+
+
+def pillar_angles(reducer: Reducer) -> np.ndarray:
+    """Angles of the RV disc's pillar holes on the crank circle: a quarter turn from the first
+    crank hole, evenly spaced (as :func:`rvsim.fe.disc.disc_geometry` meshes them) [rad]."""
+    n = reducer.cycloid.pillar_hole_count
+    return 0.5 * math.pi + 2.0 * math.pi * np.arange(n) / max(n, 1)
+
+
+def neighbour_distance(radius: float, count: int) -> float:
+    """Distance between the centres of neighbours of ``count`` parts evenly spaced on a circle
+    of ``radius`` (pins, rollers, holes): the chord 2 r sin(pi / n) [m]."""
+    return 2.0 * radius * math.sin(math.pi / count)

@@ -285,6 +285,9 @@ def _check_consistency(r: Reducer, assembly: bool = True) -> None:
     from ..fe.sizes import check_element_sizes
 
     check_element_sizes(r)   # the meshes' sizes: refused here, not after another body's mesh
+    from ..geometry.validity import check_parts
+
+    check_parts(r)           # every part can exist (pins, bores, rollers, carrier, gears)
     if assembly:
         from ..geometry.assembly import check_assembly
 
@@ -338,8 +341,9 @@ def _check_single_stage(r: Reducer, hole: float, root: float) -> None:
     if lay.output_pin_circle_radius - out_hole <= hole:
         raise ParameterError("layout.output_pin_circle_radius", "the output-pin holes cut "
                              "into the central eccentric bore (R_w - hole radius <= bore)")
-    pitch = 2.0 * lay.output_pin_circle_radius * math.sin(math.pi / lay.output_pin_count)
-    if pitch <= 2.0 * out_hole:
+    from ..geometry.layout import neighbour_distance
+
+    if neighbour_distance(lay.output_pin_circle_radius, lay.output_pin_count) <= 2.0 * out_hole:
         raise ParameterError("layout.output_pin_count", "neighbouring output-pin holes "
                              "overlap (2 R_w sin(pi / n) <= 2 x hole radius)")
 

@@ -263,6 +263,12 @@ class Rating:
 
     rated_torque: float = quantity(412.0, "N*m", "rated output torque (RV-40E: 412 N*m; the "
                                    "paper's 41.2 N*m fluctuation is 10 % of it)", positive=True)
+    start_stop_torque: float = quantity(1029.0, "N*m", "allowable output torque at start "
+                                        "and stop (acceleration/deceleration; RV-40E class: "
+                                        "1029 N*m)", positive=True)
+    momentary_torque: float = quantity(2058.0, "N*m", "momentary maximum output torque "
+                                       "(emergency stop; RV-40E class: 2058 N*m): larger "
+                                       "loads are refused", positive=True)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -32,7 +32,9 @@ CYCLOID_DRIVE = Reducer(
         support_bushing_width=10.0 * _MM, lower_support_z=0.0, disc1_z=12.0 * _MM,
         disc2_z=24.0 * _MM, upper_support_z=36.0 * _MM, gear_z=36.0 * _MM),
     operating=Operating(load_torque=150.0, fluctuation_amplitude=20.0, load_inertia=0.05),
-    rating=Rating(rated_torque=200.0),
+    # start/stop and momentary: the RV-40E class's ratios to rated (1029 / 412 = 2.5, 2058 / 412
+    # = 5), assumed for want of a catalogue of this drive (docs/parameters.md)
+    rating=Rating(rated_torque=200.0, start_stop_torque=500.0, momentary_torque=1000.0),
     layout=Layout(stages=SINGLE_STAGE, disc_count=2, output_pin_count=8,
                   output_pin_radius=5.0 * _MM, output_pin_circle_radius=36.0 * _MM,
                   output_pin_clearance=0.0, input_bearing_clearance=0.0),

@@ -151,6 +151,9 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
             or positions < 2:
         raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
     from ..friction import has_friction
+    from ..parameters.rating import check_torque
+
+    check_torque(reducer, float(np.max(loads)), "torques")
 
     start = _time.perf_counter()
     ratio = reducer.ratio

@@ -105,6 +105,9 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
                     else rated_torque)
     if rated <= 0:
         raise ParameterError("rated_torque", f"must be positive (got {rated:g})")
+    from ..parameters.rating import check_torque
+
+    check_torque(reducer, rated, "rated_torque")
     if isinstance(points_per_branch, bool) or not isinstance(points_per_branch,
                                                              (int, np.integer)) \
             or points_per_branch < 2:

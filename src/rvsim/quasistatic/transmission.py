@@ -276,6 +276,9 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
     if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
             or positions < 2:
         raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
+    from ..parameters.rating import check_torque
+
+    check_torque(reducer, torque, "torque")
     revolutions = _finite("revolutions", revolutions)
     if revolutions <= 0:
         raise ParameterError("revolutions", f"must be positive (got {revolutions:g})")

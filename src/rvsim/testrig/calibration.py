@@ -185,6 +185,9 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     ``reducer`` to the analysed recordings ``points`` (:func:`rvsim.testrig.analyse_path`)."""
     from scipy import optimize, stats
 
+    from ..analysis.sampling import check_positions
+
+    check_positions(reducer, positions, "positions")     # the pin order unaliased
     names = fitted_names(fit)
     specs = [SPECS[n] for n in names]
     start = np.array([float(get_value(reducer, n)) for n in names])

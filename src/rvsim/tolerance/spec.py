@@ -144,6 +144,13 @@ class ToleranceStudy:
         if not (isinstance(self.positions, int) and 8 <= self.positions <= 100_000):
             raise ParameterError("positions", f"must be a whole number from 8 to 100000 "
                                  f"(got {self.positions!r})")
+        from ..analysis.sampling import check_positions
+
+        # the pin order and every profile form order drawn, unaliased
+        orders = [o for t in self.tolerances if t.name == "profile_form"
+                  for o in self.orders(t)]
+        check_positions(self.base, self.positions, "positions", orders,
+                        order_field="tolerances.profile_form.orders")
 
     @property
     def nominal(self) -> Reducer:
@@ -156,6 +163,16 @@ class ToleranceStudy:
             r = validate(dataclasses.replace(r, parts=PartErrors(
                 profile_points=self.profile_points)))
         return r
+
+    def largest_load(self) -> tuple[float, str]:
+        """(the largest output torque a reducer of the study is loaded with [N*m], the field
+        that sets it): the nominal load, plus its tolerance when it is toleranced (both
+        distributions are bounded at one tolerance)."""
+        load = abs(self.nominal.operating.load_torque)
+        for t in self.tolerances:
+            if t.name == "operating.load_torque":
+                return load + t.tolerance, f"tolerances.{t.name}"
+        return load, "operating.load_torque"
 
     def part_counts(self) -> dict[str, int]:
         """Parts (values) of each per-part error of the base reducer."""

@@ -1,0 +1,61 @@
+"""A load against the reducer's catalogue rating (``rating.*``; docs/parameters.md, "Ratings").
+
+One function, :func:`check_torque`, used by every command and engine that takes an output
+torque: above the momentary maximum torque (``rating.momentary_torque``, the catalogue's
+emergency-stop figure) the load is refused; above the rated torque it returns a warning,
+which the command line prints as one ``rvsim: warning: ...`` line (:func:`rvsim.cli._common.
+warn`).  The engines' numbers are those of the elastic model whatever the load: a load beyond
+the momentary maximum breaks or yields a real reducer, which the model cannot show.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..errors import ParameterError
+
+__all__ = ["check_torque", "check_rating", "peak_load"]
+
+
+def peak_load(reducer) -> tuple[float, str]:
+    """(the largest output load of a dynamic run [N*m], the fields that set it): the load
+    torque, plus the fluctuation's amplitude when ``operating.load_fluctuation`` is on."""
+    op = reducer.operating
+    if op.load_fluctuation and op.fluctuation_amplitude:
+        return (abs(op.load_torque) + abs(op.fluctuation_amplitude),
+                "operating.load_torque + operating.fluctuation_amplitude")
+    return abs(op.load_torque), "operating.load_torque"
+
+
+def check_rating(reducer) -> None:
+    """The ratings in order: rated <= start/stop <= momentary (a set whose rated torque was
+    raised above its momentary maximum would refuse its own rated torque)."""
+    g = reducer.rating
+    if g.start_stop_torque < g.rated_torque:
+        raise ParameterError("rating.start_stop_torque", f"must be at least the rated torque "
+                             f"{g.rated_torque:g} N*m (got {g.start_stop_torque:g})")
+    if g.momentary_torque < g.start_stop_torque:
+        raise ParameterError("rating.momentary_torque", f"must be at least the start/stop "
+                             f"torque {g.start_stop_torque:g} N*m (got {g.momentary_torque:g})")
+
+
+def check_torque(reducer, torque: float, field: str) -> str | None:
+    """Refuse an output torque [N*m] (either sign) above the reducer's momentary maximum
+    torque (ParameterError naming ``field``); return a warning text above its rated torque,
+    else None.  A non-finite torque is left to the caller's own check."""
+    check_rating(reducer)
+    load = abs(float(torque))
+    if not math.isfinite(load):
+        return None
+    g = reducer.rating
+    if load > g.momentary_torque:
+        raise ParameterError(field, f"{load:g} N*m is above the momentary maximum torque of "
+                             f"{reducer.name}, {g.momentary_torque:g} N*m "
+                             f"(rating.momentary_torque; rated {g.rated_torque:g} N*m)")
+    if load > g.rated_torque:
+        where = ("within the allowable start/stop torque" if load <= g.start_stop_torque else
+                 f"above the allowable start/stop torque {g.start_stop_torque:g} N*m, a "
+                 "momentary load only")
+        return (f"{field}: {load:g} N*m is above the rated torque of {reducer.name}, "
+                f"{g.rated_torque:g} N*m ({where}; rating.*)")
+    return None
