@@ -132,6 +132,9 @@ def _curved(mesh, cylinders: list[tuple[float, float, float]]):
 
 def shaft_compliance(g: dict) -> tuple[np.ndarray, int, int]:
     """Mesh, assemble and condense the crank of geometry ``g``: (C 8x8, dofs, tetrahedra)."""
+    from ._extra import require
+
+    require()
     from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, LinearForm, MeshTet, asm
     from skfem.models.elasticity import lame_parameters, linear_elasticity
 

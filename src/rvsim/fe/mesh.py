@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from ..geometry._curve import profile_points
+from ._extra import require
 
 __all__ = ["Circle", "PlaneMesh", "mesh_plane_region", "disc_outline", "gmsh_model",
            "gmsh_elements", "drop_unused_nodes"]
@@ -57,15 +58,8 @@ def gmsh_model(name: str):
     """A gmsh model ``name`` (gmsh initialised for it unless it already was; one thread, no
     terminal output); yields the gmsh module, removes the model afterwards.  Without gmsh
     (or its system libraries): one RvsimError saying what to install."""
-    try:
-        import gmsh
-    except (ImportError, OSError) as exc:
-        from ..errors import RvsimError
-
-        raise RvsimError(f"flexibility.model: the finite-element route needs gmsh and "
-                         f"scikit-fem (pip install 'rvsim[fe]'; gmsh needs the Debian "
-                         f"libraries libglu1-mesa libxcursor1 libxft2 libxinerama1): {exc}"
-                         ) from None
+    require()
+    import gmsh
 
     own = not gmsh.isInitialized()
     if own:
