@@ -4,9 +4,37 @@ import os
 import sys
 
 
+#: a process limit below this is a deliberate one: BLAS single-threaded under it
+SMALL_NPROC = 1024
+
+
+def _limited_threads() -> None:
+    """One BLAS thread under a memory or process limit, set before numpy is imported.
+
+    OpenBLAS starts a thread per core when numpy is imported, each with its own buffers;
+    under a memory limit (RLIMIT_AS of 400 MB) a failed start left it waiting forever,
+    deaf to SIGTERM, and under a process limit it printed its failures before Python could
+    act (issue 30).  rvsim's own parallelism is its worker processes, not BLAS threads.  A
+    thread count the user set is kept."""
+    try:
+        import resource
+    except ImportError:                 # pragma: no cover - not a Unix
+        return
+    memory = resource.getrlimit(resource.RLIMIT_AS)[0]
+    processes = resource.getrlimit(resource.RLIMIT_NPROC)[0] \
+        if hasattr(resource, "RLIMIT_NPROC") else resource.RLIM_INFINITY
+    # a process limit below SMALL_NPROC is one set on purpose (distributions' defaults for a
+    # user are in the tens of thousands)
+    if memory != resource.RLIM_INFINITY or processes != resource.RLIM_INFINITY and \
+            processes < SMALL_NPROC:
+        for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+            os.environ.setdefault(name, "1")
+
+
 def main() -> None:
     """Import the command line, then run it: a Ctrl-C while it is still being imported ends
     with the command line's own line and code 130, not a traceback."""
+    _limited_threads()
     try:
         from .cli import run
     except KeyboardInterrupt:

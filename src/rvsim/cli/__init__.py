@@ -88,7 +88,18 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
               "finite-element mesh (flexibility.fe_element_size, fe_crank_element_size) or "
               "shorter histories need less", file=sys.stderr)
         return 1, at_once
+    except RuntimeError as exc:
+        # a thread the process limit refused (Python's "can't start new thread"), or LLVM's
+        # failed allocation under a memory limit (numba's compiler): a resource, in one line
+        line = _resource_line(exc)
+        if line is None:
+            raise
+        print(line, file=sys.stderr)
+        return 2, at_once
     except OSError as exc:
+        if exc.errno in _START_ERRORS:
+            print(_resource_line(exc), file=sys.stderr)
+            return 2, at_once
         if exc.errno not in _OUTPUT_ERRORS:
             raise
         # standard output on a full disk, a failed device, or closed (>&-)
@@ -101,6 +112,26 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
 
 #: errors of a write to standard output that end the command with one line
 _OUTPUT_ERRORS = frozenset({errno.ENOSPC, errno.EIO, errno.EBADF, errno.EDQUOT, errno.EFBIG})
+
+
+#: errors of fork / thread start that a resource limit gives (RLIMIT_NPROC, RLIMIT_AS)
+_START_ERRORS = frozenset({errno.EAGAIN, errno.ENOMEM})
+#: words of an exception raised where a thread or an allocation was refused
+_RESOURCE_WORDS = ("can't start new thread", "out of memory", "cannot allocate memory",
+                   "bad_alloc", "failed to allocate")
+
+
+def _resource_line(exc: BaseException) -> str | None:
+    """The one line of a resource limit behind ``exc`` (None: not one)."""
+    said = " ".join(str(exc).split())
+    if isinstance(exc, OSError) and exc.errno in _START_ERRORS or \
+            "can't start new thread" in said.lower():
+        return (f"rvsim: error: resource limit: cannot start a process or thread ({said}): "
+                "raise the process limit (ulimit -u) or the memory limit")
+    if any(word in said.lower() for word in _RESOURCE_WORDS):
+        return (f"rvsim: error: out of memory ({said}): raise the memory limit (ulimit -v) "
+                "or use a coarser finite-element mesh")
+    return None
 
 
 class _ClosedOutput(io.TextIOBase):

@@ -22,7 +22,7 @@ import math
 
 import numba
 
-from ._jit import NO_REFCOUNT
+from ._jit import CACHE, NO_REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 from ._contact_law import contact
 
@@ -49,7 +49,7 @@ _LOG_WRAP = math.log(WRAP_RATIO)
 _INV2, _INV3, _INV4, _INV5, _INV6, _INV7, _INV8 = (1.0 / n for n in range(2, 9))
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _interface(f, log, j, a):
     """:func:`johnson_interface` with ``log`` = ln(a / f) given (used only below F = a / 16)."""
     f_wrap = a / WRAP_RATIO
@@ -69,14 +69,14 @@ def johnson_interface(f, j, a):
     return _interface(f, math.log(a / f), j, a)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _conforming(f, j1, a1, j2, a2, cb, shift):
     """:func:`conforming_approach` with ``shift`` = ln(a2 / a1) given: one logarithm per
     evaluation, ln(a2 / f) = ln(a1 / f) + shift."""
     return _conforming_log(f, math.log(a1 / f), j1, a1, j2, a2, cb, shift)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _conforming_log(f, log, j1, a1, j2, a2, cb, shift):
     """:func:`_conforming` with ``log`` = ln(a1 / f) given."""
     d1, c1, e1 = _interface(f, log, j1, a1)
@@ -181,7 +181,7 @@ def conforming_force_from(delta, j1, a1, j2, a2, cb, shift, f0, d0, k0, log0):
     return _conforming_newton(delta, new, log, j1, a1, j2, a2, cb, shift)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def conforming_start(delta, f0, d0, k0, a1, j1, a2, j2):
     """Newton's start of :func:`conforming_force_from` relative to the last solution: F / f0
     - 1 at the approach ``delta`` by the second-order Taylor expansion of the inverse law
@@ -190,7 +190,7 @@ def conforming_start(delta, f0, d0, k0, a1, j1, a2, j2):
     return move * (1.0 + 0.5 * _curving(f0, a1, j1, a2, j2) * k0 * move)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _curving(f, a1, j1, a2, j2):
     """j of the interfaces that follow Johnson's law at the force ``f`` (below F = a / 16):
     the compliance's slope is -j / F (:func:`conforming_curvature`)."""
@@ -202,7 +202,7 @@ def _curving(f, a1, j1, a2, j2):
     return j
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _conforming_newton(delta, f, log, j1, a1, j2, a2, cb, shift):
     """Newton on the conforming law from the force ``f`` > 0 with ``log`` = ln(a1 / f) (the
     stopping rule of :func:`conforming_force`): (F, stiffness, energy, ln(a1 / F))."""
@@ -229,7 +229,7 @@ def _conforming_newton(delta, f, log, j1, a1, j2, a2, cb, shift):
     return f, 1.0 / c, e, math.log(a1 / f)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def log_ratio(x):
     """ln(1 + x) by its series to x^8 (Horner, constant coefficients), for |x| <=
     SERIES_LIMIT (the next term, x^9 / 9, is below 2e-19)."""

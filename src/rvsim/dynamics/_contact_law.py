@@ -10,7 +10,7 @@ import math
 
 import numba
 
-from ._jit import NO_REFCOUNT
+from ._jit import CACHE, NO_REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
@@ -35,7 +35,7 @@ _B1, _B2, _B3, _B4, _B5, _B6, _B7, _B8 = ((EXPONENT - n + 1.0) / n for n in rang
 _HALF_CURVE = 0.5 * EXPONENT * (1.0 - EXPONENT)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def power_ratio(x):
     """(1 + x) ** EXPONENT by its binomial series to x^8 (Horner, constant coefficients), for
     |x| <= SERIES_LIMIT (the next term, C(0.9, 9) x^9, is below 1e-20)."""
@@ -101,7 +101,7 @@ def spring_force_power(delta, c, cb, guess, guess_power):
     return f, stiffness, energy, fe
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def spring_start(delta, c, f0, fe0, d0, k0):
     """Newton's start of :func:`spring_force_from` relative to the last solution: F / f0 - 1
     at the approach ``delta`` by the second-order Taylor expansion of the inverse law (F'' =

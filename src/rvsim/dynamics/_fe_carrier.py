@@ -33,7 +33,7 @@ import math
 import numba
 import numpy as np
 
-from ._jit import NO_REFCOUNT, REFCOUNT
+from ._jit import CACHE, NO_REFCOUNT, REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
@@ -59,7 +59,7 @@ def bore_centre(P, q, crank, crank_angle):
     return bore_centre_at(P, crank, math.cos(angle), math.sin(angle))
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def bore_centre_at(P, crank, c, s):
     """:func:`bore_centre` from the cosine and sine of q[carrier] + the crank's angle."""
     radius = P[CENTRE_DIST] + P[BORE_DR0 + crank]

@@ -24,7 +24,7 @@ import math
 import numba
 import numpy as np
 
-from ._jit import NO_REFCOUNT, REFCOUNT
+from ._jit import CACHE, NO_REFCOUNT, REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
@@ -140,7 +140,7 @@ def _factor_tangent(cm, k, n, active, a):
     return na if _cholesky(a, na) else -1
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def stretch_column(table, u):
     """c_sp at foot ``u`` [m/N]: the last column of a table with the crank holes' stretch
     (:mod:`rvsim.dynamics._fe_holes`), linear between segment centres."""

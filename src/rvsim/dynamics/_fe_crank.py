@@ -44,7 +44,7 @@ import math
 import numba
 import numpy as np
 
-from ._jit import NO_REFCOUNT, REFCOUNT
+from ._jit import CACHE, NO_REFCOUNT, REFCOUNT
 from ._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
@@ -73,7 +73,7 @@ def pack_table(force_block: np.ndarray) -> np.ndarray:
     return np.array([c[i, j] for i, j in TABLE_ORDER])
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _table(P, base, i, j):
     """C[i, j] of a body-frame table held in P from ``base`` (upper triangle,
     :data:`TABLE_ORDER`)."""

@@ -33,6 +33,7 @@ import math
 import numba
 
 from ._cache_guard import invalidate_stale_cache
+from ._jit import CACHE
 
 invalidate_stale_cache(__file__)
 
@@ -54,19 +55,19 @@ COLUMNS = HOLE_COLUMNS      # 9 + N_DOF (_layout)
 Q_PINS, Q_SUM, STRETCH, DS_DQ, DF_DQ, SETTLED, PREDICT = 0, 1, 2, 3, 4, 7, 8
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def holes_on(P):
     """Whether the discs' crank holes are load points (flexibility.fe_disc_holes)."""
     return P[FE_HOLES] != 0.0
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _col(elastic, k):
     """Column of state ``k`` in the kernel's ``arm_elastic``."""
     return HOLE_SLOT0 + k
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def hole_row(P, elastic, disc):
     """The crank-hole state of disc ``disc`` (Q read, Q summed, stretch) as a view for the
     coupled pins (:func:`rvsim.dynamics._fe_contacts.apply_coupled`); empty with the holes
@@ -77,13 +78,13 @@ def hole_row(P, elastic, disc):
     return elastic[disc, c:c + COLUMNS]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def hole_css(P, disc):
     """c_ss of disc ``disc`` [m/N]."""
     return P[FE_HOLE_CSS0] if disc == 0 else P[FE_HOLE_CSS1]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def hole_shift(P, elastic, crank, disc):
     """Elastic displacement (disc axes) of crank ``crank``'s hole in disc ``disc``: -+s/2 e."""
     if not holes_on(P):
@@ -92,7 +93,7 @@ def hole_shift(P, elastic, crank, disc):
     return half * P[FE_HOLE_EX], half * P[FE_HOLE_EY]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def add_hole_load(P, q, elastic, crank, disc, sx, sy):
     """Add the arm bushing's elastic force (sx, sy) on its hole (housing axes) to Q."""
     if not holes_on(P):
@@ -105,7 +106,7 @@ def add_hole_load(P, q, elastic, crank, disc, sx, sy):
     elastic[disc, _col(elastic, Q_SUM)] += 0.5 * sign * (ex * sx + ey * sy)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def free_stretch(hole, css):
     """A disc no pin touches: its holes' stretch from their own load alone, s = c_ss Q, and the
     strain energy Q s - c_ss Q^2 / 2 = c_ss Q^2 / 2 (what the coupled pins' solve gives with
@@ -116,7 +117,7 @@ def free_stretch(hole, css):
     return 0.5 * s * hole[Q_PINS]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def begin_arms(P, elastic):
     """Before the arm bushings: Q summed afresh."""
     if holes_on(P):
@@ -124,7 +125,7 @@ def begin_arms(P, elastic):
             elastic[disc, _col(elastic, Q_SUM)] = 0.0
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def end_arms(P, elastic):
     """After the arm bushings: their Q becomes the pins' for the next evaluation; returns the
     largest change of Q [N] (0 with the holes held)."""

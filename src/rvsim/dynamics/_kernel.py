@@ -14,7 +14,7 @@ import numba
 import numpy as np
 
 from ._cache_guard import invalidate_stale_cache
-from ._jit import NO_REFCOUNT, REFCOUNT
+from ._jit import CACHE, NO_REFCOUNT, REFCOUNT
 
 # numba's on-disk cache is keyed on this file only; the index constants of _layout, the curve
 # functions of geometry._curve, the contact law and the single-stage elements are compiled in,
@@ -109,7 +109,7 @@ def add_crank_force(Q, j, wl, wu, fx, fy):
     Q[b + 3] += wu * fy
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def line_trig(q, crank_angle):
     """Cosine and sine of a crank's nominal angle about the centre, q[carrier] + its assembly
     angle: the line of centres of its mesh and the direction of its bores."""
@@ -117,7 +117,7 @@ def line_trig(q, crank_angle):
     return math.cos(line), math.sin(line)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def angle_trig(q, crank_angles):
     """The cosines and sines one force evaluation shares between its elements (one call per
     angle, docs/decisions.md): cranks 0 and 1's nominal angles (:func:`line_trig`), discs 0
@@ -279,7 +279,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
     return energy, power, worst, peak
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _disc_frame(P, q, v, disc):
     """Disc ``disc``'s profile angle: (cos, sin) and the housing velocity seen from the disc
     centre in disc axes (rotation part excluded), and its angular velocity."""
@@ -287,14 +287,14 @@ def _disc_frame(P, q, v, disc):
     return _disc_frame_at(P, q, v, disc, cos_d, sin_d)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def profile_turn(P, disc):
     """Disc ``disc``'s profile angle less its rotation q[theta]: the half-tooth offset of
     disc 1 and the rotation modification (model.build_model turns it into P[FRAME_TURN0 ..])."""
     return -disc * math.pi / P[ZC] + P[PROFILE_ROT]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _disc_frame_at(P, q, v, disc, cos_d, sin_d):
     """:func:`_disc_frame` from the cosine and sine of the disc's rotation q[theta] (turned
     by the constant P[FRAME_TURN0 + 2 disc ..]: no trigonometric call)."""
@@ -444,7 +444,7 @@ def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, 
     return energy, power, peak
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def pin_friction(P, fn, px, py, gap, nx, ny, lvx, lvy, w, cos_t, sin_t):
     """Coulomb friction of a pin contact with normal force ``fn``, P[MU] the effective
     coefficient (fixed pins sliding on the disc, or pins turning in their grooves:
@@ -562,7 +562,7 @@ def arm_station(P, holes, crank, disc):
     return wl, wu, hole_x, hole_y
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def hole_station(P, holes, crank, disc, elastic):
     """:func:`arm_station` with the hole's elastic displacement when the FE disc's holes are
     load points (``elastic`` the kernel's arm state; dynamics._fe_holes)."""
@@ -574,20 +574,20 @@ def hole_station(P, holes, crank, disc, elastic):
     return wl, wu, hole_x, hole_y
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def eccentric_angle(P, q, crank, disc):
     """Direction of crank ``crank``'s eccentric for disc ``disc``."""
     return q[CRANK0 + CRANK_STRIDE * crank + 4] + disc * math.pi + P[ECC_PHASE0 + 2 * crank + disc]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def disc_trig(q, disc):
     """Cosine and sine of disc ``disc``'s rotation q[theta]."""
     angle = q[DISC0 + DISC_STRIDE * disc + 2]
     return math.cos(angle), math.sin(angle)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def eccentric_trig(P, q, crank):
     """Cosines and sines of crank ``crank``'s two eccentrics (disc 1's turned from disc 0's by
     the constant P[ECC_TURN0 + 2 crank ..]): (cos, sin disc 0, cos, sin disc 1)."""
@@ -744,7 +744,7 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic):
     return energy, power, resultant[0], resultant[1]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _arm_rows(q, geo, disc):
     """d r / d(crank b..b+4, disc d..d+2) of eccentric ``disc``'s relative position (x and y
     rows; :func:`arm_stiffness`)."""
@@ -928,7 +928,7 @@ def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, pin_for
     return e, pw, pen, peak
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
               mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
               channel, mesh_state, mesh_hold, fe, modal=None, pin_slots=None, pin_work=None,
@@ -975,7 +975,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
                        carried, bearings)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
                 mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
                 channel, mesh_state, mesh_hold, fe, modes, slots, work, carried, K_bearings):
@@ -1065,7 +1065,7 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
     return energy, power, torque_in, worst
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
            pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe, modal,
            pin_slots, pin_work, pin_carried, K_bearings):
@@ -1081,7 +1081,7 @@ def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def impulse_factors(P, h):
     """The (sub-)step ``h``'s velocity change per unit generalised force of each coordinate:
     carrier, crank rotation, disc translation, disc rotation, and the crank nodes' inverse

@@ -7,11 +7,14 @@ the folder only costs the recomputation.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import hashlib
 import json
 import os
+import sys
 import time
+import zipfile
 from pathlib import Path
 from typing import Callable
 
@@ -54,19 +57,45 @@ _LOADED: dict = {}
 LOADED_MAX = 16
 
 
+#: the notes this process has given (each once: a run stores several bodies)
+_NOTED: set = set()
+
+
+def note(text: str) -> None:
+    """One line on standard error about the cache (a damaged entry, an unwritable folder),
+    once per process."""
+    if text in _NOTED:
+        return
+    _NOTED.add(text)
+    print(f"rvsim: note: finite-element cache: {text}", file=sys.stderr)
+
+
 def load(key: str) -> dict | None:
     """Arrays stored under ``key``, or None (missing or unreadable: recomputed).  Read-only:
-    repeated loads of an unchanged file share them."""
+    repeated loads of an unchanged file share them.  A damaged file (cut short by a full disk
+    or a killed writer of another tool: zipfile's BadZipFile, a short member) is removed with
+    a note, so that it is rebuilt once instead of failing every later run."""
     path = cache_dir() / f"{key}.npz"
     try:
         st = os.stat(path)
-        stamp = (st.st_mtime_ns, st.st_size, st.st_ino)
-        kept = _LOADED.get(path)
-        if kept is not None and kept[0] == stamp:
-            return dict(kept[1])
+    except OSError:
+        return None                                  # not cached
+    stamp = (st.st_mtime_ns, st.st_size, st.st_ino)
+    kept = _LOADED.get(path)
+    if kept is not None and kept[0] == stamp:
+        return dict(kept[1])
+    try:
         with np.load(path) as data:
             arrays = {name: data[name] for name in data.files}
-    except (OSError, ValueError, EOFError):
+    except PermissionError:
+        return None                                  # not ours to read or remove
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile, KeyError) as exc:
+        try:
+            path.unlink()
+            what = "removed, rebuilt now"
+        except OSError:
+            what = "cannot be removed, computed without it"
+        note(f"damaged entry {path} ({type(exc).__name__}) {what}")
         return None
     for value in arrays.values():
         value.flags.writeable = False
@@ -78,16 +107,21 @@ def load(key: str) -> dict | None:
 
 
 def store(key: str, arrays: dict) -> Path | None:
-    """Write ``arrays`` under ``key`` atomically; None if the cache folder is not writable."""
+    """Write ``arrays`` under ``key`` atomically; None, with a note, if the cache folder is not
+    writable (the run goes on uncached)."""
     folder = cache_dir()
+    tmp = folder / f".{key}.{os.getpid()}.npz"
     try:
         folder.mkdir(parents=True, exist_ok=True)
-        tmp = folder / f".{key}.{os.getpid()}.npz"
         np.savez(tmp, **arrays)
         path = folder / f"{key}.npz"
         os.replace(tmp, path)
         return path
-    except OSError:
+    except OSError as exc:
+        with contextlib.suppress(OSError):
+            tmp.unlink(missing_ok=True)
+        note(f"cannot write {folder} ({exc.strerror or exc}): running uncached "
+             "(set RVSIM_CACHE_DIR to a writable folder)")
         return None
 
 
@@ -98,6 +132,9 @@ def cached(kind: str, values: dict, compute: Callable[[], dict]) -> tuple[dict, 
     stored = load(key)
     if stored is not None:
         return stored, 0.0, True
+    from ._extra import require
+
+    require()           # before anything is meshed: one line without the extra
     start = time.perf_counter()
     arrays = compute()
     seconds = time.perf_counter() - start

@@ -55,7 +55,7 @@ def plate_compliance(g: dict) -> tuple[np.ndarray, int, int]:
     outline = g["radius"] * np.column_stack([np.cos(angle), np.sin(angle)])
     bores = [Circle(sign * g["crank_circle"], 0.0, g["crank_bore"]) for sign in (1, -1)]
     holes = bores + ([Circle(0.0, 0.0, g["bore"])] if g["bore"] > 0 else [])
-    mesh = mesh_plane_region(outline, holes, size)
+    mesh = mesh_plane_region(outline, holes, size, field="cycloid.carrier_radius")
     body = PlaneStressBody(mesh.points, mesh.triangles, g["E"], g["nu"], g["thickness"])
     rim = body.supported_dofs(mesh.outline)
     boundary = body.mesh.facets[:, body.mesh.boundary_facets()]

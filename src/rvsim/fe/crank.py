@@ -36,7 +36,7 @@ import scipy.sparse as sp
 from ..parameters import Reducer
 from . import cache
 from .elasticity import Factor
-from .mesh import drop_unused_nodes, gmsh_elements, gmsh_model
+from .mesh import drop_unused_nodes, gmsh_elements, gmsh_model, in_child
 from .sizes import check_crank_element_size
 
 __all__ = ["CRANK_ELEMENT_SIZE", "crank_geometry", "crank_table", "shaft_compliance"]
@@ -132,10 +132,13 @@ def _curved(mesh, cylinders: list[tuple[float, float, float]]):
 
 def shaft_compliance(g: dict) -> tuple[np.ndarray, int, int]:
     """Mesh, assemble and condense the crank of geometry ``g``: (C 8x8, dofs, tetrahedra)."""
+    from ._extra import require
+
+    require()
     from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, LinearForm, MeshTet, asm
     from skfem.models.elasticity import lame_parameters, linear_elasticity
 
-    points, tets = _mesh_shaft(g, g["size"])
+    points, tets = in_child(_mesh_shaft, g, g["size"])   # stoppable, time-bounded
     cylinders = [(0.0, 0.0, g["journal_radius"])]
     cylinders += [(g["eccentricity"] * (1 if j == 0 else -1), 0.0, g["eccentric_radius"])
                   for j in range(len(g["stations"]))]

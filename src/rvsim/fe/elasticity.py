@@ -29,6 +29,9 @@ class PlaneStressBody:
 
     def __init__(self, points: np.ndarray, triangles: np.ndarray, elastic_modulus: float,
                  poisson_ratio: float, thickness: float, plane_strain: bool = False):
+        from ._extra import require
+
+        require()
         from skfem import Basis, ElementTriP2, ElementVector, MeshTri, asm
         from skfem.models.elasticity import lame_parameters, linear_elasticity
 

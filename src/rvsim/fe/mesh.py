@@ -16,13 +16,28 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import math
+import os
+import signal
 
 import numpy as np
 
 from ..geometry._curve import profile_points
+from ..errors import ParameterError, RvsimError
+from ._extra import require
 
-__all__ = ["Circle", "PlaneMesh", "mesh_plane_region", "disc_outline", "gmsh_model",
+__all__ = ["Circle", "PlaneMesh", "mesh_plane_region", "check_plane_region", "in_child",
+           "MAX_TRIANGLES", "MESH_SECONDS", "disc_outline", "gmsh_model",
            "gmsh_elements", "drop_unused_nodes"]
+
+
+#: the most triangles a plane region may need: five times the finest admissible RV-40E disc
+#: (0.375 mm elements, about 190 000 six-node triangles, 750 000 dofs: fe.sizes); a larger
+#: region (a carrier of metres at a disc's element size) would take hours and gigabytes
+MAX_TRIANGLES = 1_000_000
+#: the longest a mesh may take [s]: gmsh has no time bound of its own, and on a region it
+#: cannot mesh it ran forever at 100 % CPU (issue 30); the slowest admissible mesh, the
+#: finest crank, takes well under a minute (docs/decisions.md, issue 30)
+MESH_SECONDS = 600.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -57,15 +72,8 @@ def gmsh_model(name: str):
     """A gmsh model ``name`` (gmsh initialised for it unless it already was; one thread, no
     terminal output); yields the gmsh module, removes the model afterwards.  Without gmsh
     (or its system libraries): one RvsimError saying what to install."""
-    try:
-        import gmsh
-    except (ImportError, OSError) as exc:
-        from ..errors import RvsimError
-
-        raise RvsimError(f"flexibility.model: the finite-element route needs gmsh and "
-                         f"scikit-fem (pip install 'rvsim[fe]'; gmsh needs the Debian "
-                         f"libraries libglu1-mesa libxcursor1 libxft2 libxinerama1): {exc}"
-                         ) from None
+    require()
+    import gmsh
 
     own = not gmsh.isInitialized()
     if own:
@@ -134,9 +142,18 @@ def drop_unused_nodes(points: np.ndarray, elements: np.ndarray
     return points[:, used].copy(), renumber[elements], renumber
 
 
-def mesh_plane_region(outline: np.ndarray, holes: list[Circle], size: float) -> PlaneMesh:
+def mesh_plane_region(outline: np.ndarray, holes: list[Circle], size: float,
+                      field: str = "flexibility.model") -> PlaneMesh:
     """Mesh the region inside the closed polygon ``outline`` (n, 2), counter-clockwise, one
-    edge per polygon side, minus the circular ``holes``; target element size ``size`` [m]."""
+    edge per polygon side, minus the circular ``holes``; target element size ``size`` [m].
+    A region gmsh cannot mesh (a hole crossing the outline or another hole) or too many
+    elements are refused first, as ``field``; the meshing runs in a child process
+    (:func:`in_child`)."""
+    check_plane_region(outline, holes, size, field)
+    return in_child(_mesh_plane_region, outline, holes, size)
+
+
+def _mesh_plane_region(outline: np.ndarray, holes: list[Circle], size: float) -> PlaneMesh:
     with gmsh_model("rvsim") as gmsh:
         geo = gmsh.model.geo
         n = len(outline)
@@ -172,3 +189,124 @@ def mesh_plane_region(outline: np.ndarray, holes: list[Circle], size: float) -> 
     points, triangles, renumber = drop_unused_nodes(points[:2], triangles)
     return PlaneMesh(points, triangles, renumber[outline_nodes],
                      tuple(renumber[h] for h in hole_nodes))
+
+
+def _segment_distance(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance of each point (k, 2) to the nearest of the segments a[i]-b[i] (n, 2)."""
+    d = b - a
+    t = np.einsum("kni,ni->kn", points[:, None, :] - a[None], d) / np.einsum("ni,ni->n", d, d)
+    nearest = a[None] + np.clip(t, 0.0, 1.0)[..., None] * d[None]
+    return np.linalg.norm(points[:, None, :] - nearest, axis=2).min(axis=1)
+
+
+def check_plane_region(outline: np.ndarray, holes: list[Circle], size: float,
+                       field: str) -> None:
+    """Refuse, as ``field``, a region gmsh cannot mesh: a hole not wholly inside the outline,
+    two holes that overlap (gmsh meshed such a carrier forever), or one needing more than
+    :data:`MAX_TRIANGLES` triangles of ``size``."""
+    outline = np.asarray(outline, dtype=float)
+    x, y = outline[:, 0], outline[:, 1]
+    area = 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    if holes:
+        centres = np.array([[h.x, h.y] for h in holes])
+        radii = np.array([h.radius for h in holes])
+        reach = _segment_distance(centres, outline, np.roll(outline, -1, axis=0))
+        inside = np.array([_inside(c, outline) for c in centres])
+        for h, r, ok in zip(holes, reach, inside):
+            if not ok or r <= h.radius:
+                raise ParameterError(field, f"a hole of radius {h.radius * 1e3:.4g} mm at "
+                                            f"({h.x * 1e3:.4g}, {h.y * 1e3:.4g}) mm reaches "
+                                            "beyond the part's outline: no body to mesh")
+        gaps = np.hypot(*(centres[:, None, :] - centres[None]).transpose(2, 0, 1))
+        gaps -= radii[:, None] + radii[None]
+        np.fill_diagonal(gaps, np.inf)
+        if gaps.min() <= 0:
+            i, j = np.unravel_index(np.argmin(gaps), gaps.shape)
+            raise ParameterError(field, f"the holes at ({centres[i][0] * 1e3:.4g}, "
+                                        f"{centres[i][1] * 1e3:.4g}) and ({centres[j][0] * 1e3:.4g},"
+                                        f" {centres[j][1] * 1e3:.4g}) mm overlap: no body to mesh")
+        area -= float(np.pi * np.sum(radii ** 2))
+    triangles = 4.0 / math.sqrt(3.0) * area / size ** 2       # equilateral triangles of side h
+    if triangles > MAX_TRIANGLES:
+        raise ParameterError(field, f"the part needs about {triangles:.3g} triangles of "
+                                    f"{size * 1e3:.3g} mm, more than {MAX_TRIANGLES:,} "
+                                    "(hours and gigabytes): a smaller part or a coarser "
+                                    "flexibility.fe_element_size")
+
+
+def _inside(point: np.ndarray, polygon: np.ndarray) -> bool:
+    """Whether ``point`` lies inside the closed ``polygon`` (n, 2) (crossing count)."""
+    a, b = polygon, np.roll(polygon, -1, axis=0)
+    crosses = (a[:, 1] > point[1]) != (b[:, 1] > point[1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = a[:, 0] + (point[1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+    return bool(np.count_nonzero(crosses & (x > point[0])) % 2)
+
+
+def in_child(function, *args, seconds: float | None = None):
+    """``function(*args)`` run in a forked child process, its result sent back.
+
+    gmsh meshes inside one C call that neither a Python signal handler nor an alarm can
+    interrupt: a mesh that never ended could not be stopped by Ctrl-C or SIGTERM (issue 30).
+    Here the parent waits on the child's pipe, where a stop signal raises at once; the child
+    is killed when the parent stops, and after ``seconds`` (:data:`MESH_SECONDS`) it is
+    killed and the mesh refused.  The child dies with the parent (PR_SET_PDEATHSIG).  Where
+    no process can be started (a process limit) the function runs in this process."""
+    import multiprocessing
+    from multiprocessing.connection import wait
+
+    from .._stopping import signals_blocked
+
+    seconds = MESH_SECONDS if seconds is None else seconds
+    context = multiprocessing.get_context("fork")
+    receive, send = context.Pipe(duplex=False)
+    with signals_blocked():
+        try:
+            child = context.Process(target=_child_main, args=(send, os.getpid(), function, args),
+                                    daemon=True)
+            child.start()
+        except OSError:
+            receive.close()
+            send.close()
+            return function(*args)
+    send.close()
+    try:
+        if not wait([receive, child.sentinel], timeout=seconds):
+            raise RvsimError(f"flexibility.model: the mesher did not finish in {seconds:.0f} s "
+                             "(stopped): a coarser flexibility.fe_element_size or a part "
+                             "geometry gmsh can mesh")
+        try:
+            ok, value = receive.recv()
+        except (EOFError, OSError):
+            raise RvsimError(f"flexibility.model: the mesher's process died (exit code "
+                             f"{child.exitcode}; out of memory?): a coarser "
+                             "flexibility.fe_element_size needs less") from None
+    finally:
+        receive.close()
+        if child.is_alive():
+            child.kill()
+        child.join()
+    if not ok:
+        raise value
+    return value
+
+
+def _child_main(send, parent: int, function, args) -> None:
+    for name in ("SIGINT", "SIGTERM", "SIGHUP"):     # the parent decides; it kills this child
+        number = getattr(signal, name, None)
+        if number is not None:
+            signal.signal(number, signal.SIG_IGN if number == signal.SIGINT else signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT, signal.SIGTERM])
+    from ..doe._workers import _die_with_parent
+
+    _die_with_parent(parent)
+    try:
+        result = (True, function(*args))
+    except Exception as exc:          # noqa: BLE001 - raised again in the parent
+        result = (False, exc)
+    try:
+        send.send(result)
+    finally:
+        send.close()
+        os._exit(0)

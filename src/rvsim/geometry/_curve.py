@@ -31,7 +31,7 @@ import numba
 import numpy as np
 
 from ..dynamics._cache_guard import invalidate_stale_cache
-from ..dynamics._jit import NO_REFCOUNT, REFCOUNT
+from ..dynamics._jit import CACHE, NO_REFCOUNT, REFCOUNT
 
 # the compile options come from dynamics._jit: clear this module's cached code when they change
 invalidate_stale_cache(__file__)
@@ -57,13 +57,13 @@ def curve_point(u, rg, a, zp):
     return curve_from(cu, su, cz, sz, rg, a, zp)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def curve_trig(u, zp):
     """cos u, sin u, cos zp u and sin zp u: what :func:`curve_from` takes."""
     return math.cos(u), math.sin(u), math.cos(zp * u), math.sin(zp * u)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def rotated(c, s, d):
     """(cos, sin) of an angle d from the angle whose cosine and sine are (c, s), for |d| <=
     :data:`ROTATION_LIMIT`: cos d and sin d by their series (truncation below 2e-17), the pair
@@ -77,7 +77,7 @@ def rotated(c, s, d):
     return cn * scale, sn * scale
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def curve_from(cos_u, sin_u, cos_z, sin_z, rg, a, zp):
     """:func:`curve_point` from the cosines and sines of u and zp u."""
     x = rg * cos_u - a * cos_z
@@ -164,7 +164,7 @@ def profile_points(u, rg, a, zp, offset):
     return out
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def profile_axes(px, py, ox, oy, cos_t, sin_t, shift_x, shift_y):
     """A point (px, py) in housing axes, in the profile axes of a disc.
 
@@ -177,7 +177,7 @@ def profile_axes(px, py, ox, oy, cos_t, sin_t, shift_x, shift_y):
     return cos_t * dx + sin_t * dy - shift_x, -sin_t * dx + cos_t * dy - shift_y
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def pin_gap(qx, qy, nominal, previous, rg, a, zp, clearance, track, carried):
     """Gap of the pin centred at (qx, qy) (profile axes) to the profile.
 
@@ -258,20 +258,20 @@ def lever_arms(u, rg, a, zp):
     return out
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def pin_opening(pins, i):
     """Pin i's own opening of its gap [m]: column 2 of a per-part ``pins`` array (its radius
     deviation and the pin-hole clearance, rvsim.geometry.deviations.pin_table), else 0."""
     return pins[i, 2] if pins.shape[1] > 2 else 0.0
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def _deviation_sample(pins, base, per_row, n, j):
     j = j % n
     return pins[j // per_row, base + j % per_row]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def profile_deviation(pins, disc, u):
     """Normal deviation of disc ``disc``'s profile at parameter ``u`` [m] (positive: excess
     material), interpolated in the samples that columns 3 .. of a per-part ``pins`` array hold
@@ -302,7 +302,7 @@ def profile_deviation(pins, disc, u):
     return value, slope
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=CACHE, inline="always")
 def deviated_gap(pins, disc, u, gap, nx, ny, rg, a, zp):
     """A pin's gap and gap gradient (the profile normal tilted by the deviation's slope) with
     disc ``disc``'s profile deviation at foot parameter ``u`` (:func:`profile_deviation`):

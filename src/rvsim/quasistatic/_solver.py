@@ -30,6 +30,7 @@ import numba
 import numpy as np
 
 from ..dynamics._cache_guard import invalidate_stale_cache
+from ..dynamics._jit import CACHE
 
 # numba caches this module's functions keyed on this file only; the kernel's force elements,
 # its layout and the curve functions are compiled in (same guard as the kernel's)
@@ -99,7 +100,7 @@ HOLE_LOOSE = 0.5
 HOLE_PASSES = 50
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def prepare(P, q, arm_elastic, given, first):
     """Before a pass: on the ``first`` of an evaluation each disc's Q is predicted from the last
     solution's, Q + dQ/dq (q - q_last) (:func:`add_coupling_stiffness` stored the linear
@@ -121,7 +122,7 @@ def prepare(P, q, arm_elastic, given, first):
             row[DF_DQ + p] = 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def forget_prediction(P, arm_elastic):
     """No prediction for the next evaluation (a new point of a path: the linear predictor does
     not carry across the bodies' large rigid rotations); its Q starts from the last one."""
@@ -133,7 +134,7 @@ def forget_prediction(P, arm_elastic):
             row[PREDICT + i] = 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def settled(P, arm_elastic, given, r, Q, f_ext):
     """After a pass (the arm bushings have summed Q_sum, and the kernel's ``end_arms`` copied it
     to the pins' Q): r = Q_sum - Q given; returns (solved tight, solved loosely) by
@@ -161,13 +162,13 @@ def settled(P, arm_elastic, given, r, Q, f_ext):
     return tight, worst <= HOLE_LOOSE * outer
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def hole_settled(P, arm_elastic):
     """Whether the last evaluation solved the holes' coupling tight (true with the holes held)."""
     return not holes_on(P) or hole_row(P, arm_elastic, 0)[SETTLED] == 1.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def _rotated_axis(P, q, disc):
     """The unit vector e from hole 0 to hole 1 of disc ``disc``, housing axes."""
     th = q[DISC0 + DISC_STRIDE * disc + 2]
@@ -175,7 +176,7 @@ def _rotated_axis(P, q, disc):
     return c * P[FE_HOLE_EX] - s * P[FE_HOLE_EY], s * P[FE_HOLE_EX] + c * P[FE_HOLE_EY]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def arm_response(P, q, holes, arm_elastic, c, d):
     """The arm bushings' response to the stretches at q (holes shifted by the stored s):
     ``c`` (N_DOF x 2) = d(their generalised forces)/ds_disc and ``d`` (2 x 2) = dQ_sum/ds.
@@ -226,7 +227,7 @@ def arm_response(P, q, holes, arm_elastic, c, d):
         hole_row(P, arm_elastic, disc)[Q_SUM] = kept[disc]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def _inverse(P, arm_elastic, d):
     """(I - D B)^-1 (2 x 2, row by row), B = diag ds_d/dQ_d of the pins' pass, D = dQ_sum/ds:
     the inverse Jacobian of Q - Q_sum(s(Q))."""
@@ -238,7 +239,7 @@ def _inverse(P, arm_elastic, d):
     return m11 / det, -m01 / det, -m10 / det, m00 / det
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def newton_step(P, arm_elastic, r, d, step):
     """The Newton step of the holes' loads into ``step`` (2): (I - D B)^-1 r (B = diag
     ds_d/dQ_d of the pins' pass, D = dQ_sum/ds, r = Q_sum - Q)."""
@@ -247,14 +248,14 @@ def newton_step(P, arm_elastic, r, d, step):
     step[1] = w10 * r[0] + w11 * r[1]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def newton_update(P, arm_elastic, given, step):
     """The pins' Q of the next pass: the given one plus the Newton ``step``."""
     for disc in range(2):
         hole_row(P, arm_elastic, disc)[Q_PINS] = given[disc] + step[disc]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def correct_forces(P, arm_elastic, c, step, Q):
     """The generalised forces ``Q`` of a pass whose holes' loads are off the solution by
     -``step``, corrected to first order: + (a + c B) step (a the pins' d(forces)/dQ, B their
@@ -269,7 +270,7 @@ def correct_forces(P, arm_elastic, c, step, Q):
             Q[i] += c[i, disc] * moved
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def add_coupling_stiffness(P, q, arm_elastic, c, d, K):
     """Add to ``K`` (assembled with each disc's Q held for its pins and each stretch s held for
     the arm bushings) what the holes' coupling changes, by the implicit-function theorem:
@@ -316,7 +317,7 @@ def add_coupling_stiffness(P, q, arm_elastic, c, d, K):
         row[PREDICT] = ahead
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
               next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
               mesh_hold, f_ext, fe):
@@ -367,7 +368,7 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
     return energy + work + held, abs(energy) + abs(work) + abs(held), torque_in, worst
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def _copy_state(Q, K, u, pin_force, pin_elastic, arm_elastic, channel, mesh_state,
                 Q_to, K_to, u_to, force_to, elastic_to, arm_to, channel_to, mesh_to):
     """Copy the state an evaluation leaves (forces, stiffness, contact arrays) into the
@@ -382,7 +383,7 @@ def _copy_state(Q, K, u, pin_force, pin_elastic, arm_elastic, channel, mesh_stat
     mesh_to[:, :] = mesh_state
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
                 Q, K, channel, mesh_state, mesh_hold, f_ext, fe):
@@ -524,7 +525,7 @@ def equilibrium(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, h
     return STATUS_NOT_CONVERGED, max_iter, torque_in
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, holes,
                  crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic,
                  Q, K, channel, mesh_state, f_ext, fe):
@@ -555,7 +556,7 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
     return status, total, torque_in
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def kinematic_pose(P, theta_in, holes, q):
     """The ideal (rigid, error-free) pose at input angle ``theta_in`` into ``q``; returns the
     eccentric angle beta (docs/model.md sections 1 and 13)."""
@@ -589,7 +590,7 @@ def kinematic_pose(P, theta_in, holes, q):
     return beta
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def _carry_feet(u, shift):
     """Carry the pins' foot-point offsets (``u[disc, i]``, from the pin's nominal parameter,
     :func:`rvsim.dynamics._kernel.pin_contacts`) to the next point of a path in input angle:
@@ -613,7 +614,7 @@ def _carry_feet(u, shift):
             u[disc, i] = (1.0 - frac) * a + frac * b
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def _predict(P, q, theta_old, theta_new, holes):
     """Carry the elastic and clearance deviation from the ideal pose from one input angle to
     the next, the discs' translations turned with the eccentric (the pin resultant turns with
@@ -634,7 +635,7 @@ def _predict(P, q, theta_old, theta_new, holes):
     return beta_new - beta_old + ideal_new[CARRIER] - ideal_old[CARRIER]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def condensed_stiffness(K, scale):
     """Torsional stiffness of the output with the input held: 1 / (K^-1)_cc [N*m/rad].
 
@@ -653,7 +654,7 @@ def condensed_stiffness(K, scale):
     return scale[CARRIER] ** 2 / x[CARRIER]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def virtual_velocity(P, q, theta_in, omega, carrier_rate, K, scale, holes, out):
     """The direction of travel as a velocity field: ``omega`` [rad/s] times the kinematic
     motion per input radian (the ideal pose's derivative) plus ``carrier_rate`` [rad/s] times
@@ -682,7 +683,7 @@ def virtual_velocity(P, q, theta_in, omega, carrier_rate, K, scale, holes, out):
             out[i] += carrier_rate * (x[i] / scale[i]) / (x[CARRIER] / scale[CARRIER])
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def friction_forces(P_fric, q, v, Q0, theta_in, omega, torque, pins, pin_angle, holes,
                     crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic,
                     arm_elastic, channel, mesh_state, mesh_hold, out, fe):
@@ -705,7 +706,7 @@ def friction_forces(P_fric, q, v, Q0, theta_in, omega, torque, pins, pin_angle, 
 FRICTION_ITERATIONS = 30
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, scale, tol,
                          max_iter, pins, pin_angle, holes, crank_angles, mesh_phase, u,
                          next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel,
@@ -789,7 +790,7 @@ def _solve_with_friction(P, P_fric, q, theta_in, torque, omega, carrier_rate, sc
     return status if status != STATUS_OK else STATUS_NOT_CONVERGED, total, torque_in
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes, crank_angles,
           mesh_phase, q_out, pin_out, stress_out, channel_out, mesh_out, stiffness_out,
           status_out, iterations_out, torque_in_out, output_pin_out, P_fric, omega,
@@ -886,7 +887,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     return n_points
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=CACHE)
 def _hertz(P, hertz, q, u, pin_angle, pin_force, out):
     """Maximum Hertz pressure of each loaded pin (line contact, the profile's curvature at the
     contact point): p = sqrt(F E* (1/r_pin + kappa_profile) / (pi L))."""
