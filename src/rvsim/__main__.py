@@ -31,9 +31,34 @@ def _limited_threads() -> None:
             os.environ.setdefault(name, "1")
 
 
+#: smallest address-space limit (ulimit -v) rvsim starts under [bytes].  Measured 2026-11-28
+#: (numpy 2.4, numba 0.68, OpenBLAS): below 270 MB a compiled library cannot be loaded (one
+#: line from rvsim.cli), at 300 MB `rvsim params` died of SIGSEGV, at 350 MB `params` and
+#: `simulate` spun in native code deaf to SIGTERM; `ltca` and `params` ran at 500 MB
+MIN_ADDRESS_SPACE = 500e6
+
+
+def _memory_floor() -> None:
+    """Refuse, in one line and before any compiled library is loaded, a memory limit under
+    which the libraries crash or hang instead of raising an error Python could report."""
+    try:
+        import resource
+    except ImportError:                 # pragma: no cover - not a Unix
+        return
+    limit = resource.getrlimit(resource.RLIMIT_AS)[0]
+    if limit != resource.RLIM_INFINITY and limit < MIN_ADDRESS_SPACE:
+        print(f"rvsim: error: out of memory: the memory limit of {limit / 1e6:.0f} MB "
+              f"(ulimit -v) is below the {MIN_ADDRESS_SPACE / 1e6:.0f} MB rvsim's compiled "
+              "libraries need to start (under it they crash or hang): raise the limit",
+              file=sys.stderr)
+        sys.stderr.flush()
+        os._exit(2)
+
+
 def main() -> None:
     """Import the command line, then run it: a Ctrl-C while it is still being imported ends
     with the command line's own line and code 130, not a traceback."""
+    _memory_floor()
     _limited_threads()
     try:
         from .cli import run

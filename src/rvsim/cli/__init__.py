@@ -96,7 +96,13 @@ def _main(argv: list[str] | None) -> tuple[int, bool]:
             raise
         print(line, file=sys.stderr)
         return 2, at_once
-    except OSError as exc:
+    except (OSError, ImportError) as exc:
+        memory = _memory_line(exc)
+        if memory is not None:
+            print(memory, file=sys.stderr)
+            return 2, at_once
+        if isinstance(exc, ImportError):
+            raise
         if exc.errno in _START_ERRORS:
             print(_resource_line(exc), file=sys.stderr)
             return 2, at_once
@@ -132,6 +138,22 @@ def _resource_line(exc: BaseException) -> str | None:
         return (f"rvsim: error: out of memory ({said}): raise the memory limit (ulimit -v) "
                 "or use a coarser finite-element mesh")
     return None
+
+
+def _memory_line(exc: BaseException) -> str | None:
+    """The one line of a compiled library that could not be loaded under a memory limit
+    (ulimit -v: llvmlite's shared object under 200 MB said "could not find/load shared
+    object" in a 25-line traceback); None without a limit or for another error."""
+    import resource
+
+    limit = resource.getrlimit(resource.RLIMIT_AS)[0]
+    said = " ".join(str(exc).split()).lower()
+    if limit == resource.RLIM_INFINITY or getattr(exc, "errno", None) is not None or not any(
+            word in said for word in ("shared object", "load", "cannot allocate memory")):
+        return None
+    return (f"rvsim: error: out of memory: a compiled library could not be loaded under the "
+            f"memory limit of {limit / 1e6:.0f} MB (ulimit -v): raise the limit (rvsim needs "
+            "about 1 GB of address space)")
 
 
 class _ClosedOutput(io.TextIOBase):
