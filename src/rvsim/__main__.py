@@ -34,8 +34,9 @@ def _limited_threads() -> None:
 #: smallest address-space limit (ulimit -v) rvsim starts under [bytes].  Measured 2026-11-28
 #: (numpy 2.4, numba 0.68, OpenBLAS): below 270 MB a compiled library cannot be loaded (one
 #: line from rvsim.cli), at 300 MB `rvsim params` died of SIGSEGV, at 350 MB `params` and
-#: `simulate` spun in native code deaf to SIGTERM; `ltca` and `params` ran at 500 MB
-MIN_ADDRESS_SPACE = 500e6
+#: `simulate` spun in native code deaf to SIGTERM, at 500 MB the first `simulate` (compiling
+#: its kernel) aborted in LLVM ("out of memory", SIGABRT); at 1000 MB it compiled and ran
+MIN_ADDRESS_SPACE = 1000e6
 
 
 def _memory_floor() -> None:

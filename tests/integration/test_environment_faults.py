@@ -268,11 +268,11 @@ def test_blas_runs_one_thread_under_a_memory_limit(tmp_path):
     assert done.stdout.strip() == "1", done
 
 
-@pytest.mark.parametrize("megabytes", [100, 200, 300, 350])
+@pytest.mark.parametrize("megabytes", [100, 200, 300, 350, 500])
 def test_a_memory_limit_too_small_to_start_is_one_line(tmp_path, megabytes):
     """Measured under real limits: 100 MB gave OpenBLAS's own failure, 200 MB a 25-line
-    llvmlite traceback, 300 MB `rvsim params` died of SIGSEGV, 350 MB it spun deaf to SIGTERM:
-    refused before any compiled library loads."""
+    llvmlite traceback, 300 MB `rvsim params` died of SIGSEGV, 350 MB it spun deaf to SIGTERM,
+    500 MB a cold `simulate` aborted in LLVM: refused before any compiled library loads."""
     def limit():
         resource.setrlimit(resource.RLIMIT_AS, (megabytes << 20, resource.RLIM_INFINITY))
     done = subprocess.run([sys.executable, "-m", "rvsim", "params"], capture_output=True,
@@ -280,7 +280,7 @@ def test_a_memory_limit_too_small_to_start_is_one_line(tmp_path, megabytes):
                           preexec_fn=limit, timeout=60)
     assert done.returncode == 2 and done.stdout == ""
     one_line(done.stderr, f"rvsim: error: out of memory: the memory limit of "
-                          f"{(megabytes << 20) / 1e6:.0f} MB (ulimit -v) is below the 500 MB")
+                          f"{(megabytes << 20) / 1e6:.0f} MB (ulimit -v) is below the 1000 MB")
     assert list(tmp_path.iterdir()) == []
 
 
@@ -293,11 +293,11 @@ def test_a_library_that_cannot_load_under_a_limit_is_one_line(monkeypatch, cli):
         raise OSError("Could not find/load shared object file 'libllvmlite.so'")
 
     monkeypatch.setattr(_geometry, "_params", refused)
-    monkeypatch.setattr(resource, "getrlimit", lambda kind: (600 << 20, -1))
+    monkeypatch.setattr(resource, "getrlimit", lambda kind: (1200 << 20, -1))
     res = cli("params")
     assert res.code == 2
     one_line(res.err, "rvsim: error: out of memory: a compiled library could not be loaded "
-                      "under the memory limit of 629 MB")
+                      "under the memory limit of 1258 MB")
     monkeypatch.undo()
     monkeypatch.setattr(_geometry, "_params", refused)
     with pytest.raises(OSError):              # without a limit: not a memory error
