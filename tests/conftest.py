@@ -123,6 +123,13 @@ def _default_signals() -> None:
 
 
 @pytest.fixture
+def empty_workdir(tmp_path, monkeypatch):
+    """An empty working folder for a command (its files, if any, land here)."""
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+@pytest.fixture
 def rv40e():
     return RV40E
 

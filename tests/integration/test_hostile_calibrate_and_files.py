@@ -85,7 +85,7 @@ def test_a_parameter_nil_beside_the_others_is_not_fixed():
                      "be fitted"]
 
 
-def test_a_calibration_without_a_torque_says_the_model_ran_at_zero(workdir, cli):
+def test_a_calibration_without_a_torque_says_the_model_ran_at_zero(empty_workdir, cli):
     # testrig --compare said so; calibrate fitted the model at 0 N*m without a word
     frame = pd.read_csv(f"{EXAMPLE}/te_15rpm_300Nm_40C.csv")
     frame[["time_s", "input_angle_deg", "output_angle_deg"]].to_csv("te.csv", index=False)
@@ -129,22 +129,16 @@ BAD_ROWS = {
 }
 
 
-@pytest.fixture
-def workdir(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    return tmp_path
-
-
 @pytest.mark.parametrize("case", list(BAD_ROWS))
-def test_bad_command_line(workdir, cli, case):
+def test_bad_command_line(empty_workdir, cli, case):
     args, words = BAD_ROWS[case]
-    before = listing(workdir)
+    before = listing(empty_workdir)
     expect_one_line_error(cli(*args), words)
-    assert listing(workdir) == before
+    assert listing(empty_workdir) == before
 
 
-def test_a_manifest_value_with_digit_groups_is_refused(workdir, cli):
-    folder = Path(shutil.copytree(EXAMPLE, workdir / "bench"))
+def test_a_manifest_value_with_digit_groups_is_refused(empty_workdir, cli):
+    folder = Path(shutil.copytree(EXAMPLE, empty_workdir / "bench"))
     (folder / "manifest.csv").write_text("file,torque_nm\nte_15rpm_300Nm_40C.csv,3_00\n"
                                          "reversal.csv,412\n")
     expect_one_line_error(cli("testrig", str(folder)),
@@ -161,47 +155,48 @@ positions = 81
 """
 
 
-def test_files_with_a_byte_order_mark_are_read(workdir, cli):
+def test_files_with_a_byte_order_mark_are_read(empty_workdir, cli):
     # Windows editors start a UTF-8 file with a BOM: every TOML file was "not valid TOML"
     # (line 1, column 1), and a tolerance file was not recognised as one by `rvsim study`
-    reducer = workdir / "bom.toml"
+    reducer = empty_workdir / "bom.toml"
     reducer.write_bytes(BOM + Path(START).read_bytes())
     res = cli("params", "--params", str(reducer), "--json")
     assert res.code == 0, res.err
     assert json.loads(res.out)["name"] == "RV-40E bench reducer (start)"
-    column_map = workdir / "map.toml"
+    column_map = empty_workdir / "map.toml"
     column_map.write_bytes(BOM + b'[output_torque]\ncolumn = "output_torque_nm"\n')
     res = cli("testrig", f"{EXAMPLE}/reversal.csv", "--map", str(column_map), "--json")
     assert res.code == 0, res.err
-    study = workdir / "tol.toml"
+    study = empty_workdir / "tol.toml"
     study.write_bytes(BOM + (SMALL_TOLERANCES + '[tolerances."clearances.crank_arm_bushing"]'
                              '\ntolerance = 0.003\n').encode())
     res = cli("study", str(study), "--out", "s", "--workers", "1", "--no-progress")
     assert res.code == 0, res.err
-    assert json.loads((workdir / "s" / "summary.json").read_text())["samples"] == 2
+    assert json.loads((empty_workdir / "s" / "summary.json").read_text())["samples"] == 2
 
 
-def test_a_toleranced_load_torque_is_stated_as_drawn(workdir, cli):
+def test_a_toleranced_load_torque_is_stated_as_drawn(empty_workdir, cli):
     # the summary said every reducer ran at 412 N*m while each ran at its own 212 .. 612
-    study = workdir / "tq.toml"
+    study = empty_workdir / "tq.toml"
     study.write_text(SMALL_TOLERANCES + '[tolerances."operating.load_torque"]\n'
                                         'tolerance = 200\n')
     res = cli("tolerance", str(study), "--out", "t", "--workers", "1")
     assert res.code == 0, res.err
     assert ("output torque 212 to 612 N*m (toleranced: uniform around 412 N*m, each reducer "
             "at its own)") in res.out
-    summary = json.loads((workdir / "t" / "summary.json").read_text())
+    summary = json.loads((empty_workdir / "t" / "summary.json").read_text())
     assert summary["torque_nm"] is None
     assert summary["torque_drawn"] == {"nominal_nm": 412.0, "tolerance_nm": 200.0,
                                        "distribution": "uniform", "low_nm": 212.0,
                                        "high_nm": 612.0}
-    assert "Transmission error at 212 to 612 N*m" in (workdir / "t" / "report.html").read_text()
+    page = (empty_workdir / "t" / "report.html").read_text()
+    assert "Transmission error at 212 to 612 N*m" in page
 
 
-def test_the_allocations_cost_as_given_is_the_given_tolerances(workdir, cli):
+def test_the_allocations_cost_as_given_is_the_given_tolerances(empty_workdir, cli):
     # the given 0.003 mm is below the cost table's tightest 0.004 mm: the search starts at
     # 0.004, whose cost (0.75) was reported as the cost "as given" (1)
-    study = workdir / "alloc.toml"
+    study = empty_workdir / "alloc.toml"
     study.write_text(SMALL_TOLERANCES + '"clearances.crank_arm_bushing" = 0.005\n'
                      '[tolerances."clearances.crank_arm_bushing"]\ntolerance = 0.003\n'
                      '[cost."clearances.crank_arm_bushing"]\ntightest = 0.004\n'

@@ -131,17 +131,11 @@ ROWS = {
 }
 
 
-@pytest.fixture
-def workdir(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    return tmp_path
-
-
 @pytest.mark.parametrize("case", list(ROWS))
-def test_a_part_that_cannot_exist_is_refused(workdir, cli, case):
+def test_a_part_that_cannot_exist_is_refused(empty_workdir, cli, case):
     args, words = ROWS[case]
     expect_one_line_error(cli(*args), words)
-    assert listing(workdir) == []
+    assert listing(empty_workdir) == []
 
 
 #: with_values (Python) refuses the same reducers, naming the same field
