@@ -252,7 +252,7 @@ def test_a_thread_refused_is_a_resource_line(monkeypatch, capsys):
         raise RuntimeError("can't start new thread")
 
     monkeypatch.setattr(rvsim.quasistatic, "ltca", refused)
-    assert main(["ltca", "--positions", "8"]) == 2
+    assert main(["ltca", "--positions", "81"]) == 2
     one_line(capsys.readouterr().err, "rvsim: error: resource limit: cannot start a process")
 
 
@@ -331,7 +331,7 @@ FE_ROWS = {
 @pytest.mark.parametrize("case", FE_ROWS, ids=list(FE_ROWS))
 def test_fe_without_the_extra_is_one_line(tmp_path, case):
     # the crank's path imported scikit-fem before the check: a traceback
-    code, out, err = rvsim([*FE_ROWS[case], "--set", "flexibility.model=fe", "--positions", "8"],
+    code, out, err = rvsim([*FE_ROWS[case], "--set", "flexibility.model=fe", "--positions", "81"],
                            tmp_path, env={"RVSIM_CACHE_DIR": str(tmp_path / "cache")},
                            script=NO_FE)
     assert code == 2, err

@@ -81,9 +81,9 @@ def test_pin_friction_with_the_fe_disc(cli):
 def test_the_fe_carrier_softens_every_command(cli):
     """flexibility.fe_carrier (default on with model = fe): the support bushings bear on
     finite-element plates, in the quasi-static and the dynamic engine."""
-    rigid = cli("ltca", "--positions", "12", "--json", "--set", "flexibility.model=fe",
+    rigid = cli("ltca", "--positions", "81", "--json", "--set", "flexibility.model=fe",
                 *COARSE, "--set", "flexibility.fe_carrier=false")
-    plate = cli("ltca", "--positions", "12", "--json", "--set", "flexibility.model=fe", *COARSE)
+    plate = cli("ltca", "--positions", "81", "--json", "--set", "flexibility.model=fe", *COARSE)
     a, b = json.loads(rigid.out), json.loads(plate.out)
     assert b["status"] == "ok"
     # the plates add 1.7e-8 rad/(N*m) (docs/validation.md): stiffness -6 %, mean TE +4 %
@@ -103,7 +103,7 @@ def test_fe_carrier_with_roller_supports_is_refused(cli):
     assert result.code == 2
     assert result.err.startswith("rvsim: error: parameter 'flexibility.fe_carrier': ")
     assert result.err.count("\n") == 1
-    ok = cli("ltca", "--positions", "8", "--json", "--set", "flexibility.model=fe", "--set",
+    ok = cli("ltca", "--positions", "81", "--json", "--set", "flexibility.model=fe", "--set",
              "bearings.support_rollers=true", "--set", "flexibility.fe_carrier=false", *COARSE)
     assert ok.code == 0, ok.err
 

@@ -181,8 +181,13 @@ def test_guard_off_with_coupled_fe_bodies(bodies):
     from rvsim.dynamics.model import build_model
     plain = build_model(with_values(RV40E, paper_run_values(3)), 1e-5)
     assert plain.P[L.NODE_OMEGA_DT] == 1.6
+    # coarse meshes (the guard asks whether coupled bodies exist, not how fine they are; the
+    # default 3 mm crank mesh took 115 s of this test): those of the FE test files, shared in
+    # the run's FE cache
+    coarse = {"flexibility.fe_element_size": 4.0, "flexibility.fe_segments_per_tooth": 2,
+              "flexibility.fe_crank_element_size": 6.0}
     fe = build_model(with_values(RV40E, {**paper_run_values(3), "flexibility.model": "fe",
-                                         **bodies}), 1e-5)
+                                         **coarse, **bodies}), 1e-5)
     assert fe.P[L.NODE_OMEGA_DT] == 0.0
 
 
