@@ -1,7 +1,7 @@
 """Compile rvsim's numba kernels once, before the tests run (``python -m tests._warmup KIND``).
 
 The kernels are cached on disk (numba's ``cache=True``, guarded by
-``rvsim.dynamics._cache_guard``), so what one process compiles every later process loads.
+``rvsim._cache_guard``), so what one process compiles every later process loads.
 Without this, the first test of each kernel in each pytest-xdist worker compiled it, both
 workers the same kernels at once (a unit test took 68 s).  ``tests/conftest.py`` runs the two
 kinds in two processes side by side, one per core: the dynamic engine's kernel, and the

@@ -21,7 +21,7 @@ PROBE = textwrap.dedent("""
         def unwritable(self):
             raise OSError("read-only")
         caching.InTreeCacheLocator.ensure_cache_path = unwritable
-    from rvsim.dynamics._cache_guard import kernel_cache_folder
+    from rvsim._cache_guard import kernel_cache_folder
     from rvsim.dynamics._kernel import step_function
     step_function(0.5, 0.0, 1.0)          # compiles, or loads from the cache
     print(json.dumps({"numba": step_function._cache._cache_path,
@@ -54,7 +54,7 @@ def test_stale_kernel_is_removed_and_not_loaded(tmp_path):
     assert _run(tmp_path)["hits"] == 1                     # same sources: loaded
     from pathlib import Path
 
-    from rvsim.dynamics._cache_guard import STAMP_NAME
+    from rvsim._cache_guard import STAMP_NAME
 
     folder = Path(first["numba"])
     cached = sorted(p.name for p in folder.glob("_kernel.*"))
@@ -96,7 +96,7 @@ def test_every_module_compiled_into_the_kernel_is_a_dependency():
     from pathlib import Path
 
     from rvsim.dynamics import _kernel
-    from rvsim.dynamics._cache_guard import DEPENDENCIES
+    from rvsim._cache_guard import DEPENDENCIES
 
     assert _compiled_in(_kernel.__file__) == {Path(p).resolve() for p in DEPENDENCIES}
 
@@ -104,7 +104,7 @@ def test_every_module_compiled_into_the_kernel_is_a_dependency():
 def test_the_quasi_static_solver_is_guarded_with_all_it_compiles_in():
     from pathlib import Path
 
-    from rvsim.dynamics._cache_guard import DEPENDENCIES
+    from rvsim._cache_guard import DEPENDENCIES
     from rvsim.quasistatic import _solver
 
     solver = Path(_solver.__file__).resolve()

@@ -57,9 +57,6 @@ LAYERS = {
 #: (importer module, imported module) upward imports still allowed, with the step of the plan
 #: that removes each (measured on main cbfd02a; the moves rewrite these dotted names)
 ALLOWED_UPWARD = {
-    # step 1: compile options and cache guard to the foundation
-    ("rvsim.geometry._curve", "rvsim.dynamics._cache_guard"),
-    ("rvsim.geometry._curve", "rvsim.dynamics._jit"),
     # step 2: the physics package
     ("rvsim.bearings", "rvsim.dynamics.compliance"),
     ("rvsim.friction", "rvsim.dynamics._layout"),

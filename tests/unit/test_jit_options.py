@@ -1,5 +1,5 @@
 """The kernel's compile options: no reference counting where Numba offers it, plain cached
-compilation where it does not, numpy's error model throughout (dynamics._jit;
+compilation where it does not, numpy's error model throughout (rvsim._jit;
 docs/decisions.md)."""
 
 import importlib
@@ -7,7 +7,7 @@ import importlib
 import pytest
 from numba.core import cpu
 
-from rvsim.dynamics import _jit
+from rvsim import _jit
 
 HAS_NRT_OPTION = hasattr(cpu.CPUTargetOptions, "_nrt")
 

@@ -17,7 +17,7 @@ from tests.integration.conftest import write_study
 def test_model_fingerprint_is_stable_and_covers_the_model_sources():
     files = fp.model_source_files()
     names = {f.relative_to(fp._ROOT).as_posix() for f in files}
-    assert {"dynamics/_kernel.py", "dynamics/compliance.py", "geometry/_curve.py",
+    assert {"_jit.py", "dynamics/_kernel.py", "dynamics/compliance.py", "geometry/_curve.py",
             "parameters/rv40e.py", "units.py", "bearings.py", "friction.py",
             # the quasi-static engine's studies and tolerance samples were stored without
             # their engine's source in the key (found 2026-11-26)

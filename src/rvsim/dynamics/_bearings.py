@@ -22,8 +22,8 @@ import math
 
 import numba
 
-from ._jit import CACHE, NO_REFCOUNT
-from ._cache_guard import invalidate_stale_cache
+from .._jit import CACHE, NO_REFCOUNT
+from .._cache_guard import invalidate_stale_cache
 from ._contact_law import contact
 
 invalidate_stale_cache(__file__)

@@ -10,8 +10,8 @@ import math
 
 import numba
 
-from ._jit import CACHE, NO_REFCOUNT
-from ._cache_guard import invalidate_stale_cache
+from .._jit import CACHE, NO_REFCOUNT
+from .._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 

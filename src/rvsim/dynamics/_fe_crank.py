@@ -44,8 +44,8 @@ import math
 import numba
 import numpy as np
 
-from ._jit import CACHE, NO_REFCOUNT, REFCOUNT
-from ._cache_guard import invalidate_stale_cache
+from .._jit import CACHE, NO_REFCOUNT, REFCOUNT
+from .._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 

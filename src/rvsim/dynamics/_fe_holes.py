@@ -32,8 +32,8 @@ import math
 
 import numba
 
-from ._cache_guard import invalidate_stale_cache
-from ._jit import CACHE
+from .._cache_guard import invalidate_stale_cache
+from .._jit import CACHE
 
 invalidate_stale_cache(__file__)
 

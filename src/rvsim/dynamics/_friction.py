@@ -15,8 +15,8 @@ import math
 
 import numba
 
-from ._cache_guard import invalidate_stale_cache
-from ._jit import NO_REFCOUNT
+from .._cache_guard import invalidate_stale_cache
+from .._jit import NO_REFCOUNT
 
 invalidate_stale_cache(__file__)
 

@@ -45,8 +45,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from ._jit import NO_REFCOUNT
-from ._cache_guard import invalidate_stale_cache
+from .._jit import NO_REFCOUNT
+from .._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 

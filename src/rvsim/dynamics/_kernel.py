@@ -13,8 +13,8 @@ import math
 import numba
 import numpy as np
 
-from ._cache_guard import invalidate_stale_cache
-from ._jit import CACHE, NO_REFCOUNT, REFCOUNT
+from .._cache_guard import invalidate_stale_cache
+from .._jit import CACHE, NO_REFCOUNT, REFCOUNT
 
 # numba's on-disk cache is keyed on this file only; the index constants of _layout, the curve
 # functions of geometry._curve, the contact law and the single-stage elements are compiled in,

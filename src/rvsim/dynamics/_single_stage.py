@@ -10,8 +10,8 @@ import math
 import numba
 import numpy as np
 
-from ._jit import NO_REFCOUNT, REFCOUNT
-from ._cache_guard import invalidate_stale_cache
+from .._jit import NO_REFCOUNT, REFCOUNT
+from .._cache_guard import invalidate_stale_cache
 
 # compiled in: the layout constants and the contact law (the kernel's guard lists this file)
 invalidate_stale_cache(__file__)

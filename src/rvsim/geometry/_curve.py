@@ -30,10 +30,10 @@ import math
 import numba
 import numpy as np
 
-from ..dynamics._cache_guard import invalidate_stale_cache
-from ..dynamics._jit import CACHE, NO_REFCOUNT, REFCOUNT
+from .._cache_guard import invalidate_stale_cache
+from .._jit import CACHE, NO_REFCOUNT, REFCOUNT
 
-# the compile options come from dynamics._jit: clear this module's cached code when they change
+# the compile options come from rvsim._jit: clear this module's cached code when they change
 invalidate_stale_cache(__file__)
 __all__ = ["curve_point", "curve_from", "rotated", "foot_point", "nearest_point", "curvature", "profile_points",
            "profile_axes", "pin_gap", "pin_gaps_at", "pin_opening", "profile_deviation", "lever_arms", "curvatures",

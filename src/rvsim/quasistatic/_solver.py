@@ -29,8 +29,8 @@ import math
 import numba
 import numpy as np
 
-from ..dynamics._cache_guard import invalidate_stale_cache
-from ..dynamics._jit import CACHE
+from .._cache_guard import invalidate_stale_cache
+from .._jit import CACHE
 
 # numba caches this module's functions keyed on this file only; the kernel's force elements,
 # its layout and the curve functions are compiled in (same guard as the kernel's)

@@ -17,7 +17,7 @@ except ImportError:        # pragma: no cover - a Numba without that module
 
 __all__ = ["CACHE", "NO_REFCOUNT", "REFCOUNT", "cache_usable"]
 
-_PACKAGE = Path(__file__).resolve().parents[1]
+_PACKAGE = Path(__file__).resolve().parent
 #: one module of each folder whose functions are compiled with ``cache``: numba's locators pick
 #: a folder per source folder (its ``__pycache__`` when writable)
 _COMPILED = (_PACKAGE / "dynamics" / "_kernel.py", _PACKAGE / "geometry" / "_curve.py",

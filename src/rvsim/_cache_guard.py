@@ -10,25 +10,28 @@ its fingerprint covers the kernel's dependencies and that file.
 
 The cache folder is the one numba itself picks, asked from numba's own cache locators in
 numba's order (``numba.core.caching.CacheImpl``): ``NUMBA_CACHE_DIR`` when set, else
-``__pycache__`` beside ``_kernel.py`` when writable, else numba's user-wide cache folder.
+``__pycache__`` beside ``dynamics/_kernel.py`` when writable, else numba's user-wide cache folder.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from .._files import atomic_write_text
-from .._fingerprint import fingerprint_files
+from ._files import atomic_write_text
+from ._fingerprint import fingerprint_files
 
 __all__ = ["invalidate_stale_cache", "kernel_cache_folder", "DEPENDENCIES", "STAMP_NAME"]
 
-_HERE = Path(__file__).parent
-_KERNEL = _HERE / "_kernel.py"
-#: every source file compiled into the kernel's cached machine code: the compiled curve
-#: functions and every private module of this package (the force elements, the layout; a new
-#: element module is covered without being listed)
-DEPENDENCIES = (_HERE.parent / "geometry" / "_curve.py",) + tuple(
-    sorted(p for p in _HERE.glob("_*.py") if p.name not in ("__init__.py", "_cache_guard.py")))
+_ROOT = Path(__file__).parent
+_KERNEL = _ROOT / "dynamics" / "_kernel.py"
+#: the packages whose private modules (``_*.py``) are compiled into the kernel
+COMPILED_PACKAGES = ("dynamics",)
+#: every source file compiled into the kernel's cached machine code: the compile options, the
+#: compiled curve functions and every private module of the compiled packages (the force
+#: elements, the layout; a new element module is covered without being listed)
+DEPENDENCIES = (_ROOT / "_jit.py", _ROOT / "geometry" / "_curve.py") + tuple(
+    sorted(p for package in COMPILED_PACKAGES for p in (_ROOT / package).glob("_*.py")
+           if p.name != "__init__.py"))
 STAMP_NAME = "rvsim_kernel_dependencies.sha256"
 
 
