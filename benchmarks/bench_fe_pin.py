@@ -31,7 +31,7 @@ def main() -> None:
     import numpy as np
 
     import rvsim.fe.pin as fe_pin
-    from rvsim.dynamics import _layout as L
+    from rvsim.physics import _layout as L
     from rvsim.dynamics.model import build_model
     from rvsim.parameters import RV40E, with_values
     from rvsim.quasistatic import ltca

@@ -27,8 +27,8 @@ def main() -> None:
     parser.add_argument("--ripple", type=float, nargs="+", default=[1e-4, 1e-3, 1e-2])
     parser.add_argument("--time-step", type=float, default=5e-6)
     args = parser.parse_args()
-    from rvsim.dynamics import _layout as L
-    from rvsim.dynamics._bearings import NEWTON_CLOSE, conforming_approach, conforming_start
+    from rvsim.physics import _layout as L
+    from rvsim.physics._bearings import NEWTON_CLOSE, conforming_approach, conforming_start
     from rvsim.dynamics.model import build_model
     from rvsim.parameters import RV40E, paper_run_values, with_values
 

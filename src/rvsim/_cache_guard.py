@@ -1,9 +1,10 @@
 """Keep numba's on-disk cache of the kernel consistent with the modules compiled into it.
 
 numba invalidates a cached function when its own source file changes, not when a module it
-imports does.  The kernel compiles in the index constants of ``_layout``, the curve and gap
-functions of ``geometry._curve``, the contact law (``_contact_law``) and the single-stage
-elements (``_single_stage``); this guard stores a fingerprint of those files beside the
+imports does.  The kernel (``dynamics/_kernel.py``) compiles in the compile options
+(``_jit``), the curve and gap functions of ``geometry._curve``, the laws, elements and index
+constants of ``physics`` (``physics/_*.py``) and the dynamic engine's other private modules;
+this guard stores a fingerprint of those files beside the
 cache and deletes the kernel's cache files when the fingerprint changes.  A module that compiles
 the kernel's functions into its own (the quasi-static solver) calls the guard with its own file:
 its fingerprint covers the kernel's dependencies and that file.
@@ -25,7 +26,7 @@ __all__ = ["invalidate_stale_cache", "kernel_cache_folder", "DEPENDENCIES", "STA
 _ROOT = Path(__file__).parent
 _KERNEL = _ROOT / "dynamics" / "_kernel.py"
 #: the packages whose private modules (``_*.py``) are compiled into the kernel
-COMPILED_PACKAGES = ("dynamics",)
+COMPILED_PACKAGES = ("physics", "dynamics")
 #: every source file compiled into the kernel's cached machine code: the compile options, the
 #: compiled curve functions and every private module of the compiled packages (the force
 #: elements, the layout; a new element module is covered without being listed)

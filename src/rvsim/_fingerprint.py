@@ -18,8 +18,8 @@ _ROOT = Path(__file__).parent
 #: sub-packages and modules of rvsim whose source determines a stored run's numbers: the
 #: dynamic and quasi-static engines and what they call, the catalogue quantities of a
 #: quasi-static run, a study's and a tolerance sample's evaluation
-MODEL_PACKAGES = ("_jit.py", "dynamics", "fe", "geometry", "parameters", "quasistatic", "units.py",
-                  "bearings.py", "friction.py", "analysis/catalogue.py", "doe/engines.py",
+MODEL_PACKAGES = ("_jit.py", "physics", "dynamics", "fe", "geometry", "parameters", "quasistatic",
+                  "units.py", "bearings.py", "friction.py", "analysis/catalogue.py", "doe/engines.py",
                   "tolerance/engine.py")
 
 

@@ -1,7 +1,7 @@
 """Crank bearings and main bearings: constants of the kernel's laws and reported stiffness.
 
 * Bushings (the paper's model): two conforming interfaces in series per bushing, Johnson's
-  law (docs/model.md "Bearings"; :mod:`rvsim.dynamics._bearings`).
+  law (docs/model.md "Bearings"; :mod:`rvsim.physics._bearings`).
 * Needle roller bearings at the eccentrics and tapered roller bearings at the supports: every
   roller a Palmgren line contact on both raceways (Harris & Kotzalas, *Rolling Bearing
   Analysis*, 5th ed., Eq. 7.9 and Ch. 7 load distribution).
@@ -16,7 +16,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from .dynamics.compliance import effective_modulus, palmgren_coefficient
+from .physics.compliance import effective_modulus, palmgren_coefficient
 from .parameters import Reducer
 
 __all__ = ["arm_play", "support_play", "roller_pitch_diameter", "conforming_constants",

@@ -71,8 +71,8 @@ def has_friction(reducer: Reducer) -> bool:
 
 
 def fill_constants(reducer: Reducer, P) -> None:
-    """Friction constants into the kernel's constant vector ``P`` (dynamics._layout)."""
-    from .dynamics import _layout as L
+    """Friction constants into the kernel's constant vector ``P`` (physics._layout)."""
+    from .physics import _layout as L
 
     f = reducer.friction
     P[L.MU] = pin_friction_coefficient(reducer)

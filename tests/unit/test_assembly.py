@@ -61,7 +61,7 @@ def test_bushings_and_meshes_start_centred():
 
 
 def test_the_checked_pose_is_the_dynamic_models_initial_state():
-    from rvsim.dynamics import _layout as L
+    from rvsim.physics import _layout as L
     from rvsim.dynamics.model import build_model
 
     reducer = with_values(RV40E, {"G": 0.01, "I": 0.03})

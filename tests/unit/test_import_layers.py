@@ -57,11 +57,8 @@ LAYERS = {
 #: (importer module, imported module) upward imports still allowed, with the step of the plan
 #: that removes each (measured on main cbfd02a; the moves rewrite these dotted names)
 ALLOWED_UPWARD = {
-    # step 2: the physics package
-    ("rvsim.bearings", "rvsim.dynamics.compliance"),
-    ("rvsim.friction", "rvsim.dynamics._layout"),
     # step 3: fe.pin's table size without the layout
-    ("rvsim.fe.pin", "rvsim.dynamics._layout"),
+    ("rvsim.fe.pin", "rvsim.physics._layout"),
     # step 4: the checks that need geometry leave parameters
     ("rvsim.parameters._io", "rvsim.geometry.cycloid"),
     ("rvsim.parameters._io", "rvsim.fe.sizes"),

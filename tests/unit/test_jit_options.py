@@ -23,7 +23,8 @@ def test_no_refcount_where_numba_has_the_option():
 def test_step_loop_counts_no_references_and_allocating_callees_do():
     # Numba's callees inherit the caller's reference counting: the step loop and the bearings
     # it calls every step go without, the functions that allocate set it back explicitly
-    from rvsim.dynamics import _fe_carrier, _kernel, _stiff_nodes
+    from rvsim.dynamics import _kernel, _stiff_nodes
+    from rvsim.physics import _fe_carrier
 
     for function in (_kernel._advance, _kernel.crank_bearings, _kernel.pin_loop):
         assert function.targetoptions["_nrt"] is False, function.__name__
@@ -37,10 +38,12 @@ def _kernel_functions():
     import importlib
     import pkgutil
 
-    import rvsim.dynamics as package
+    import rvsim.dynamics
+    import rvsim.physics
     names = ["rvsim.geometry._curve"] + [
-        f"rvsim.dynamics.{m.name}" for m in pkgutil.iter_modules(package.__path__)
-        if m.name.startswith("_") and m.name not in ("_jit", "_layout", "_cache_guard")]
+        f"{package.__name__}.{m.name}" for package in (rvsim.physics, rvsim.dynamics)
+        for m in pkgutil.iter_modules(package.__path__)
+        if m.name.startswith("_") and m.name != "_layout"]
     found = []
     for name in names:
         module = importlib.import_module(name)

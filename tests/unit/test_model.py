@@ -4,9 +4,9 @@ import math
 
 import pytest
 
-from rvsim.dynamics import _layout as L
-from rvsim.dynamics.compliance import (effective_modulus, palmgren_coefficient,
-                                       pin_compliance, ring_compliance, tooth_compliance)
+from rvsim.physics import _layout as L
+from rvsim.physics.compliance import (effective_modulus, palmgren_coefficient,
+                                      pin_compliance, ring_compliance, tooth_compliance)
 from rvsim.dynamics.model import build_model, mass_properties
 from rvsim.parameters import RV40E, Material, with_values
 

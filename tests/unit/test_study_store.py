@@ -8,7 +8,7 @@ import rvsim._fingerprint as fp
 from rvsim.doe import ResultStore, load_study, run, run_key
 from rvsim.doe.runner import evaluate
 from rvsim.dynamics import Result
-from rvsim.dynamics import _layout as L
+from rvsim.physics import _layout as L
 from rvsim.errors import InputFileError
 from rvsim.parameters import RV40E
 from tests.integration.conftest import write_study
@@ -17,7 +17,7 @@ from tests.integration.conftest import write_study
 def test_model_fingerprint_is_stable_and_covers_the_model_sources():
     files = fp.model_source_files()
     names = {f.relative_to(fp._ROOT).as_posix() for f in files}
-    assert {"_jit.py", "dynamics/_kernel.py", "dynamics/compliance.py", "geometry/_curve.py",
+    assert {"_jit.py", "physics/_layout.py", "physics/compliance.py", "dynamics/_kernel.py", "geometry/_curve.py",
             "parameters/rv40e.py", "units.py", "bearings.py", "friction.py",
             # the quasi-static engine's studies and tolerance samples were stored without
             # their engine's source in the key (found 2026-11-26)

@@ -27,10 +27,10 @@ import pytest
 from scipy.integrate import quad
 
 from rvsim.bearings import conforming_constants, main_bearing_stiffness, roller_coefficient
-from rvsim.dynamics import _layout as L
-from rvsim.dynamics._bearings import (WRAP_RATIO, conforming_approach, conforming_force,
-                                      roller_set)
-from rvsim.dynamics.compliance import PALMGREN_REFERENCE
+from rvsim.physics import _layout as L
+from rvsim.physics._bearings import (WRAP_RATIO, conforming_approach, conforming_force,
+                                     roller_set)
+from rvsim.physics.compliance import PALMGREN_REFERENCE
 from rvsim.errors import ParameterError
 from rvsim.parameters import paper_run_values, with_values
 from rvsim.parameters.rv40e_bearings import RV40E_ROLLING

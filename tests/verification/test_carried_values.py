@@ -8,10 +8,10 @@ import math
 import numpy as np
 import pytest
 
-from rvsim.dynamics._bearings import (SERIES_LIMIT as LOG_LIMIT, bushing_shift,
-                                      conforming_force, log_ratio)
-from rvsim.dynamics._contact_law import (EXPONENT, SERIES_LIMIT as POWER_LIMIT, power_ratio,
-                                         spring_force, spring_force_power)
+from rvsim.physics._bearings import (SERIES_LIMIT as LOG_LIMIT, bushing_shift,
+                                     conforming_force, log_ratio)
+from rvsim.physics._contact_law import (EXPONENT, SERIES_LIMIT as POWER_LIMIT, power_ratio,
+                                        spring_force, spring_force_power)
 from rvsim.dynamics.model import build_model
 from rvsim.geometry._curve import ROTATION_LIMIT, TRACKING_LIMIT, pin_gap, rotated
 from rvsim.parameters import RV40E
@@ -57,7 +57,7 @@ def test_rotation_keeps_unit_length_over_a_million_turns():
 
 def test_pin_gap_with_carried_trig_equals_the_direct_one():
     model = build_model(RV40E, 5e-6)
-    from rvsim.dynamics import _layout as L
+    from rvsim.physics import _layout as L
     rg, a, zp = model.P[L.RG], model.P[L.A_GEN], model.P[L.ZP]
     clearance = model.P[L.PROFILE_OFFSET] - model.P[L.PIN_RADIUS]
     rng = np.random.default_rng(3)
@@ -112,8 +112,8 @@ def test_carried_power_finds_the_root(change):
 
 @pytest.mark.parametrize("change", [1e-7, -3e-5, 2e-3, -8e-3, 0.3])
 def test_conforming_force_with_carried_logarithm_finds_the_root(change):
-    from rvsim.dynamics import _layout as L
-    from rvsim.dynamics._bearings import conforming_approach
+    from rvsim.physics import _layout as L
+    from rvsim.physics._bearings import conforming_approach
     P = build_model(RV40E, 5e-6).P
     law = (P[L.SUP_J1], P[L.SUP_A1], P[L.SUP_J2], P[L.SUP_A2_U], 0.0)
     guess = 4000.0
@@ -128,7 +128,7 @@ def test_conforming_force_with_carried_logarithm_finds_the_root(change):
 
 def test_bushing_shift_given_or_computed_is_the_same_force():
     model = build_model(RV40E, 5e-6)
-    from rvsim.dynamics import _layout as L
+    from rvsim.physics import _layout as L
     P = model.P
     args = (P[L.SUP_J1], P[L.SUP_A1], P[L.SUP_J2], P[L.SUP_A2_U], 0.0, 4000.0)
     assert P[L.SUP_SHIFT_U] == bushing_shift(P[L.SUP_A1], P[L.SUP_A2_U]) != 0.0
@@ -147,9 +147,9 @@ CHANGES = [0.0, 1e-7, -3e-5, 2e-3, -8e-3, 0.05, -0.03, 0.3, 0.9, -0.5]
 @pytest.mark.parametrize("f0", [40.0, 4000.0, 60000.0])     # 60 kN: both interfaces wrapped
 @pytest.mark.parametrize("change", CHANGES)
 def test_conforming_force_from_the_last_solution_finds_the_root(f0, change):
-    from rvsim.dynamics import _layout as L
-    from rvsim.dynamics._bearings import (conforming_approach, conforming_force_carried,
-                                          conforming_force_from)
+    from rvsim.physics import _layout as L
+    from rvsim.physics._bearings import (conforming_approach, conforming_force_carried,
+                                         conforming_force_from)
     P = build_model(RV40E, 5e-6).P
     law = (P[L.SUP_J1], P[L.SUP_A1], P[L.SUP_J2], P[L.SUP_A2_U], 0.0)
     d0, _, _ = conforming_approach(f0, *law)
@@ -167,7 +167,7 @@ def test_conforming_force_from_the_last_solution_finds_the_root(f0, change):
 @pytest.mark.parametrize("cb", [1.7e-10, 1.8e-10])    # the series compliance may have changed
 @pytest.mark.parametrize("change", CHANGES[:-1])
 def test_spring_force_from_the_last_solution_finds_the_root(cb, change):
-    from rvsim.dynamics._contact_law import spring_force_from
+    from rvsim.physics._contact_law import spring_force_from
     c = 2.3e-9
     d0 = c * 850.0 ** EXPONENT + 1.7e-10 * 850.0
     last, k0, _, fe0 = spring_force_power(d0, c, 1.7e-10, 0.0, 0.0)
@@ -188,9 +188,9 @@ def test_spring_force_from_the_last_solution_finds_the_root(cb, change):
 @pytest.mark.parametrize("f0, bound", [(40.0, 0.03), (4000.0, 0.9), (60000.0, 1e-9)])
 @pytest.mark.parametrize("change", [1e-4, -1e-3, 1e-3, -1e-2, 1e-2])
 def test_conforming_start_is_third_order(f0, bound, change):
-    from rvsim.dynamics import _layout as L
-    from rvsim.dynamics._bearings import (NEWTON_CLOSE, conforming_approach,
-                                          conforming_force_carried, conforming_start)
+    from rvsim.physics import _layout as L
+    from rvsim.physics._bearings import (NEWTON_CLOSE, conforming_approach,
+                                         conforming_force_carried, conforming_start)
     P = build_model(RV40E, 5e-6).P
     law = (P[L.SUP_J1], P[L.SUP_A1], P[L.SUP_J2], P[L.SUP_A2_U], 0.0)
     d0, _, _ = conforming_approach(f0, *law)
@@ -206,7 +206,7 @@ def test_conforming_start_is_third_order(f0, bound, change):
 
 @pytest.mark.parametrize("change", [1e-4, -1e-3, 1e-3, -1e-2, 1e-2])
 def test_spring_start_is_third_order(change):
-    from rvsim.dynamics._contact_law import NEWTON_CLOSE, spring_start
+    from rvsim.physics._contact_law import NEWTON_CLOSE, spring_start
     c, cb = 2.3e-9, 1.7e-10
     d0 = c * 850.0 ** EXPONENT + cb * 850.0
     last, k0, _, fe0 = spring_force_power(d0, c, cb, 0.0, 0.0)
@@ -226,7 +226,7 @@ def test_shared_cosines_equal_the_direct_ones():
     # rotation modification.  Measured 2.5e-14 (eccentric) and 8e-15 (frame): the round-off
     # of angles up to 150 rad
     from rvsim.dynamics import _kernel as Kn
-    from rvsim.dynamics import _layout as L
+    from rvsim.physics import _layout as L
     from rvsim.dynamics.model import fill_turns
     P = build_model(RV40E, 5e-6).P.copy()
     P[L.ECC_PHASE0:L.ECC_PHASE0 + 4] = 1e-3, -2e-3, 3e-3, 0.5

@@ -13,8 +13,8 @@ from tests.conftest import HAS_FE, NO_FE
 if not HAS_FE:
     pytest.skip(NO_FE, allow_module_level=True)
 
-from rvsim.dynamics._fe_contacts import coupled_forces, lagged_forces, table_compliance
-from rvsim.dynamics.compliance import palmgren_coefficient, tooth_compliance
+from rvsim.physics._fe_contacts import coupled_forces, lagged_forces, table_compliance
+from rvsim.physics.compliance import palmgren_coefficient, tooth_compliance
 from rvsim.fe.elasticity import PlaneStressBody, edge_load
 from rvsim.fe.mesh import Circle, mesh_plane_region
 from rvsim.parameters import RV40E, with_values

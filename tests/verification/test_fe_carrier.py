@@ -15,10 +15,10 @@ from tests.conftest import HAS_FE, NO_FE
 if not HAS_FE:
     pytest.skip(NO_FE, allow_module_level=True)
 
-from rvsim.dynamics import _layout as L
-from rvsim.dynamics._bearings import conforming_force
-from rvsim.dynamics._fe_carrier import COLUMNS, plate_supports, support_law
-from rvsim.dynamics._fe_crank import coupled_pair_forces
+from rvsim.physics import _layout as L
+from rvsim.physics._bearings import conforming_force
+from rvsim.physics._fe_carrier import COLUMNS, plate_supports, support_law
+from rvsim.physics._fe_crank import coupled_pair_forces
 from rvsim.dynamics.model import build_model
 from rvsim.parameters import RV40E, with_values
 from rvsim.quasistatic import ltca

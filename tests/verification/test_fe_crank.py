@@ -17,10 +17,10 @@ if not HAS_FE:
     pytest.skip(NO_FE, allow_module_level=True)
 
 from rvsim.dynamics import _kernel as Kn
-from rvsim.dynamics import _layout as L
-from rvsim.dynamics._bearings import conforming_approach
-from rvsim.dynamics._fe_crank import (coupled_arm_forces, compliance_torque, crank_compliance,
-                                      lagged_arm_forces, pack_table)
+from rvsim.physics import _layout as L
+from rvsim.physics._bearings import conforming_approach
+from rvsim.physics._fe_crank import (coupled_arm_forces, compliance_torque, crank_compliance,
+                                     lagged_arm_forces, pack_table)
 from rvsim.parameters import RV40E, with_values
 
 SIZE = 6.0                       # crank element size [mm]

@@ -1,5 +1,5 @@
 """The finite-element disc condensed onto its crank holes as well (rvsim.fe.disc_holes,
-rvsim.dynamics._fe_holes; docs/model.md section 17, "Crank holes as load points"): the table
+rvsim.physics._fe_holes; docs/model.md section 17, "Crank holes as load points"): the table
 against the full FE model, its structure, the engines' coupling (limit, stiffness, the two
 engines' mean TE)."""
 
@@ -15,8 +15,8 @@ if not HAS_FE:
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from rvsim.dynamics import _layout as L
-from rvsim.dynamics._fe_holes import COLUMNS as HOLE_COLUMNS
+from rvsim.physics import _layout as L
+from rvsim.physics._fe_holes import COLUMNS as HOLE_COLUMNS
 from rvsim.errors import ParameterError
 from rvsim.parameters import RV40E, with_values
 
@@ -224,7 +224,7 @@ def test_no_pin_touching_leaves_the_stretch_of_the_holes_load_alone():
     c_ss Q from the holes' own load, whatever it was before (found stale by review), with the
     strain energy c_ss Q^2 / 2."""
     from rvsim.dynamics import _kernel as Kn
-    from rvsim.dynamics._fe_holes import Q_PINS, STRETCH
+    from rvsim.physics._fe_holes import Q_PINS, STRETCH
     from rvsim.dynamics.model import build_model
 
     m = build_model(with_values(RV40E, COARSE), 1e-5)

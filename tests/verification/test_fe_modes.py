@@ -14,10 +14,10 @@ from tests.conftest import HAS_FE, NO_FE
 if not HAS_FE:
     pytest.skip(NO_FE, allow_module_level=True)
 
-from rvsim.dynamics._fe_contacts import coupled_forces, lagged_forces
-from rvsim.dynamics._fe_modes import (ETA, FORCE, HEADER, OMEGA2, RATE, add_modal_force,
-                                      advance_modes, foot_modes, modal_array)
-from rvsim.dynamics.compliance import palmgren_coefficient
+from rvsim.physics._fe_contacts import coupled_forces, lagged_forces
+from rvsim.physics._fe_modes import (ETA, FORCE, HEADER, OMEGA2, RATE, add_modal_force,
+                                     advance_modes, foot_modes, modal_array)
+from rvsim.physics.compliance import palmgren_coefficient
 from rvsim.errors import ParameterError
 from rvsim.parameters import RV40E, with_values
 

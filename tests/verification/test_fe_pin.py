@@ -138,7 +138,7 @@ def test_pin_contact_set_and_symmetry(coarse_pin):
 def test_pin_table_interpolation(coarse_pin):
     """The kernel's Catmull-Rom reading of the 10-deg table against the model solved at the
     angle: within 1.5e-4 up to 45 deg, 4e-4 at 55 deg (measured)."""
-    from rvsim.dynamics._pin_compliance import table_value
+    from rvsim.physics._pin_compliance import table_value
 
     step = math.radians(10.0)
     table, touching = [], None
@@ -172,7 +172,7 @@ def test_a_constant_table_is_the_closed_form_pin(monkeypatch):
     """A table holding Roark's constant gives the closed-form model's TE exactly: the table
     replaces P[PIN_CB]'s pin term and nothing else."""
     import rvsim.fe.pin as fe_pin
-    from rvsim.dynamics import _layout as L
+    from rvsim.physics import _layout as L
     from rvsim.dynamics.model import build_model
     from rvsim.quasistatic import ltca
 

@@ -26,7 +26,7 @@ import numpy as np
 import pytest
 
 import rvsim.dynamics.simulate  # noqa: F401  (loads the module; the name is the function)
-from rvsim.dynamics import _layout as L
+from rvsim.physics import _layout as L
 from rvsim.dynamics import simulate
 from rvsim.dynamics._implicit_bearings import (ALERT_RATIO, FORCE_FLOOR, THETA,
                                                bearing_forces_risen, factor_effective_mass,

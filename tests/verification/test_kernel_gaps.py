@@ -12,8 +12,8 @@ can close before their next evaluation) are open at every step they are skipped.
 import numpy as np
 import pytest
 
-from rvsim.dynamics import _layout as L
-from rvsim.dynamics._contact_law import EXPONENT
+from rvsim.physics import _layout as L
+from rvsim.physics._contact_law import EXPONENT
 from rvsim.dynamics._kernel import nothing_carried, pin_contacts
 from rvsim.dynamics.model import build_model
 from rvsim.geometry import nominal_disc_pose, pin_gaps

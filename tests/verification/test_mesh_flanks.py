@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from rvsim.dynamics import _layout as L
+from rvsim.physics import _layout as L
 from rvsim.dynamics._kernel import gear_mesh
 from rvsim.dynamics.model import build_model
 from rvsim.parameters import RV40E

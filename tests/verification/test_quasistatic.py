@@ -26,7 +26,7 @@ import math
 import numpy as np
 import pytest
 
-from rvsim.dynamics import _layout as L
+from rvsim.physics import _layout as L
 from rvsim.dynamics import simulate
 from rvsim.dynamics.model import build_model
 from rvsim.errors import ParameterError, SimulationError

@@ -31,7 +31,7 @@ import numpy as np
 import pytest
 
 from rvsim.cli import main
-from rvsim.dynamics import _layout as L
+from rvsim.physics import _layout as L
 from rvsim.dynamics import simulate
 from rvsim.errors import ParameterError
 from rvsim.parameters import BUILT_IN_SETS, with_values

@@ -29,7 +29,7 @@ import numpy as np
 import pytest
 
 from rvsim.cli import main
-from rvsim.dynamics import _layout as L
+from rvsim.physics import _layout as L
 from rvsim.dynamics import simulate
 from rvsim.dynamics._kernel import forces_at
 from rvsim.dynamics.model import build_model

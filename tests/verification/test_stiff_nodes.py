@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 import rvsim.dynamics.simulate  # noqa: F401  (loads the module; the name is the function)
-from rvsim.dynamics import _layout as L
+from rvsim.physics import _layout as L
 from rvsim.dynamics import simulate
 from rvsim.dynamics._stiff_nodes import largest_eigenvalue, node_omega_dt
 from rvsim.parameters import RV40E, paper_run_values, with_values

@@ -126,7 +126,7 @@ def test_both_engines_see_the_same_per_part_errors():
     own error) on paper run 3 at a quarter of the paper's speed: the dynamic model's steady mean
     TE equals the quasi-static one over the same input angles (measured 1.4e-5 relative; the
     per-part errors change it by 8.0e-3, 550 times more)."""
-    from rvsim.dynamics import _layout as L
+    from rvsim.physics import _layout as L
     from rvsim.dynamics import simulate
     from rvsim.quasistatic import solve_path
     from tests.verification.test_quasistatic import _low_speed

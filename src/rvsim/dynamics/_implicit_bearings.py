@@ -50,10 +50,10 @@ from .._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-from ._layout import (CARRIER, CH_ARM_F00, CH_SUP_FU1, CRANK0, CRANK_STRIDE,  # noqa: E402
-                      DISC0, DISC_STRIDE, IMPLICIT_THETA, J_CARRIER, J_CRANK, J_DISC, M_DISC,
-                      N_DOF)
-from ._fe_contacts import _cholesky  # noqa: E402
+from ..physics._layout import (CARRIER, CH_ARM_F00, CH_SUP_FU1, CRANK0, CRANK_STRIDE,  # noqa: E402
+                               DISC0, DISC_STRIDE, IMPLICIT_THETA, J_CARRIER, J_CRANK, J_DISC, M_DISC,
+                               N_DOF)
+from ..physics._fe_contacts import _cholesky  # noqa: E402
 from ._stiff_nodes import node_mass  # noqa: E402
 
 __all__ = ["THETA", "REFRESH_STEPS", "ALERT_RATIO", "FORCE_FLOOR", "new_work",
@@ -114,7 +114,7 @@ def fill_mass_matrix(P, M):
 @numba.njit(**NO_REFCOUNT)
 def factor_effective_mass(M, K, c, A):
     """Cholesky factor L of M + c (K + K^T) / 2 into ``A`` (the finite-element contacts'
-    in-place factor, :func:`rvsim.dynamics._fe_contacts._cholesky`): L below the diagonal,
+    in-place factor, :func:`rvsim.physics._fe_contacts._cholesky`): L below the diagonal,
     1 / L_kk on it (so that :func:`solve_factored` multiplies instead of dividing); returns
     False, leaving ``A`` unusable, where that matrix is not positive definite."""
     n = M.shape[0]

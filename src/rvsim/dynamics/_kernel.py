@@ -22,44 +22,44 @@ from .._jit import CACHE, NO_REFCOUNT, REFCOUNT
 invalidate_stale_cache()
 
 from ..geometry._curve import deviated_gap, pin_gap, pin_opening, profile_axes
-from ._bearings import conforming_force_carried, conforming_force_from, radial_stiffness, \
+from ..physics._bearings import conforming_force_carried, conforming_force_from, radial_stiffness, \
     roller_set
-from ._contact_law import add_rank_one, damped, spring_force_from, spring_force_power
-from ._single_stage import input_shaft, output_pin, ring_forces, ring_frame
-from ._fe_contacts import apply_coupled
-from ._pin_compliance import pin_series_compliance
-from ._fe_modes import advance_modes, clear_modal_force, modal_energy
-from ._fe_carrier import bore_centre_at, plate_supports
-from ._fe_holes import add_hole_load, begin_arms, end_arms
-from ._fe_holes import free_stretch, hole_css, hole_row, hole_shift, holes_on
-from ._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
-from ._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
-from ._layout import (BUSH_COLUMNS, BUSH_SLOT0, ECC_ERR0, ECC_PHASE0, ECC_TURN0, FRAME_TURN0)
-from ._layout import (NODE_ALERT, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_OMEGA_DT,
-                      NODE_SUBSTEPS,
-                      NODE_PEAK, NODE_REFRESH)
-from ._layout import (IMPLICIT_ALERTS, IMPLICIT_FACTORS, IMPLICIT_FALLBACKS, IMPLICIT_REFRESH,
-                      IMPLICIT_SINCE, IMPLICIT_THETA)
+from ..physics._contact_law import add_rank_one, damped, spring_force_from, spring_force_power
+from ..physics._single_stage import input_shaft, output_pin, ring_forces, ring_frame
+from ..physics._fe_contacts import apply_coupled
+from ..physics._pin_compliance import pin_series_compliance
+from ..physics._fe_modes import advance_modes, clear_modal_force, modal_energy
+from ..physics._fe_carrier import bore_centre_at, plate_supports
+from ..physics._fe_holes import add_hole_load, begin_arms, end_arms
+from ..physics._fe_holes import free_stretch, hole_css, hole_row, hole_shift, holes_on
+from ..physics._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
+from ..physics._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
+from ..physics._layout import (BUSH_COLUMNS, BUSH_SLOT0, ECC_ERR0, ECC_PHASE0, ECC_TURN0, FRAME_TURN0)
+from ..physics._layout import (NODE_ALERT, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_OMEGA_DT,
+                               NODE_SUBSTEPS,
+                               NODE_PEAK, NODE_REFRESH)
+from ..physics._layout import (IMPLICIT_ALERTS, IMPLICIT_FACTORS, IMPLICIT_FALLBACKS, IMPLICIT_REFRESH,
+                               IMPLICIT_SINCE, IMPLICIT_THETA)
 from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt, substeps_for
 from ._implicit_bearings import (bearing_forces_risen, factor_effective_mass,
                                  record_bearing_forces, solve_factored)
-from ._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
-                      ARM_J2, ARM_KIND, ARM_ROLLERS, ARM_SHIFT, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
-                      SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, SUP_SHIFT_L, SUP_SHIFT_U, BACKLASH, BASE_PITCH, CARRIER,
-                      CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
-                      CH_PIN_MAX, CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
-                      CONTACT_RATIO, CRANK0, CRANK_COUNT, CRANK_STRIDE, DISC0, DISC_COUNT,
-                      DISC_STRIDE, DT, E_DISSIPATED, FE_CRANK_SLOT0, FE_CRANK_XX1, FRICTION_ON,
-                      E_INPUT, E_PIN_PEAK, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
-                      FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
-                      LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
-                      MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C,
-                      PIN_RADIUS, FE_PLATE_XX1, PROFILE_OFFSET,
-                      PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RING_OUTPUT, RUNOUT_X0, RUNOUT_X1,
-                      RUNOUT_Y0, RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
-                      STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CLEAR_L, SUP_CLEAR_U,
-                      SUP_SLOT0, V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA,
-                      ZP)
+from ..physics._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM_J1,
+                               ARM_J2, ARM_KIND, ARM_ROLLERS, ARM_SHIFT, SUP_A1, SUP_A2_L, SUP_A2_U, SUP_CAGE_IN,
+                               SUP_COS_ALPHA, SUP_J1, SUP_J2, SUP_KIND, SUP_ROLLERS, SUP_SHIFT_L, SUP_SHIFT_U, BACKLASH, BASE_PITCH, CARRIER,
+                               CENTRE_DIST, CH_ARM_F00, CH_MESH_F0, CH_OMEGA_IN, CH_OMEGA_OUT, CH_SUP_FL0,
+                               CH_PIN_MAX, CH_THETA_IN, CH_THETA_OUT, CH_TIME, CH_TORQUE_IN, CH_TORQUE_LOAD,
+                               CONTACT_RATIO, CRANK0, CRANK_COUNT, CRANK_STRIDE, DISC0, DISC_COUNT,
+                               DISC_STRIDE, DT, E_DISSIPATED, FE_CRANK_SLOT0, FE_CRANK_XX1, FRICTION_ON,
+                               E_INPUT, E_PIN_PEAK, E_KIN0, E_KIN1, E_OUTPUT, E_PARAMETRIC, E_POT0, E_POT1, ECC,
+                               FLUCT_AMP, FLUCT_FREQ, INPUT_SPEED, J_CARRIER, J_CRANK, J_DISC, K_MESH,
+                               LOAD, LOAD_T0, LOAD_T1, M_DISC, M_NODE, MESH_MASS, MINV_LL, MINV_LU,
+                               MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C,
+                               PIN_RADIUS, FE_PLATE_XX1, PROFILE_OFFSET,
+                               PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RING_OUTPUT, RUNOUT_X0, RUNOUT_X1,
+                               RUNOUT_Y0, RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
+                               STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CLEAR_L, SUP_CLEAR_U,
+                               SUP_SLOT0, V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA,
+                               ZP)
 
 MAX_SKIP = 64          # longest skip of an open pin contact [force evaluations]
 #: a pin's carried values (:func:`pin_loop`) are computed afresh at every CARRY_REFRESH-th
@@ -237,11 +237,11 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
     gradient of its gap (the profile-curvature term F d2gap/dq2 is left out).
 
     ``fe`` (2, m, m): the discs' finite-element compliance tables; the touching pins of a disc
-    are then solved together (:func:`rvsim.dynamics._fe_contacts.apply_coupled`).  (2, 0, 0):
+    are then solved together (:func:`rvsim.physics._fe_contacts.apply_coupled`).  (2, 0, 0):
     independent contacts.  ``modal`` (2, m + HEADER, modes): the discs' modes
-    (:mod:`rvsim.dynamics._fe_modes`; ``fe`` then holds their residual tables), whose modal
+    (:mod:`rvsim.physics._fe_modes`; ``fe`` then holds their residual tables), whose modal
     force this evaluation fills.  ``arm_elastic``: the kernel's arm state, whose crank-hole
-    columns carry the holes' load Q and stretch (:mod:`rvsim.dynamics._fe_holes`); passed
+    columns carry the holes' load Q and stretch (:mod:`rvsim.physics._fe_holes`); passed
     only with the holes as load points (an array argument costs the step its reference
     counting: measured 4-6 % of the closed-form run).  The loop over the pins,
     :func:`pin_loop`, allocates nothing and counts no references; the coupled solve,
@@ -418,9 +418,9 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, 
 def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, elastic,
                  hole, css):
     """The touching pins of disc ``disc`` that :func:`pin_loop` collected, solved together with
-    the disc's finite-element ``table`` (:func:`rvsim.dynamics._fe_contacts.apply_coupled`),
+    the disc's finite-element ``table`` (:func:`rvsim.physics._fe_contacts.apply_coupled`),
     and their friction; ``hole``, ``css``: the disc's crank-hole state (0-length, 0: none;
-    :mod:`rvsim.dynamics._fe_holes`).  Returns (energy, dissipated power, largest force)."""
+    :mod:`rvsim.physics._fe_holes`).  Returns (energy, dissipated power, largest force)."""
     d = DISC0 + DISC_STRIDE * disc
     _, cos_t, sin_t, lvx, lvy, w = _disc_frame(P, q, v, disc)
     energy, power, _ = apply_coupled(table, slots, work, count, P[PIN_C], P[ZETA],
@@ -514,7 +514,7 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, elastic,
     ``elastic[row, carry .. carry + 4]`` what its Newton start needs besides (the force they
     belong to, the approach, the stiffness, ln(a1 / F), and the calls since the logarithm was
     last computed afresh: _layout.BUSH_SLOT0): the start is the Taylor predictor of
-    :func:`~rvsim.dynamics._bearings.conforming_force_from` where they belong to the force
+    :func:`~rvsim.physics._bearings.conforming_force_from` where they belong to the force
     held, the force held otherwise (something else set it) and at every CARRY_REFRESH-th
     call (a reviewer measured the carried logarithm's round-off growing by 4e-17 per call
     without it)."""
@@ -552,7 +552,7 @@ def arm_station(P, holes, crank, disc):
     """Station weights (wl, wu) of disc ``disc``'s eccentric on crank ``crank`` and the centre
     of its hole in the disc's axes (with the per-disc hole offsets of per-part errors, and the
     hole's elastic displacement when the FE disc's holes are load points: added by the
-    callers, :func:`rvsim.dynamics._fe_holes.hole_shift`)."""
+    callers, :func:`rvsim.physics._fe_holes.hole_shift`)."""
     wl = P[W_D1_L] if disc == 0 else P[W_D2_L]
     wu = P[W_D1_U] if disc == 0 else P[W_D2_U]
     hole_x, hole_y = holes[crank, 0], holes[crank, 1]
@@ -565,7 +565,7 @@ def arm_station(P, holes, crank, disc):
 @numba.njit(cache=CACHE, inline="always")
 def hole_station(P, holes, crank, disc, elastic):
     """:func:`arm_station` with the hole's elastic displacement when the FE disc's holes are
-    load points (``elastic`` the kernel's arm state; dynamics._fe_holes)."""
+    load points (``elastic`` the kernel's arm state; physics._fe_holes)."""
     wl, wu, hole_x, hole_y = arm_station(P, holes, crank, disc)
     if holes_on(P):
         dx, dy = hole_shift(P, elastic, crank, disc)
@@ -647,8 +647,8 @@ def apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy
 def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic, cos_t, sin_t,
                 cos_p, sin_p):
     """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
-    contact, :func:`~rvsim.dynamics._bearings.conforming_force`) or a needle roller bearing
-    (:func:`~rvsim.dynamics._bearings.roller_set`; P[ARM_KIND]).
+    contact, :func:`~rvsim.physics._bearings.conforming_force`) or a needle roller bearing
+    (:func:`~rvsim.physics._bearings.roller_set`; P[ARM_KIND]).
 
     ``elastic[crank, disc]`` carries the bushing's elastic force from step to step (Newton
     start).  ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic
@@ -687,7 +687,7 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic, cos
 @numba.njit(**REFCOUNT)
 def arm_pair(P, q, v, Q, K, crank, holes, elastic):
     """Crank ``crank``'s two eccentrics in their discs' holes with the finite-element crank
-    between them (docs/model.md section 17; :mod:`rvsim.dynamics._fe_crank`): the two arm
+    between them (docs/model.md section 17; :mod:`rvsim.physics._fe_crank`): the two arm
     bushings solved together, to convergence with ``K`` wanted (the quasi-static engine), one
     Gauss-Seidel sweep per step otherwise (the dynamic engine).  Each bushing is damped at its
     tangent stiffness in series with the crank (the diagonal of dS/dr along its force).
@@ -787,7 +787,7 @@ def support_bushing(P, q, v, Q, K, crank, upper, bx, by, elastic):
     """Crank ``crank``'s lower or upper support node in its carrier / flange bore: the paper's
     bushing (conforming contact) or a tapered roller bearing (P[SUP_KIND]).
 
-    (bx, by): the centre of the crank's bores (:func:`~rvsim.dynamics._fe_carrier.bore_centre`,
+    (bx, by): the centre of the crank's bores (:func:`~rvsim.physics._fe_carrier.bore_centre`,
     the same for both supports).  ``elastic[crank, SUP_SLOT0 + upper]`` carries the bushing's
     elastic force from step to step (Newton start, as in :func:`arm_bushing`).
     ``K`` (17 x 17, or 0 x 0) accumulates the exact stiffness matrix of the elastic force (as in
@@ -850,7 +850,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
     energy = 0.0
     power = 0.0
     coupled = P[FE_CRANK_XX1] > 0.0     # finite-element crank (RV reducers only)
-    begin_arms(P, arm_elastic)          # the FE disc's crank holes (dynamics._fe_holes)
+    begin_arms(P, arm_elastic)          # the FE disc's crank holes (physics._fe_holes)
     for j in range(int(P[CRANK_COUNT])):
         pair0 = pair1 = 0.0
         c0 = s0 = c1 = s1 = 0.0
@@ -887,7 +887,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
             if P[FRICTION_ON] == 1.0:
                 power += support_bearing_friction(P, v, Q, j, force)
     end_arms(P, arm_elastic)
-    if P[FE_PLATE_XX1] != 0.0:    # finite-element carrier and flange (dynamics._fe_carrier)
+    if P[FE_PLATE_XX1] != 0.0:    # finite-element carrier and flange (physics._fe_carrier)
         for upper in range(2):
             e, pw = plate_supports(P, q, v, Q, K, upper == 1, crank_angles, arm_elastic,
                                    channel)
@@ -917,7 +917,7 @@ def bearing_stiffness(P, q, v, Q_scratch, K, holes, crank_angles, arm_elastic, c
 def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, pin_force,
               pin_elastic, fe, modes, carried):
     """Disc ``disc``'s pin contacts with the pin ring as output (single-stage drive): found
-    in the ring's axes (:func:`~rvsim.dynamics._single_stage.ring_frame`), their forces and
+    in the ring's axes (:func:`~rvsim.physics._single_stage.ring_frame`), their forces and
     stiffness added to ``Q`` and ``K``.  Returns (energy, dissipated power, max
     penetration, largest pin force).  (A function of its own: it allocates, the step loop does
     not.)"""
@@ -941,10 +941,10 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_hold[j]`` = (pairs, unused) held for
     mesh j (zero: from the roll position, see :func:`gear_mesh`); with four columns,
     ``mesh_state`` also receives the pairs at the roll position and the loaded flank.
-    With P[FRICTION_ON], the mesh and bearing friction (dynamics._friction) act after their
+    With P[FRICTION_ON], the mesh and bearing friction (physics._friction) act after their
     elements with the normal forces those return.  Returns (potential energy, dissipated
     power, input torque, max pin penetration).  ``modal``: the discs' modes (dynamic engine,
-    :mod:`rvsim.dynamics._fe_modes`; omitted: none).  ``pin_slots``, ``pin_work``: the pin
+    :mod:`rvsim.physics._fe_modes`; omitted: none).  ``pin_slots``, ``pin_work``: the pin
     contacts' work arrays (:func:`pin_contacts`; omitted: allocated per call).
     ``pin_carried``: what each pin's evaluation carries to the next (:func:`pin_loop`; omitted:
     nothing).  ``K_bearings``: a 17 x 17 matrix (zeroed by the caller) that takes the crank
@@ -1135,7 +1135,7 @@ def integrate(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes
     balance and the window's largest pin force (E_PIN_PEAK, at every (sub-)step).  ``fe``:
     the discs' finite-element compliance tables, (2, 0, 0) for none; ``modal`` (2, m + HEADER,
     modes): the discs' modes and their state (``fe`` then the residual tables;
-    :mod:`rvsim.dynamics._fe_modes`), (2, m + HEADER, 0) or (2, 0, 0) for none.
+    :mod:`rvsim.physics._fe_modes`), (2, m + HEADER, 0) or (2, 0, 0) for none.
     ``pin_carried``: what each pin's evaluation carries to the next (:func:`nothing_carried`
     at t = 0, then carried between calls like the other state).  ``implicit``,
     ``implicit_rows``: the work of the scheme implicit-bearings, carried between calls

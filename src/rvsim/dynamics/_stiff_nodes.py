@@ -39,7 +39,7 @@ from .._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-from ._layout import CRANK0, CRANK_STRIDE, MINV_LL, MINV_LU, MINV_UU  # noqa: E402
+from ..physics._layout import CRANK0, CRANK_STRIDE, MINV_LL, MINV_LU, MINV_UU  # noqa: E402
 
 #: above ALERT x the limit the next check comes at the next step, not P[NODE_REFRESH] steps
 #: later: a bushing's stiffness can double within a few steps when the play is thrown

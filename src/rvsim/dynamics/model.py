@@ -1,7 +1,7 @@
 """Assemble the kernel's constant vector and arrays from a :class:`~rvsim.parameters.Reducer`.
 
 Mass properties come from simple solids of the part sizes and Table 5 densities; compliances
-from :mod:`rvsim.dynamics.compliance`.  Every assumption is listed in docs/model.md.
+from :mod:`rvsim.physics.compliance`.  Every assumption is listed in docs/model.md.
 """
 
 from __future__ import annotations
@@ -17,11 +17,11 @@ from ..geometry.involute import gear_geometry
 from ..fe.sizes import check_element_sizes
 from ..friction import fill_constants as fill_friction_constants
 from ..parameters import Reducer
-from . import _layout as L
-from ._bearings import bushing_shift
+from ..physics import _layout as L
+from ..physics._bearings import bushing_shift
 from ._implicit_bearings import REFRESH_STEPS as IMPLICIT_REFRESH_STEPS
 from ._implicit_bearings import THETA as IMPLICIT_THETA
-from .compliance import palmgren_coefficient, pin_compliance, ring_compliance, tooth_compliance
+from ..physics.compliance import palmgren_coefficient, pin_compliance, ring_compliance, tooth_compliance
 
 __all__ = ["KernelModel", "build_model", "MassProperties", "mass_properties"]
 
@@ -364,7 +364,7 @@ def build_model(r: Reducer, time_step: float, scheme: str = EXPLICIT) -> KernelM
 def _fe_tables(r: Reducer, P: np.ndarray, holes: np.ndarray) -> np.ndarray:
     """The finite-element disc tables (rvsim.fe: meshed and condensed once per geometry); with
     the crank holes as load points (P[FE_HOLES], rvsim.fe.disc_holes) each disc's table has the
-    holes' stretch column c_sp last and P gets c_ss and the holes' axis (dynamics._fe_holes)."""
+    holes' stretch column c_sp last and P gets c_ss and the holes' axis (physics._fe_holes)."""
     if P[L.FE_HOLES] == 0.0:
         from ..fe.disc import disc_tables
 
@@ -389,11 +389,11 @@ def _fe_pin_table(r: Reducer, P: np.ndarray) -> None:
 
 def _fe_plate_constants(r: Reducer, P: np.ndarray) -> None:
     """The carrier and flange plates' bore table into P (``flexibility.model = fe`` with
-    ``flexibility.fe_carrier``, RV reducer; dynamics._fe_carrier uses it): the parameter set
+    ``flexibility.fe_carrier``, RV reducer; physics._fe_carrier uses it): the parameter set
     does not distinguish the two plates, so one table serves both (docs/decisions.md)."""
     from ..errors import ParameterError
     from ..fe.carrier import carrier_table
-    from ._fe_crank import pack_table
+    from ..physics._fe_crank import pack_table
 
     f = r.flexibility
     if f.model != "fe" or not f.fe_carrier or r.layout.single_stage:
@@ -417,7 +417,7 @@ def _fe_crank_constants(r: Reducer) -> np.ndarray:
     geometry) as the 10 constants of P."""
     from ..errors import ParameterError
     from ..fe.crank import crank_table
-    from ._fe_crank import pack_table
+    from ..physics._fe_crank import pack_table
 
     if r.bearings.arm_needles:
         raise ParameterError("flexibility.fe_crank", "the finite-element crank takes the "

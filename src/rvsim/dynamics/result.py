@@ -11,7 +11,7 @@ import numpy as np
 from .._files import atomic_write
 from ..errors import InputFileError
 from ..units import ARCMIN
-from . import _layout as L
+from ..physics import _layout as L
 
 __all__ = ["Result", "te_metrics", "te_spectrum", "crank_frequency"]
 

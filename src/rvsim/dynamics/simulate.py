@@ -11,7 +11,7 @@ import numpy as np
 from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
-from . import _layout as L
+from ..physics import _layout as L
 from ._kernel import COUNT_ROW, integrate, new_state, nothing_carried
 from ._implicit_bearings import new_work
 from .model import EXPLICIT, IMPLICIT_BEARINGS, SCHEMES, build_model
@@ -202,14 +202,14 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
 def disc_modes(reducer: Reducer, model, time_step: float) -> tuple[np.ndarray, np.ndarray]:
     """The finite-element discs as the dynamic kernel takes them: (tables, modal).  With
     ``flexibility.fe_modes`` = n > 0, the residual tables and the n modes of each disc at rest
-    (:func:`rvsim.fe.modes.disc_modal_arrays`, :func:`rvsim.dynamics._fe_modes.modal_array`);
+    (:func:`rvsim.fe.modes.disc_modal_arrays`, :func:`rvsim.physics._fe_modes.modal_array`);
     with 0, the condensed tables and no modes.  Closed-form bodies: ``model.fe`` (empty) and
     no modes."""
     if model.fe.shape[1] == 0:
         return model.fe, np.zeros((2, 0, 0))
     # (the modes with the crank holes as load points are refused by check_run_options)
     from ..fe.modes import disc_modal_arrays
-    from ._fe_modes import modal_array
+    from ..physics._fe_modes import modal_array
 
     tables, participation, omega = disc_modal_arrays(reducer, model.fe,
                                                      int(model.P[L.FE_MODES]), time_step)

@@ -2,7 +2,7 @@
 (docs/model.md section 17, "Carrier").
 
 With ``flexibility.fe_carrier`` the engines' crank support bushings bear on these plates'
-bores (rvsim.dynamics._fe_carrier); else on rigid bores that turn with the carrier.  This
+bores (rvsim.physics._fe_carrier); else on rigid bores that turn with the carrier.  This
 module computes how far a bore moves, relative to the carrier held at
 its rim, under a bearing load on it or on the other bore: a plane-stress plate of radius
 ``cycloid.carrier_radius`` and thickness ``thickness`` (default half of

@@ -9,7 +9,7 @@ compliance is switch C), free at the bore and the pillar holes.  The profile is 
 parameter u; the table ``C[i, j]`` is the mean inward normal displacement over segment j under
 a unit inward normal force spread uniformly over segment i [m/N].  A pin contact at foot
 parameter u is read from the table by interpolation between segment centres
-(:mod:`rvsim.dynamics._fe_contacts`).
+(:mod:`rvsim.physics._fe_contacts`).
 """
 
 from __future__ import annotations

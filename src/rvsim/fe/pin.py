@@ -27,7 +27,7 @@ circle |theta| <= 90 deg.
 * **Table**: psi = k * :data:`TABLE_STEP_DEG`, k = 0 .. :data:`TABLE_STEPS` (symmetric in psi:
   the groove is), cached by the geometry's hash (:mod:`rvsim.fe.cache`); the kernel reads it
   from P (``_layout.PIN_FE_STEP``, ``PIN_FE0``) through
-  :func:`rvsim.dynamics._pin_compliance.pin_series_compliance`.
+  :func:`rvsim.physics._pin_compliance.pin_series_compliance`.
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from ..dynamics._layout import PIN_FE_N
+from ..physics._layout import PIN_FE_N
 from ..parameters import Reducer
 from . import cache
 from .elasticity import Factor, PlaneStressBody, edge_force

@@ -36,16 +36,16 @@ from .._jit import CACHE
 # its layout and the curve functions are compiled in (same guard as the kernel's)
 invalidate_stale_cache(__file__)
 
-from ..dynamics._fe_holes import (DF_DQ, DS_DQ, PREDICT, Q_PINS, Q_SUM, SETTLED,  # noqa: E402
-                                  STRETCH, hole_css, hole_row, holes_on)
+from ..physics._fe_holes import (DF_DQ, DS_DQ, PREDICT, Q_PINS, Q_SUM, SETTLED,  # noqa: E402
+                                 STRETCH, hole_css, hole_row, holes_on)
 from ..dynamics._kernel import (arm_bushing, arm_pair, arm_trig, forces_at,  # noqa: E402
                                hole_station, profile_turn)
-from ..dynamics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
-                                DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
-                                FE_DISC, FE_HOLES, PEN_LIMIT, PIN_RADIUS, RING_OUTPUT, STAGES,
-                                PROFILE_OFFSET, RB1, RB2, RG, ZC, ZP)
-from ..dynamics._layout import (CRANK_COUNT, DISC_COUNT, FE_CRANK_XX1, FE_HOLE_EX,  # noqa: E402
-                                FE_HOLE_EY)
+from ..physics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
+                               DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
+                               FE_DISC, FE_HOLES, PEN_LIMIT, PIN_RADIUS, RING_OUTPUT, STAGES,
+                               PROFILE_OFFSET, RB1, RB2, RG, ZC, ZP)
+from ..physics._layout import (CRANK_COUNT, DISC_COUNT, FE_CRANK_XX1, FE_HOLE_EX,  # noqa: E402
+                               FE_HOLE_EY)
 from ..geometry._curve import curvature  # noqa: E402
 
 STATUS_OK = 0
@@ -72,11 +72,11 @@ ROUNDOFF_FACTOR = 1e3
 #
 # The quasi-static engine's solve of the FE disc's crank-hole coupling (numba; docs/model.md
 # section 17, "Crank holes as load points"; the state and the one-sweep coupling of the dynamic
-# engine are :mod:`rvsim.dynamics._fe_holes`).
+# engine are :mod:`rvsim.physics._fe_holes`).
 #
 # At fixed coordinates q each disc d has one scalar unknown, its holes' load Q_d: the pins solved
 # with Q give the stretch s_d(Q_d) and its derivative B_d = ds_d/dQ_d
-# (:func:`rvsim.dynamics._fe_contacts.apply_coupled`, from the Cholesky factor of the pins'
+# (:func:`rvsim.physics._fe_contacts.apply_coupled`, from the Cholesky factor of the pins'
 # solve), the arm bushings at the stretches give Q_sum(s) and D = dQ_sum/ds (2 x 2, from the
 # elements' tangent stiffness, :func:`arm_response`).  :func:`_evaluate` runs Newton on
 # R(Q) = Q_sum(s(Q)) - Q, whose Jacobian is D B - I: each pass is the kernel's whole force

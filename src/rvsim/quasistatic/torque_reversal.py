@@ -113,7 +113,7 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
             or points_per_branch < 2:
         raise ParameterError("points_per_branch",
                              f"must be an integer >= 2 (got {points_per_branch!r})")
-    from ..dynamics import _layout as L
+    from ..physics import _layout as L
 
     torque, branch = sweep_torques(rated, points_per_branch)
     # the model's output load resists the motion: a load of -T is a torque T applied

@@ -80,8 +80,8 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
     point: the kinematic motion at ``input_speed[k]`` [rad/s] plus the elastic motion at the
     output speed ``carrier_rate[k]`` [rad/s] with the input held (docs/model.md section 15);
     without them, or without friction, the frictionless model is solved."""
-    from ..dynamics import _layout as L
-    from ..dynamics.compliance import effective_modulus
+    from ..physics import _layout as L
+    from ..physics.compliance import effective_modulus
     from ..dynamics.model import build_model
     from . import _solver as S
 
@@ -282,7 +282,7 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
     revolutions = _finite("revolutions", revolutions)
     if revolutions <= 0:
         raise ParameterError("revolutions", f"must be positive (got {revolutions:g})")
-    from ..dynamics import _layout as L
+    from ..physics import _layout as L
 
     from ..geometry.layout import disc_count
 

@@ -10,8 +10,8 @@ Q = e . (S_1 - S_0) / 2, S_k the arm bushing's elastic force on hole k, and
 
 F_j the pins' elastic forces at feet u_j, c_sp the last column of each disc's table (read
 linearly between segment centres like the table's diagonal,
-:func:`rvsim.dynamics._fe_contacts.stretch_column`), c_ss in P; the coupled pins' solve
-(:func:`rvsim.dynamics._fe_contacts.apply_coupled`) takes Q and gives s.  The body's strain
+:func:`rvsim.physics._fe_contacts.stretch_column`), c_ss in P; the coupled pins' solve
+(:func:`rvsim.physics._fe_contacts.apply_coupled`) takes Q and gives s.  The body's strain
 energy gains Q sum_j c_sp F_j + c_ss Q^2 / 2 = Q s - c_ss Q^2 / 2.
 
 One Gauss-Seidel sweep per force evaluation: the pins of a disc are solved with the Q of the
@@ -47,7 +47,7 @@ __all__ = ["COLUMNS", "Q_PINS", "Q_SUM", "STRETCH", "DS_DQ", "DF_DQ", "SETTLED",
 #: columns per disc row: Q read by the pins, Q summed by the arm bushings, the stretch s; for
 #: the quasi-static engine (:mod:`rvsim.quasistatic._solver`) also ds/dQ of the pins' solve
 #: and d(generalised forces of the pins on the disc x, y, theta)/dQ (written at these offsets
-#: by :func:`rvsim.dynamics._fe_contacts.apply_coupled`), whether the last evaluation solved
+#: by :func:`rvsim.physics._fe_contacts.apply_coupled`), whether the last evaluation solved
 #: the coupling tight (1.0) or loosely (0.0), then the predictor of the next evaluation's Q:
 #: Q + PREDICT + sum_i dQ/dq_i q_i (PREDICT = -dQ/dq . q at the last solution; the N_DOF
 #: columns of dQ/dq from PREDICT + 1)
@@ -70,7 +70,7 @@ def _col(elastic, k):
 @numba.njit(cache=CACHE, inline="always")
 def hole_row(P, elastic, disc):
     """The crank-hole state of disc ``disc`` (Q read, Q summed, stretch) as a view for the
-    coupled pins (:func:`rvsim.dynamics._fe_contacts.apply_coupled`); empty with the holes
+    coupled pins (:func:`rvsim.physics._fe_contacts.apply_coupled`); empty with the holes
     held."""
     if not holes_on(P):
         return elastic[disc, 0:0]

@@ -16,17 +16,17 @@ N_DOF = 17
 #: columns of the kernel's ``arm_elastic`` array: arm_elastic[crank, disc] the arm bushing's
 #: elastic force, arm_elastic[crank, SUP_SLOT0 + upper] the support bushing's (Newton starts),
 #: arm_elastic[crank, FE_CRANK_SLOT0 + 2 disc + (0, 1)] the arm bushing's elastic force vector
-#: (x, y, housing frame) with a finite-element crank (rvsim.dynamics._fe_crank),
+#: (x, y, housing frame) with a finite-element crank (rvsim.physics._fe_crank),
 #: arm_elastic[crank, PLATE_SLOT0 + 2 upper + (0, 1)] the support force vector on a
-#: finite-element carrier / flange (rvsim.dynamics._fe_carrier),
+#: finite-element carrier / flange (rvsim.physics._fe_carrier),
 #: arm_elastic[disc, HOLE_SLOT0 + (0 .. HOLE_COLUMNS - 1)] the FE disc's crank-hole state
-#: (rvsim.dynamics._fe_holes: Q, Q summed, stretch and the quasi-static engine's derivatives
+#: (rvsim.physics._fe_holes: Q, Q summed, stretch and the quasi-static engine's derivatives
 #: and predictor),
 #: arm_elastic[crank, BUSH_SLOT0 + BUSH_COLUMNS b + (0 .. 4)] what conforming bushing b (0, 1:
 #: the arm bushings of discs 0 and 1; 2, 3: the lower and upper supports) carries to its next
 #: step's Newton start (the elastic force it belongs to, the approach, the stiffness,
 #: ln(a1 / F) and the calls since that was computed afresh;
-#: rvsim.dynamics._bearings.conforming_force_from),
+#: rvsim.physics._bearings.conforming_force_from),
 #: arm_elastic[disc, OUT_SLOT0 + m] output pin m's in disc ``disc`` (single-stage drive)
 SUP_SLOT0 = 2
 FE_CRANK_SLOT0 = 4
@@ -171,7 +171,7 @@ RING_OUTPUT    = 120       # single-stage: 1.0 = the pin ring is the output (CAR
 
 # ---- finite-element bodies: 130-139 ------------------------------------------------------
 FE_DISC        = 130       # 1: the discs' pins are coupled through finite-element tables
-# the disc's crank holes as load points (flexibility.fe_disc_holes; dynamics._fe_holes): 1 on;
+# the disc's crank holes as load points (flexibility.fe_disc_holes; physics._fe_holes): 1 on;
 # c_ss of disc 1 and 2 [m/N] (the holes' stretch under unit Q; the c_sp column is the last
 # column of each disc's table)
 FE_HOLES       = 131
@@ -181,7 +181,7 @@ FE_HOLE_EX     = 134       # unit vector from hole 0 (crank 0's) to hole 1, disc
 FE_HOLE_EY     = 135
 # (disc: 130-139; crankshaft: 140-149; carrier and flange: 150-159; disc modes: 160-169;
 # finite-element pins: 170-179)
-# carrier and flange (docs/model.md section 17, rvsim.dynamics._fe_carrier): the upper
+# carrier and flange (docs/model.md section 17, rvsim.physics._fe_carrier): the upper
 # triangle of the plates' 4 x 4 bore table (x1, y1, x2, y2; carrier frame, bore 1 = crank 0's
 # on +x) [m/N], packed as the crank's; one table for both plates; FE_PLATE_XX1 > 0: flexible
 FE_PLATE_XX1   = 150
@@ -194,7 +194,7 @@ FE_PLATE_Y1Y2  = 156
 FE_PLATE_XX2   = 157
 FE_PLATE_XY2   = 158
 FE_PLATE_YY2   = 159
-# crankshaft (docs/model.md section 17, rvsim.dynamics._fe_crank): the upper triangle of the
+# crankshaft (docs/model.md section 17, rvsim.physics._fe_crank): the upper triangle of the
 # crank's 4 x 4 compliance of its eccentric centres (x1, y1, x2, y2; crank frame, eccentric 1
 # towards +x) relative to its support line [m/N]; FE_CRANK_XX1 > 0: the crank is flexible
 FE_CRANK_XX1   = 140
@@ -209,7 +209,7 @@ FE_CRANK_XY2   = 148
 FE_CRANK_YY2   = 149
 
 
-# ---- disc modes: 160-169 (rvsim.dynamics._fe_modes; the modes travel in the ``modal`` array)
+# ---- disc modes: 160-169 (rvsim.physics._fe_modes; the modes travel in the ``modal`` array)
 FE_MODES       = 160       # flexibility.fe_modes: modes of each disc the kernel integrates
                            # (their modal damping ratio is the contacts', P[ZETA])
 

@@ -11,7 +11,7 @@ f the elastic forces of the touching pins spread on the contact segments with th
 compliance table is read with (linear between segment centres), P the modes' mean normal
 displacement over the segments.  A pin's contact sees the disc's deflection (P eta)(u) at its
 foot u plus the residual R's (massless, the modes left out), which replaces the condensed
-table C in the Gauss-Seidel sweep (:func:`rvsim.dynamics._fe_contacts.lagged_forces`).  Static:
+table C in the Gauss-Seidel sweep (:func:`rvsim.physics._fe_contacts.lagged_forces`).  Static:
 eta = Omega^-2 P^T f, so the deflection is (P Omega^-2 P^T + R) f = C f, whatever n (read
 between segment centres as the table is: :func:`foot_modes`).
 

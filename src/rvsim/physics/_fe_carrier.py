@@ -12,7 +12,7 @@ journal relative to the displaced bore:
 
 r_j the journal centre minus the rigid bore centre, f the conforming bushing law.  These are
 the FE crank's equations with a plate's two bores in place of a crank's two eccentrics, so the
-solvers are the crank's (:mod:`rvsim.dynamics._fe_crank`): semi-smooth Newton on the 4-vector
+solvers are the crank's (:mod:`rvsim.physics._fe_crank`): semi-smooth Newton on the 4-vector
 with the stiffness dS/dr = (I + D C)^-1 D in the quasi-static engine, one Gauss-Seidel sweep per
 step in the dynamic one (each bushing's law in series with its own bore's compliance along its
 force, the rest lagged).  Potential energy sum of the bushings' energies + S^T C S / 2; the
@@ -69,7 +69,7 @@ def bore_centre_at(P, crank, c, s):
 @numba.njit(**NO_REFCOUNT)
 def support_law(P, upper):
     """The upper (carrier) or lower (flange) support bushing's law as (clearance, j1, a1, j2,
-    a2, series compliance, ln(a2 / a1)) (:func:`rvsim.dynamics._fe_crank.arm_law`'s form)."""
+    a2, series compliance, ln(a2 / a1)) (:func:`rvsim.physics._fe_crank.arm_law`'s form)."""
     if upper:
         return P[SUP_CLEAR_U], P[SUP_J1], P[SUP_A1], P[SUP_J2], P[SUP_A2_U], 0.0, P[SUP_SHIFT_U]
     return P[SUP_CLEAR_L], P[SUP_J1], P[SUP_A1], P[SUP_J2], P[SUP_A2_L], 0.0, P[SUP_SHIFT_L]

@@ -4,7 +4,7 @@
 With ``flexibility.model = fe`` a disc's pins are not independent springs: the approach
 delta_i of pin i (the rigid overlap of its gap) is shared by its own contact (Palmgren line
 contact in series with the pin body, h_i(F) = c F^0.9 + cb_i F, cb_i the pin's compliance at
-its contact's direction, :mod:`rvsim.dynamics._pin_compliance`) and the disc's elastic
+its contact's direction, :mod:`rvsim.physics._pin_compliance`) and the disc's elastic
 displacement there, which every loaded pin causes:
 
     delta_i = h_i(F_i) + sum_j C(u_i, u_j) F_j      for a loaded pin (F_i > 0),
@@ -143,7 +143,7 @@ def _factor_tangent(cm, k, n, active, a):
 @numba.njit(cache=CACHE, inline="always")
 def stretch_column(table, u):
     """c_sp at foot ``u`` [m/N]: the last column of a table with the crank holes' stretch
-    (:mod:`rvsim.dynamics._fe_holes`), linear between segment centres."""
+    (:mod:`rvsim.physics._fe_holes`), linear between segment centres."""
     m = table.shape[0]
     i0, i1, frac = _segment(u, m)
     return (1.0 - frac) * table[i0, m] + frac * table[i1, m]
@@ -170,7 +170,7 @@ def lagged_forces(table, delta, foot, guess, n, c, cb, force, self_compliance, e
     taken as they are (already swept, or ``guess``, their forces of the previous step: the
     coupling lags at most one time step).  Fills ``force`` and ``self_compliance``; returns
     the potential energy.  ``extra`` (n), if given, adds to each pin's own compliance (the
-    modes' interpolation term, :func:`rvsim.dynamics._fe_modes.foot_modes`)."""
+    modes' interpolation term, :func:`rvsim.physics._fe_modes.foot_modes`)."""
     m = table.shape[0]
     lo = np.empty(n, dtype=np.int64)
     hi = np.empty(n, dtype=np.int64)
@@ -339,7 +339,7 @@ def coupled_forces(table, delta, foot, guess, n, c, cb, force, stiffness):
 
 @numba.njit(**NO_REFCOUNT)
 def _hole_derivatives(table, work, active, jac, y, na, css, scratch, hole):
-    """The crank holes' load Q seen from the solved pins (:mod:`rvsim.dynamics._fe_holes`;
+    """The crank holes' load Q seen from the solved pins (:mod:`rvsim.physics._fe_holes`;
     quasi-static engine): into ``hole[3]`` ds/dQ = c_ss - c_A^T S_AA c_A and the pins'
     generalised forces on the disc (``hole[4:7]``) d(x, y, theta)/dQ = -G_A^T S_AA c_A,
     S_AA = (C_AA + D_A^-1)^-1 = L^-T L^-1 the tangent of the loaded pins A (factor L in ``jac``), c_A their
@@ -372,11 +372,11 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
     the system is solved to convergence (:func:`coupled_forces`) and K_dd gets G^T S G =
     (L^-1 G_A)^T (L^-1 G_A), L the Cholesky factor of the tangent's loaded block; without
     (the dynamic engine, steps of 1e-5 s) one sweep per step (:func:`lagged_forces`).
-    ``modal`` (m + HEADER, modes) the disc's modes (:mod:`rvsim.dynamics._fe_modes`; ``table``
+    ``modal`` (m + HEADER, modes) the disc's modes (:mod:`rvsim.physics._fe_modes`; ``table``
     is then their residual): each approach is less the modes' deflection at its foot, and the
     elastic forces are added to the modal force.  Returns (energy, dissipated power,
     converged).  ``hole`` (7, or empty: the holes held): the disc's crank-hole state of
-    :mod:`rvsim.dynamics._fe_holes` (Q read, Q summed, stretch, ds/dQ, d(Q_x, Q_y, Q_theta)/dQ):
+    :mod:`rvsim.physics._fe_holes` (Q read, Q summed, stretch, ds/dQ, d(Q_x, Q_y, Q_theta)/dQ):
     each approach is less
     c_sp(u) Q (``table``'s last column, :func:`stretch_column`), the stretch
     s = sum c_sp F + ``css`` Q is stored and the energy gains Q s - css Q^2 / 2; with ``K``

@@ -1,6 +1,6 @@
 """Arm bushings of a finite-element crank, solved together (numba; docs/model.md section 17,
 "Crankshaft"); the same solvers serve the support bushings of the finite-element carrier and
-flange (:mod:`rvsim.dynamics._fe_carrier`: a plate's two bores in place of the two eccentrics).
+flange (:mod:`rvsim.physics._fe_carrier`: a plate's two bores in place of the two eccentrics).
 
 With ``flexibility.model = fe`` and ``flexibility.fe_crank`` a crank's eccentrics deflect
 relative to the straight line through its support nodes under the arm-bushing forces of both
@@ -17,7 +17,7 @@ and hole *with* the deflection:
     S = f(r - A S),     f_k(r') = F(|r'| - clearance) r' / |r'|,
 
 r the rigid relative positions (eccentric centre - hole centre), F the conforming bushing law
-(:func:`rvsim.dynamics._bearings.conforming_force`).  Potential energy
+(:func:`rvsim.physics._bearings.conforming_force`).  Potential energy
 U = sum_k E_k(|r'_k| - clearance) + S^T A S / 2: dU/dr = S (the forces act on the rigid
 coordinates as the rigid crank's), and because A turns with phi, -dU/dphi = S^T (dA/dphi) S / 2
 = -(J S)^T A S (J the quarter turn of each eccentric's force): a small torque on the crank
@@ -86,7 +86,7 @@ def _table(P, base, i, j):
 def rotated_table(P, base, phi, A):
     """Fill ``A`` (4 x 4, housing frame, (x1, y1, x2, y2)) with R(phi) C R(phi)^T, C the
     body-frame table held in P from ``base`` (the crank's, or the carrier's:
-    :mod:`rvsim.dynamics._fe_carrier`); phi the direction of the body frame's x axis."""
+    :mod:`rvsim.physics._fe_carrier`); phi the direction of the body frame's x axis."""
     cp, sp = math.cos(phi), math.sin(phi)
     for k in range(2):
         for m in range(2):

@@ -1,0 +1,25 @@
+"""The physics shared by both engines: contact laws and machine elements (issue 31;
+docs/architecture.md).
+
+The dynamic engine (:mod:`rvsim.dynamics`) integrates these elements in time, the quasi-static
+engine (:mod:`rvsim.quasistatic`) solves them for equilibrium; this package imports neither
+engine.  A module whose name starts with ``_`` is compiled with numba into the kernels and is
+covered by the numba cache guard (``rvsim._cache_guard``) by its name; nothing is compiled at
+import of this package.
+
+* ``_layout`` - slots of the constant vector P, coordinate indices, output channels, status codes.
+* ``_contact_law`` - Palmgren line contact, its damping, the carried Newton starts.
+* ``_bearings`` - conforming contact (Johnson), bushings in series, rolling-element sets.
+* ``_friction`` - pin, mesh and bearing friction on top of the normal forces.
+* ``_pin_compliance`` - the FE pin-in-groove compliance in series with its contact.
+* ``_single_stage`` - input shaft, output pins and pin-ring frame of the single-stage drive.
+* ``_fe_contacts`` - the pin contacts of a finite-element disc, solved together.
+* ``_fe_modes`` - the modal coordinates of a finite-element disc.
+* ``_fe_holes`` - the finite-element disc's crank holes as load points.
+* ``_fe_crank`` - the arm bushings of a finite-element crank, solved together.
+* ``_fe_carrier`` - the support bushings on the finite-element carrier and flange plates.
+* ``compliance`` - Palmgren coefficient and tooth, pin and ring compliances (plain Python).
+
+The gear mesh, pin contacts, crank bearings, the kinematic pose and the one force evaluation
+(``forces_at``/``forces``) are still in ``rvsim.dynamics._kernel`` (issue 31, a later step).
+"""
