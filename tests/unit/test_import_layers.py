@@ -57,8 +57,6 @@ LAYERS = {
 #: (importer module, imported module) upward imports still allowed, with the step of the plan
 #: that removes each (measured on main cbfd02a; the moves rewrite these dotted names)
 ALLOWED_UPWARD = {
-    # step 3: fe.pin's table size without the layout
-    ("rvsim.fe.pin", "rvsim.physics._layout"),
     # step 4: the checks that need geometry leave parameters
     ("rvsim.parameters._io", "rvsim.geometry.cycloid"),
     ("rvsim.parameters._io", "rvsim.fe.sizes"),

@@ -198,3 +198,12 @@ def test_quasi_static_te_equals_dynamic_mean_with_fe_pins(disc, tolerance):
     static, dynamic = engines_mean_te(low_speed(_coarse({"B": 1, "A": disc,
                                                          "flexibility.model": "fe"})))
     assert static == pytest.approx(dynamic, rel=tolerance)
+
+
+def test_the_pin_table_fills_its_block_of_p():
+    """fe.pin states its table size as a literal (it sits below the physics layer, issue 31):
+    the table's values are the kernel's P block of the pin table."""
+    import rvsim.fe.pin as fe_pin
+    from rvsim.physics import _layout as L
+
+    assert fe_pin.TABLE_STEPS + 1 == L.PIN_FE_N
