@@ -347,3 +347,25 @@ def test_fe_extra_check_in_the_python_api(monkeypatch):
 
     with pytest.raises(RvsimError, match=r"rvsim\[fe\]"):
         PlaneStressBody(np.zeros((2, 3)), np.array([[0], [1], [2]]), 2e11, 0.3, 0.01)
+
+
+def test_a_study_meshes_in_its_workers(tmp_path, cli, fresh_fe_cache):
+    """A study's workers are daemonic processes, which may start no child: the mesher's child
+    process made every run of an FE study on the local pool fail ("daemonic processes are not
+    allowed to have children"); in a worker the mesher runs in the worker itself."""
+    study = tmp_path / "fe.toml"
+    study.write_text('name = "fe"\ndesign = "L4"\nengine = "quasi-static"\n[set]\n'
+                     '"flexibility.model" = "fe"\n"flexibility.cycloid_disc" = true\n'
+                     '"flexibility.fe_element_size" = 4.0\n'
+                     '"flexibility.fe_segments_per_tooth" = 2\n'
+                     '"flexibility.fe_crank" = false\n"flexibility.fe_carrier" = false\n'
+                     '[factors.H]\nparameter = "H"\nlevels = [0.0, 0.01]\n'
+                     '[factors.I]\nparameter = "I"\nlevels = [0.0, 0.01]\n')
+    res = cli("study", str(study), "--out", str(tmp_path / "out"), "--workers", "2",
+              "--no-progress")
+    assert res.code == 0, res.err
+    import pandas as pd
+
+    results = pd.read_csv(tmp_path / "out" / "results.csv")
+    assert len(results) == 4 and (results["status"] == "ok").all()
+    assert any(fresh_fe_cache.rglob("*.npz"))            # the workers meshed, and stored it

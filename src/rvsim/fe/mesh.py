@@ -251,12 +251,16 @@ def in_child(function, *args, seconds: float | None = None):
     Here the parent waits on the child's pipe, where a stop signal raises at once; the child
     is killed when the parent stops, and after ``seconds`` (:data:`MESH_SECONDS`) it is
     killed and the mesh refused.  The child dies with the parent (PR_SET_PDEATHSIG).  Where
-    no process can be started (a process limit) the function runs in this process."""
+    no process can be started (a process limit), and in a study's or tolerance run's worker
+    (a daemonic process, which may have no children; its parent stops and kills it), the
+    function runs in this process."""
     import multiprocessing
     from multiprocessing.connection import wait
 
     from .._stopping import signals_blocked
 
+    if multiprocessing.current_process().daemon:
+        return function(*args)
     seconds = MESH_SECONDS if seconds is None else seconds
     context = multiprocessing.get_context("fork")
     receive, send = context.Pipe(duplex=False)
