@@ -20,8 +20,8 @@ __all__ = ["CACHE", "NO_REFCOUNT", "REFCOUNT", "cache_usable"]
 _PACKAGE = Path(__file__).resolve().parent
 #: one module of each folder whose functions are compiled with ``cache``: numba's locators pick
 #: a folder per source folder (its ``__pycache__`` when writable)
-_COMPILED = (_PACKAGE / "dynamics" / "_kernel.py", _PACKAGE / "geometry" / "_curve.py",
-             _PACKAGE / "quasistatic" / "_solver.py")
+_COMPILED = (_PACKAGE / "dynamics" / "_kernel.py", _PACKAGE / "physics" / "_contact_law.py",
+             _PACKAGE / "geometry" / "_curve.py", _PACKAGE / "quasistatic" / "_solver.py")
 
 
 def cache_usable() -> bool:
