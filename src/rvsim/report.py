@@ -506,8 +506,32 @@ def write_ltca_report(result, reducer, path: str | Path) -> Path:
     return atomic_write_text(path, _page(f"rvsim ltca {reducer.name}", body))
 
 
-def write_hysteresis_report(result, reducer, path: str | Path) -> Path:
-    """Write an HTML page for one torque-reversal (hysteresis) ``result`` of ``reducer``."""
+def _budget_section(budget) -> list[str]:
+    """The compliance budget (rvsim.quasistatic.budget) as a heading, a note and a table, the
+    softest element first."""
+    from .units import ARCMIN
+
+    shares, stiffness = budget.shares, budget.element_stiffness
+    rows = [{"element": budget.labels[i], "share [%]": 100.0 * shares[i],
+             "own stiffness [N*m/arcmin]": stiffness[i] * ARCMIN if stiffness[i] > 0
+             else float("nan"),
+             "rigidity with it stiffened [N*m/arcmin]": budget.stiffened_rigidity[i] * ARCMIN}
+            for i in budget.order()]
+    return ["<h2>Compliance budget</h2>",
+            f"<p class='note'>Each element {budget.factor:g} times stiffer in turn, everything "
+            "else unchanged; share = (C - C<sub>i</sub>) / C of the torsional compliance C = "
+            "1 / rigidity (secant 50-100 % of rated), own stiffness = 1 / (C - C<sub>i</sub>) "
+            f"at the output. Rigidity {budget.rigidity * ARCMIN:.2f} N*m/arcmin; sum of the "
+            f"shares {100.0 * (1.0 - budget.residual):.1f} %, residual "
+            f"{100.0 * budget.residual:.1f} % (the 1/factor each stiffened element keeps, "
+            "load sharing of parallel elements, nonlinear contacts; docs/model.md section "
+            "12).</p>",
+            _table(pd.DataFrame(rows).set_index("element"))]
+
+
+def write_hysteresis_report(result, reducer, path: str | Path, *, budget=None) -> Path:
+    """Write an HTML page for one torque-reversal (hysteresis) ``result`` of ``reducer``, with
+    its compliance ``budget`` (rvsim.quasistatic.budget) when given."""
     from .plots import hysteresis_plot
 
     path = _target(path)
@@ -522,6 +546,7 @@ def write_hysteresis_report(result, reducer, path: str | Path) -> Path:
             "free play crossed at 0 N*m; hysteresis loss = the loop width at 0 N*m after "
             "loading to rated and unloading.</p>",
             "<h2>Catalogue quantities</h2>", _summary_table(summary),
+            *(_budget_section(budget) if budget is not None else []),
             "<h2>Torque-angle curve</h2>", _png(hysteresis_plot(result, rated)),
             "<h2>Parameters</h2>", _parameters_table(reducer)]
     return atomic_write_text(path, _page(f"rvsim hysteresis {reducer.name}", body))

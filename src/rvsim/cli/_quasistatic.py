@@ -119,6 +119,7 @@ def _hysteresis(args: argparse.Namespace) -> int:
     _finite("--rated-torque", args.rated_torque)
     if args.rated_torque is not None and args.rated_torque <= 0:
         raise ParameterError("--rated-torque", f"must be positive (got {args.rated_torque:g})")
+    _check_budget_options(args)
     report = _output_path("--report", args.report, ".html")
     export = _output_path("--export", args.export, ".json")
     reducer = reducer_from_args(args)
@@ -140,6 +141,12 @@ def _hysteresis(args: argparse.Namespace) -> int:
         if args.json:
             print_json({"status": "invalid_curve", "error": str(exc)})
         return 1
+    budget = None
+    if args.budget:
+        budget, code = _budget(reducer, result, args, summary)
+        if budget is None:
+            return code
+        summary["budget"] = budget.summary()
     model = None
     if export:
         from ..joint_model import joint_model
@@ -160,7 +167,7 @@ def _hysteresis(args: argparse.Namespace) -> int:
             from ..report import write_hysteresis_report
 
             _write("--report", report,
-                   lambda: write_hysteresis_report(result, reducer, report_tmp))
+                   lambda: write_hysteresis_report(result, reducer, report_tmp, budget=budget))
     if args.json:
         print_json(summary)
     else:
@@ -170,7 +177,55 @@ def _hysteresis(args: argparse.Namespace) -> int:
               f"N*m/arcmin (50-100 % of rated), lost motion {summary['lost_motion_arcmin']:.4f}"
               f" arcmin (+-3 %), backlash {summary['backlash_arcmin']:.4f} arcmin, hysteresis "
               f"loss {summary['hysteresis_loss_arcmin']:.4f} arcmin")
+        if budget is not None:
+            _print_budget(budget)
     return 0
+
+
+def _check_budget_options(args: argparse.Namespace) -> None:
+    """--budget-factor only with --budget, and a finite number > 1 (1: nothing stiffened)."""
+    if args.budget_factor is None:
+        return
+    if not args.budget:
+        raise ParameterError("--budget-factor", "needs --budget")
+    if not (math.isfinite(args.budget_factor) and args.budget_factor > 1.0):
+        raise ParameterError("--budget-factor", f"must be a finite number > 1 (got "
+                             f"{args.budget_factor:g})")
+
+
+def _budget(reducer, result, args: argparse.Namespace, summary: dict):
+    """(the compliance budget of the test ``result``, exit code or None): a stiffened test that
+    fails is the command's failure, with the budget's status naming the element."""
+    from ..quasistatic.budget import DEFAULT_FACTOR, compliance_budget, rigidity_of
+
+    rigidity, _ = rigidity_of(result)
+    budget = compliance_budget(reducer, rated_torque=result.rated_torque,
+                               factor=args.budget_factor or DEFAULT_FACTOR, rigidity=rigidity)
+    if budget.status != "ok":
+        return None, _failed(args, "hysteresis --budget", budget.status,
+                             {**summary, "budget": budget.summary()})
+    return budget, None
+
+
+def _print_budget(budget) -> None:
+    """The budget as text, the softest element first (arcmin at the output)."""
+    from ..units import ARCMIN
+
+    shares, stiffness = budget.shares, budget.element_stiffness
+    order = budget.order()
+    first = order[0]
+    print(f"compliance budget (each element {budget.factor:g} x stiffer in turn, 50-100 % "
+          f"secant): softest {budget.labels[first]}, {100 * shares[first]:.1f} % of the "
+          "compliance")
+    width = max(len(label) for label in budget.labels)
+    print(f"  {'element':<{width}}   share   own stiffness [N*m/arcmin]")
+    for i in order:
+        own = (f"{stiffness[i] * ARCMIN:.0f}" if math.isfinite(stiffness[i])
+               and stiffness[i] > 0 else "-")
+        print(f"  {budget.labels[i]:<{width}}  {100 * shares[i]:5.1f} %  {own}")
+    print(f"  sum {100 * (1 - budget.residual):.1f} %, residual {100 * budget.residual:.1f} % "
+          f"(1/factor left in each element, parallel load sharing, nonlinear contacts); "
+          f"rigidity {budget.rigidity * ARCMIN:.2f} N*m/arcmin ({budget.wall_s:.2f} s)")
 
 
 def _common(p: argparse.ArgumentParser) -> None:
@@ -205,11 +260,18 @@ def register(sub) -> None:
                     "motion (+-3 % of rated), backlash and hysteresis loss (at 0 N*m).",
                     ["rvsim hysteresis --json",
                      "rvsim hysteresis --paper-run 5 --report loop.html",
-                     "rvsim hysteresis --export joint.json"])
+                     "rvsim hysteresis --export joint.json",
+                     "rvsim hysteresis --params RV-40E-bearings --budget"])
     _common(p)
     p.add_argument("--rated-torque", type=number, metavar="NM",
                    help="rated torque [N*m] (default: the reducer's rating.rated_torque, "
                         "412 N*m for the RV-40E)")
     p.add_argument("--export", metavar="FILE.json",
                    help="write the joint model for robot simulators (docs/joint_model.md)")
+    p.add_argument("--budget", action="store_true",
+                   help="where the compliance goes: each machine element's share of the "
+                        "torsional compliance (secant 50-100 %% of rated), each element "
+                        "stiffened in turn (docs/model.md section 12)")
+    p.add_argument("--budget-factor", type=number, metavar="S",
+                   help="stiffening factor of one element for --budget (> 1, default 100)")
     p.set_defaults(func=_hysteresis)

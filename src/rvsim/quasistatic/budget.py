@@ -28,7 +28,7 @@ from ..errors import ParameterError
 from ..parameters import Reducer
 from ..units import ARCMIN
 
-__all__ = ["compliance_budget", "ComplianceBudget", "DEFAULT_FACTOR"]
+__all__ = ["compliance_budget", "ComplianceBudget", "DEFAULT_FACTOR", "rigidity_of"]
 
 #: stiffening factor of one element (issue 32 measured its first budget with 100 x)
 DEFAULT_FACTOR = 100.0
@@ -120,16 +120,23 @@ def _check(reducer: Reducer, factor, base) -> tuple[float, dict, tuple, tuple]:
 def _rigidity(reducer, rated, points, stiffen) -> tuple[float, str]:
     """(catalogue rigidity [N*m/rad], status) of one torque-reversal test; NaN and the status
     where the test or its curve fails."""
-    from ..analysis.catalogue import CurveError, torsional_rigidity
     from .torque_reversal import hysteresis
 
     run = hysteresis(reducer, rated_torque=rated, points_per_branch=points,
                      raise_on_failure=False, stiffen=stiffen)
+    return rigidity_of(run)
+
+
+def rigidity_of(run) -> tuple[float, str]:
+    """(catalogue rigidity [N*m/rad], status) of a torque-reversal result: the secant of its
+    summary, in SI; NaN and the status where the test or its curve failed."""
+    from ..analysis.catalogue import CurveError, torsional_rigidity
+
     if run.status != "ok":
         return math.nan, run.status
     ok = run.converged
     try:
-        return torsional_rigidity(run.torque[ok], run.angle[ok], rated), "ok"
+        return torsional_rigidity(run.torque[ok], run.angle[ok], run.rated_torque), "ok"
     except CurveError:
         return math.nan, "invalid_curve"
 
