@@ -523,9 +523,8 @@ def _budget_section(budget) -> list[str]:
             "1 / rigidity (secant 50-100 % of rated), own stiffness = 1 / (C - C<sub>i</sub>) "
             f"at the output. Rigidity {budget.rigidity * ARCMIN:.2f} N*m/arcmin; sum of the "
             f"shares {100.0 * (1.0 - budget.residual):.1f} %, residual "
-            f"{100.0 * budget.residual:.1f} % (the 1/factor each stiffened element keeps, "
-            "load sharing of parallel elements, nonlinear contacts; docs/model.md section "
-            "12).</p>",
+            f"{100.0 * budget.residual:.1f} % (what a stiffened element keeps, load sharing "
+            "of parallel elements; docs/model.md section 12).</p>",
             _table(pd.DataFrame(rows).set_index("element"))]
 
 

@@ -224,7 +224,7 @@ def _print_budget(budget) -> None:
                and stiffness[i] > 0 else "-")
         print(f"  {budget.labels[i]:<{width}}  {100 * shares[i]:5.1f} %  {own}")
     print(f"  sum {100 * (1 - budget.residual):.1f} %, residual {100 * budget.residual:.1f} % "
-          f"(1/factor left in each element, parallel load sharing, nonlinear contacts); "
+          f"(what a stiffened element keeps, load sharing of parallel elements); "
           f"rigidity {budget.rigidity * ARCMIN:.2f} N*m/arcmin ({budget.wall_s:.2f} s)")
 
 
@@ -273,5 +273,5 @@ def register(sub) -> None:
                         "torsional compliance (secant 50-100 %% of rated), each element "
                         "stiffened in turn (docs/model.md section 12)")
     p.add_argument("--budget-factor", type=number, metavar="S",
-                   help="stiffening factor of one element for --budget (> 1, default 100)")
+                   help="stiffening factor of one element for --budget (> 1, default 1e4)")
     p.set_defaults(func=_hysteresis)
