@@ -271,3 +271,10 @@ def test_a_failed_stiffened_test_is_a_status_naming_the_element(factor, status):
     assert budget.status == f"{status} (pins stiffened)"
     assert budget.status.endswith("(pins stiffened)") and np.isnan(budget.shares[0])
     assert budget.summary()["elements"][0]["share"] is None
+
+
+def test_a_failed_reference_test_fails_the_whole_budget():
+    budget = compliance_budget(RV40E, points_per_branch=POINTS,
+                               base={"pins": 1e6, "arm_bearings": 1e6})
+    assert budget.status == "not_converged (reference test)"
+    assert np.all(np.isnan(budget.shares)) and math.isnan(budget.rigidity)

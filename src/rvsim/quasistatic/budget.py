@@ -175,6 +175,8 @@ def compliance_budget(reducer: Reducer, *, rated_torque: float | None = None,
     status = "ok"
     if rigidity is None:
         rigidity, status = _rigidity(reducer, rated, points_per_branch, base)
+        if status != "ok":
+            status = f"{status} (reference test)"
     stiffened = np.full(len(present), math.nan)
     if status == "ok":
         for i, name in enumerate(present):
