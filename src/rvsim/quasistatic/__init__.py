@@ -10,4 +10,5 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "transmission": ["ltca", "LtcaResult", "solve_path"],
     "torque_reversal": ["hysteresis", "HysteresisResult"],
     "efficiency": ["efficiency", "EfficiencyResult"],
+    "bearing_life": ["life", "LifeResult"],
 })
