@@ -18,7 +18,7 @@ from ..errors import ParameterError
 from ..parameters import Reducer
 
 __all__ = ["life", "LifeResult", "BearingLife", "crank_speed", "check_life_inputs",
-           "DEFAULT_POSITIONS"]
+           "dynamic_ratings", "DEFAULT_POSITIONS"]
 
 #: input positions over the output revolution whose loads are averaged (ltca's default)
 DEFAULT_POSITIONS = 360
@@ -132,6 +132,29 @@ def check_life_inputs(reducer: Reducer, torque: float, output_speed: float) -> N
                                  f"{unit})")
 
 
+def dynamic_ratings(reducer: Reducer) -> tuple[float, float, float]:
+    """ISO 281 basic dynamic radial load ratings C [N] of a needle bearing at an eccentric, a
+    tapered support bearing and one row of the main bearings, from ``bearings.*`` (raceways
+    of the needles and support rollers: the eccentric or journal, roller pitch diameter
+    :func:`~rvsim.bearings.roller_pitch_diameter`)."""
+    from ..bearings import roller_pitch_diameter
+    from ..physics import rating_life as iso
+
+    b, crank = reducer.bearings, reducer.crank
+    needle = iso.roller_dynamic_rating(
+        b.needle_count, b.needle_diameter, b.needle_length,
+        roller_pitch_diameter(crank.eccentric_radius, b.needle_diameter),
+        field="bearings.needle_diameter")
+    support = iso.roller_dynamic_rating(
+        b.support_roller_count, b.support_roller_diameter, b.support_roller_length,
+        roller_pitch_diameter(crank.journal_radius, b.support_roller_diameter),
+        b.support_contact_angle, field="bearings.support_roller_diameter")
+    main = iso.ball_dynamic_rating(b.main_ball_count, b.main_ball_diameter,
+                                   b.main_pitch_diameter, b.main_contact_angle,
+                                   field="bearings.main_ball_diameter")
+    return needle, support, main
+
+
 def life(reducer: Reducer, *, torque: float | None = None, output_speed: float | None = None,
          positions: int = DEFAULT_POSITIONS) -> LifeResult:
     """L10 rating life of each crank bearing and the reducer's shortest, at the output
@@ -147,7 +170,6 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     from ..parameters import validate
     from ..parameters.rating import check_torque
     from ..physics import rating_life as iso
-    from ..bearings import roller_pitch_diameter
     from .transmission import ltca
 
     g = reducer.rating
@@ -156,13 +178,14 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     check_life_inputs(reducer, torque, output_speed)
     validate(reducer)
     check_torque(reducer, torque, "torque")
+    c_needle, c_support, c_main = dynamic_ratings(reducer)
     start = time.perf_counter()
     running = dataclasses.replace(reducer, operating=dataclasses.replace(
         reducer.operating, input_speed=output_speed * abs(reducer.ratio)))
     run = ltca(running, torque=torque, positions=positions, raise_on_failure=False)
     speed = crank_speed(reducer, output_speed)
     ok = run.status == "ok"
-    b, crank = reducer.bearings, reducer.crank
+    b = reducer.bearings
     rows = []
 
     def add(name, kind, rating, loads, exponent, status="ok"):
@@ -175,14 +198,6 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
         rows.append(BearingLife(name, kind, rating, p, float(np.max(loads)), speed, exponent,
                                 l10, iso.life_hours(l10, speed)))
 
-    c_needle = iso.roller_dynamic_rating(
-        b.needle_count, b.needle_diameter, b.needle_length,
-        roller_pitch_diameter(crank.eccentric_radius, b.needle_diameter),
-        field="bearings.needle_diameter")
-    c_support = iso.roller_dynamic_rating(
-        b.support_roller_count, b.support_roller_diameter, b.support_roller_length,
-        roller_pitch_diameter(crank.journal_radius, b.support_roller_diameter),
-        b.support_contact_angle, field="bearings.support_roller_diameter")
     for j in range(2):
         for d in range(2):
             add(f"arm needles crank {j + 1} disc {d + 1}", "needle roller", c_needle,
@@ -193,9 +208,6 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
         for where, p in (("lower", p_lower), ("upper", p_upper)):
             add(f"support rollers crank {j + 1} {where}", "tapered roller", c_support, p,
                 iso.ROLLER_EXPONENT, "ok" if b.support_rollers else "bushing")
-    c_main = iso.ball_dynamic_rating(b.main_ball_count, b.main_ball_diameter,
-                                     b.main_pitch_diameter, b.main_contact_angle,
-                                     field="bearings.main_ball_diameter")
     rows.append(BearingLife("main bearings (each row)", "angular contact ball", c_main,
                             math.nan, math.nan, output_speed, iso.BALL_EXPONENT, math.nan,
                             math.nan, "needs_external_load"))
