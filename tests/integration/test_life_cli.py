@@ -25,6 +25,11 @@ BAD = [
     (BEARINGS + ("--set", "bearings.needle_diameter=0.2"),
      "'bearings.needle_diameter': D cos(alpha) / D_pw = 0.007937 is outside ISO 281's table"),
     (("--params", "{tmp}/missing.toml"), "not found"),
+    (BEARINGS + ("--moment=-1",), "'--moment': must be zero or positive"),
+    (BEARINGS + ("--thrust", "nan"), "'--thrust': must be a finite number"),
+    (BEARINGS + ("--radial-load=-5",), "'--radial-load': must be zero or positive"),
+    (BEARINGS + ("--moment", "100", "--set", "bearings.main_contact_angle=15"),
+     "'bearings.main_contact_angle': 15 deg is outside ISO 281's table"),
 ]
 
 
@@ -37,7 +42,7 @@ def test_bad_input_is_one_line_exit_2(cli, tmp_path, args, words):
 
 
 KEYS = {"reducer", "torque_nm", "output_speed_rpm", "crank_speed_rpm", "life_hours",
-        "limiting_bearing", "system_life_hours", "catalogue_life_hours",
+        "limiting_bearing", "system_life_hours", "crank_life_hours", "catalogue_life_hours",
         "life_ratio_to_catalogue", "bearings", "positions", "wall_s", "status"}
 BEARING_KEYS = {"name", "kind", "status", "dynamic_rating_n", "equivalent_load_n",
                 "peak_load_n", "speed_rpm", "life_exponent", "l10_million_revolutions",
@@ -69,8 +74,24 @@ def test_text_and_options(cli):
     assert res.code == 0 and res.err == "", res.err
     lines = res.out.splitlines()
     assert lines[0].startswith("RV-40E-bearings at 300 N*m, output 10 rpm (cranks 400 rpm")
-    assert len(lines) == 2 + 9 + 1 and "needs_external_load" in lines[-2]
-    assert lines[-1].startswith("rating life ") and "catalogue rule" in lines[-1]
+    assert len(lines) == 2 + 9 + 2 and "needs_external_load" in lines[-3]
+    assert lines[-2].startswith("rating life ") and "catalogue rule" in lines[-1]
+
+
+def test_main_bearing_loads(cli):
+    res = cli("life", *BEARINGS, "--positions", "81", "--moment", "800", "--thrust", "2000",
+              "--json")
+    assert res.code == 0, res.err
+    data = json.loads(res.out)
+    rows = [b for b in data["bearings"] if b["name"].startswith("main")]
+    assert [b["status"] for b in rows] == ["ok", "ok"] and len(data["bearings"]) == 10
+    # 13 561 N on the worse row (tests/verification/test_life.py), 7188 h at 15 rpm: now the
+    # shortest life; the ratio to the catalogue stays the crank bearings'
+    assert data["limiting_bearing"] == "main bearing row 2"
+    assert data["life_hours"] == pytest.approx(7188.0, abs=1.0)
+    assert data["crank_life_hours"] > data["life_hours"]
+    assert data["life_ratio_to_catalogue"] == pytest.approx(
+        data["crank_life_hours"] / 6000.0, rel=1e-12)
 
 
 def test_above_rated_torque_warns(cli):

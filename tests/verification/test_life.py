@@ -102,12 +102,52 @@ def test_tapered_pair_rule_by_hand():
     assert float(pa) == 2000.0 and float(pb) == pytest.approx(1400.0, rel=1e-12)
 
 
+def test_paired_axial_loads_by_hand():
+    # induced 1 x F_r; a: 1000 N, b: 3000 N, no external force: both carry b's 3000 N
+    fa_a, fa_b = iso.paired_axial_loads(1000.0, 3000.0, 1.0)
+    assert (float(fa_a), float(fa_b)) == (3000.0, 3000.0)
+    # 500 N onto b: a's 1000 + 500 < b's own 3000: b 3000, a 2500
+    fa_a, fa_b = iso.paired_axial_loads(1000.0, 3000.0, 1.0, 500.0)
+    assert (float(fa_a), float(fa_b)) == (2500.0, 3000.0)
+    # 4000 N onto b: a keeps its own 1000, b carries 1000 + 4000
+    fa_a, fa_b = iso.paired_axial_loads(1000.0, 3000.0, 1.0, 4000.0)
+    assert (float(fa_a), float(fa_b)) == (1000.0, 5000.0)
+
+
+def test_main_bearing_loads_by_hand():
+    alpha = math.radians(40.0)
+    assert iso.angular_contact_factors(alpha) == pytest.approx((1.14, 0.35, 0.57), abs=1e-12)
+    assert iso.angular_contact_factors(math.radians(37.5)) == pytest.approx(
+        (1.045, 0.36, 0.615), abs=1e-12)
+    with pytest.raises(ParameterError, match="bearings.main_contact_angle"):
+        iso.angular_contact_factors(math.radians(15.0), "bearings.main_contact_angle")
+    # 800 N*m over 60 mm: +-13 333.3 N on the rows; induced 1.216 tan 40 = 1.02035 x F_r =
+    # 13 604.6 N; 2000 N onto b: b carries 15 604.6 N, F_a / F_r = 1.170 > e = 1.14:
+    # P_b = 0.35 x 13 333.3 + 0.57 x 15 604.6 = 13 561.3 N; a: 1.020 < e, P_a = F_r
+    pa, pb = iso.main_bearing_loads(0.0, 800.0, 2000.0, 0.06, alpha)
+    k = 1.216 * math.tan(alpha)
+    assert pa == pytest.approx(800.0 / 0.06, rel=1e-14)
+    assert pb == pytest.approx(0.35 * 800.0 / 0.06 + 0.57 * (k * 800.0 / 0.06 + 2000.0),
+                               rel=1e-14)
+    assert pb == pytest.approx(13561.3, abs=0.1)
+    # a pure thrust: both rows unloaded radially, P = Y F_a on the row it pushes
+    pa, pb = iso.main_bearing_loads(0.0, 0.0, 1000.0, 0.06, alpha)
+    assert (pa, pb) == pytest.approx((0.0, 570.0), abs=1e-9)
+
+
 def test_hours_system_and_catalogue_rule():
     # 1e6 revolutions at 600 rpm: 1e6 / 600 / 60 = 27.78 h
     assert iso.life_hours(1e6, 600.0 * RPM) == pytest.approx(1e6 / 600.0 / 60.0, rel=1e-14)
     # n equal bearings: L / n^(1/e); an unloaded bearing (infinite life) drops out
     assert iso.system_life([1000.0] * 4, 9 / 8) == pytest.approx(1000.0 / 4 ** (8 / 9), rel=1e-14)
     assert iso.system_life([1000.0, math.inf]) == pytest.approx(1000.0, rel=1e-14)
+    # mixed slopes: sum (t / L_i)^e_i = 1 solved; equal slopes agree with the closed form
+    mixed = iso.system_life([1000.0, 2000.0], [9 / 8, 10 / 9])
+    assert (mixed / 1000.0) ** (9 / 8) + (mixed / 2000.0) ** (10 / 9) == pytest.approx(
+        1.0, rel=1e-12)
+    # the root finder (slopes differing by 1e-12) against the closed form
+    assert iso.system_life([1000.0, 2000.0], [9 / 8, 9 / 8 * (1 + 1e-12)]) == pytest.approx(
+        iso.system_life([1000.0, 2000.0], 9 / 8), rel=1e-10)
     # K (N0 / N) (T0 / T)^(10/3): K at the rating point, / 2 at twice the speed, / 2^(10/3)
     # at twice the torque
     assert iso.catalogue_life(6000.0, 15.0, 15.0, 412.0, 412.0) == 6000.0
@@ -171,6 +211,7 @@ def test_engine_applies_iso_281_to_the_quasi_static_loads(rated):
     assert rated.catalogue_life == pytest.approx(6000.0 * 3600.0, rel=1e-12)
     main = rated.bearings[-1]
     assert main.status == "needs_external_load" and math.isnan(main.l10_hours)
+    assert rated.crank_life_hours == rated.life_hours
     summary = rated.summary()
     assert summary["life_ratio_to_catalogue"] == pytest.approx(
         rated.life_hours / 6000.0, rel=1e-12)
@@ -183,3 +224,21 @@ def test_needle_life_follows_the_torque(rated):
 
     half = life(RV40E_ROLLING, torque=206.0, positions=81)
     assert half.life_hours / rated.life_hours == pytest.approx(2.0 ** (10.0 / 3.0), rel=3e-3)
+
+
+def test_main_bearings_under_external_loads():
+    # the worse direction of the thrust: row 2 at P = 13 561 N (test above), C = 25 268.7 N,
+    # 15 rpm: L10 = (C / P)^3 = 6.469e6 revolutions = 7188 h
+    from rvsim.quasistatic.bearing_life import main_bearing_rows
+
+    rows = main_bearing_rows(RV40E_ROLLING, 25268.71, 15.0 * RPM, 0.0, 800.0, 2000.0)
+    assert [r.name for r in rows] == ["main bearing row 1", "main bearing row 2"]
+    worst = max(rows, key=lambda r: r.equivalent_load)
+    assert worst.equivalent_load == pytest.approx(13561.3, abs=0.1)
+    assert worst.l10 == pytest.approx(1e6 * (25268.71 / worst.equivalent_load) ** 3, rel=1e-14)
+    assert worst.l10_hours == pytest.approx(worst.l10 / 15.0 / 60.0, rel=1e-12)
+    assert worst.l10_hours == pytest.approx(7188.0, abs=1.0)
+    with pytest.raises(ParameterError, match="moment"):
+        from rvsim.quasistatic import life
+
+        life(RV40E_ROLLING, moment=-1.0)

@@ -180,6 +180,12 @@ def _life(args: argparse.Namespace) -> int:
         _finite(option, value)
         if value is not None and value <= 0:
             raise ParameterError(option, f"must be positive (got {value:g})")
+    external = {"radial_load": args.radial_load, "moment": args.moment, "thrust": args.thrust}
+    for name, value in external.items():
+        option = "--" + name.replace("_", "-")
+        _finite(option, value)
+        if value < 0:
+            raise ParameterError(option, f"must be zero or positive (got {value:g})")
     if not MIN_POSITIONS <= args.positions <= MAX_POSITIONS:
         raise ParameterError("--positions", f"must be {MIN_POSITIONS} to {MAX_POSITIONS} "
                              f"(got {args.positions})")
@@ -197,7 +203,7 @@ def _life(args: argparse.Namespace) -> int:
     result, code = _solve(lambda: life(reducer, torque=args.torque,
                                        output_speed=None if args.output_speed is None
                                        else args.output_speed * RPM,
-                                       positions=args.positions), args, "life")
+                                       positions=args.positions, **external), args, "life")
     if result is None:
         return code
     summary = result.summary()
@@ -216,8 +222,9 @@ def _life(args: argparse.Namespace) -> int:
         print(f"{b['name']:<32} {b['dynamic_rating_n']:8.0f} {b['equivalent_load_n']:8.0f} "
               f"{b['l10_million_revolutions']:14.4g} {b['l10_hours']:10.4g}")
     print(f"rating life {summary['life_hours']:.4g} h (shortest: {summary['limiting_bearing']});"
-          f" all rated bearings together {summary['system_life_hours']:.4g} h; the catalogue "
-          f"rule K (N0/N) (T0/T)^(10/3) gives {summary['catalogue_life_hours']:.4g} h (ratio "
+          f" all rated bearings together {summary['system_life_hours']:.4g} h")
+    print(f"crank bearings {summary['crank_life_hours']:.4g} h against the catalogue rule "
+          f"K (N0/N) (T0/T)^(10/3): {summary['catalogue_life_hours']:.4g} h (ratio "
           f"{summary['life_ratio_to_catalogue']:.3g})")
     return 0
 
@@ -269,12 +276,13 @@ def register(sub) -> None:
                     "geometry (ISO 281), mean equivalent load P over one output revolution from "
                     "the quasi-static model, speed of the crank relative to the carrier.  The "
                     "reducer's life is its shortest bearing life, beside the catalogue rule "
-                    "K (N0/N) (T0/T)^(10/3).  Main bearings: C only (the model puts no "
-                    "external load on them).  Needs rolling crank bearings "
-                    "(--params RV-40E-bearings).",
+                    "K (N0/N) (T0/T)^(10/3).  Main bearings: their life under the external "
+                    "--moment, --thrust and --radial-load on the output flange (none given: C "
+                    "only).  Needs rolling crank bearings (--params RV-40E-bearings).",
                     ["rvsim life --params RV-40E-bearings",
                      "rvsim life --params RV-40E-bearings --torque 300 --output-speed 10 "
-                     "--json"])
+                     "--json",
+                     "rvsim life --params RV-40E-bearings --moment 800 --thrust 2000"])
     add_reducer_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--torque", type=number, metavar="NM",
@@ -285,4 +293,12 @@ def register(sub) -> None:
     p.add_argument("--positions", type=int, default=360, metavar="N",
                    help=f"input positions over one output revolution whose loads are averaged "
                         f"({MIN_POSITIONS} to {MAX_POSITIONS}, default 360)")
+    p.add_argument("--moment", type=number, default=0.0, metavar="NM",
+                   help="external tilting moment on the output flange [N*m], carried by the "
+                        "main bearings (default 0: no main-bearing life)")
+    p.add_argument("--thrust", type=number, default=0.0, metavar="N",
+                   help="external axial force on the output flange [N] (default 0)")
+    p.add_argument("--radial-load", type=number, default=0.0, metavar="N",
+                   help="external radial force on the output flange, midway between the main "
+                        "bearings [N] (default 0)")
     p.set_defaults(func=_life)

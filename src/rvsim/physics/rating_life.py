@@ -5,9 +5,9 @@
   factor f_c interpolated linearly in ISO 281's Tables 2 and 7 (the standard's own rule for
   intermediate values).
 * Equivalent dynamic load of a single-row tapered roller bearing (ISO 281 clause 7.2.1, X and
-  Y for alpha != 0) and the axial loads of two tapered bearings in a pair from their induced
-  axial forces (SKF General Catalogue, "Determining axial loads for bearings mounted singly or
-  paired", single-row tapered roller bearings).
+  Y for alpha != 0) or angular contact ball bearing (clause 6.2.1, Table 3) and the axial loads
+  of two such bearings in a pair from their induced axial forces (SKF General Catalogue,
+  "Determining axial loads for bearings mounted singly or paired").
 * Mean equivalent load of a varying load (Harris & Kotzalas, *Rolling Bearing Analysis*, 5th
   ed., Essential Concepts Ch. 11; SKF General Catalogue, "Fluctuating bearing load"):
   P_m = (sum P_i^p n_i / sum n_i)^(1/p).
@@ -33,6 +33,8 @@ from ..errors import ParameterError
 __all__ = ["BALL_EXPONENT", "ROLLER_EXPONENT", "BALL_BM", "ROLLER_BM", "ROLLER_FC_TABLE",
            "BALL_FC_TABLE", "roller_fc", "ball_fc", "roller_dynamic_rating",
            "ball_dynamic_rating", "tapered_factors", "tapered_pair_loads", "mean_load",
+           "paired_axial_loads", "ANGULAR_CONTACT_TABLE", "BALL_INDUCED_AXIAL",
+           "angular_contact_factors", "main_bearing_loads",
            "rating_life", "life_hours", "system_life", "ROLLER_WEIBULL_SLOPE",
            "BALL_WEIBULL_SLOPE", "catalogue_life"]
 
@@ -121,24 +123,80 @@ def tapered_factors(contact_angle: float) -> tuple[float, float, float]:
     return 1.5 * t, 0.4, 0.4 / t
 
 
+def paired_axial_loads(radial_a, radial_b, induced: float, external=0.0):
+    """Axial loads (F_a,a, F_a,b) [N] of two single-row angular contact bearings (ball or
+    tapered) that locate a shaft in both directions, at the radial loads ``radial_a``,
+    ``radial_b`` (arrays or numbers) and the external axial force ``external`` >= 0 that
+    pushes onto bearing b.  Each radial load induces the axial force ``induced`` x F_r; bearing
+    b carries the larger of its own and a's plus the external force, bearing a the rest, at
+    least its own (SKF's rule for paired bearings, General Catalogue "Determining axial
+    loads")."""
+    own_a = induced * np.asarray(radial_a, dtype=float)
+    own_b = induced * np.asarray(radial_b, dtype=float)
+    axial_b = np.maximum(own_b, own_a + external)
+    return axial_b - external, axial_b
+
+
+def _equivalent(radial, axial, e: float, x: float, y: float):
+    """P = F_r for F_a / F_r <= e, else X F_r + Y F_a (ISO 281 clauses 6.2.1, 7.2.1)."""
+    return np.where(axial > e * radial, x * radial + y * axial, radial)
+
+
 def tapered_pair_loads(radial_a, radial_b, contact_angle: float):
     """Equivalent dynamic loads (P_a, P_b) [N] of two single-row tapered roller bearings that
     locate a shaft in both directions (face to face or back to back), without external axial
     load, at the radial loads ``radial_a``, ``radial_b`` (arrays or numbers).
 
-    Each bearing's radial load induces the axial force 0.5 F_r / Y; the bearing with the
-    larger induced force carries its own, the other carries that same force (SKF's rule for
-    paired single-row tapered bearings, case K_a = 0).  P follows :func:`tapered_factors`."""
+    Each bearing's radial load induces the axial force 0.5 F_r / Y (:func:`paired_axial_loads`):
+    the bearing with the larger one carries its own, the other the same force.  P follows
+    :func:`tapered_factors`."""
     e, x, y = tapered_factors(contact_angle)
     fr_a = np.asarray(radial_a, dtype=float)
     fr_b = np.asarray(radial_b, dtype=float)
-    axial = 0.5 * np.maximum(fr_a, fr_b) / y
+    # without external force both carry the larger induced force, whichever bearing's it is
+    axial = paired_axial_loads(fr_a, fr_b, 0.5 / y)[1]
+    return _equivalent(fr_a, axial, e, x, y), _equivalent(fr_b, axial, e, x, y)
 
-    def equivalent(fr):
-        heavy = axial > e * fr
-        return np.where(heavy, x * fr + y * axial, fr)
 
-    return equivalent(fr_a), equivalent(fr_b)
+#: ISO 281 Table 3, single-row angular contact groove ball bearings: contact angle [deg], e,
+#: X and Y for F_a / F_r > e (X = 1, Y = 0 below)
+ANGULAR_CONTACT_TABLE = ((20.0, 25.0, 30.0, 35.0, 40.0, 45.0),
+                         (0.57, 0.68, 0.80, 0.95, 1.14, 1.34),
+                         (0.43, 0.41, 0.39, 0.37, 0.35, 0.33),
+                         (1.00, 0.87, 0.76, 0.66, 0.57, 0.50))
+#: induced axial force of an angular contact bearing with half its rollers loaded, F_a =
+#: k F_r tan(alpha): 1.216 for point (ball) contact (NSK technical report, "Bearing internal
+#: load distribution"; Harris & Kotzalas, the load integrals J_r, J_a at epsilon = 0.5)
+BALL_INDUCED_AXIAL = 1.216
+
+
+def angular_contact_factors(contact_angle: float, field: str = "bearings") -> tuple:
+    """(e, X, Y) of a single-row angular contact ball bearing (ISO 281 Table 3, linear
+    interpolation in the contact angle from 20 to 45 deg)."""
+    deg = math.degrees(contact_angle)
+    angles = ANGULAR_CONTACT_TABLE[0]
+    if not angles[0] <= deg <= angles[-1]:
+        raise ParameterError(field, f"{deg:g} deg is outside ISO 281's table of angular "
+                             f"contact ball bearings ({angles[0]:g} to {angles[-1]:g} deg)")
+    return tuple(float(np.interp(deg, angles, column)) for column in ANGULAR_CONTACT_TABLE[1:])
+
+
+def main_bearing_loads(radial: float, moment: float, thrust: float, span: float,
+                       contact_angle: float, field: str = "bearings") -> tuple:
+    """Equivalent loads (P_a, P_b) [N] of the two rows of a back-to-back pair of single-row
+    angular contact ball bearings, ``span`` [m] apart between their load centres, under the
+    external ``radial`` force [N] midway between them, the tilting ``moment`` [N*m] in the
+    same plane and the ``thrust`` [N] onto row b.
+
+    Row radial loads from statics: F_r = |radial / 2 +- moment / span|; axial loads by
+    :func:`paired_axial_loads` with the induced force 1.216 tan(alpha) F_r; P by ISO 281 Table 3
+    (:func:`angular_contact_factors`).  The preload is not in this rule."""
+    e, x, y = angular_contact_factors(contact_angle, field)
+    fr_a = abs(0.5 * radial + moment / span)
+    fr_b = abs(0.5 * radial - moment / span)
+    fa_a, fa_b = paired_axial_loads(fr_a, fr_b, BALL_INDUCED_AXIAL * math.tan(contact_angle),
+                                    abs(thrust))
+    return (float(_equivalent(fr_a, fa_a, e, x, y)), float(_equivalent(fr_b, fa_b, e, x, y)))
 
 
 def mean_load(loads, exponent: float, weights=None) -> float:
@@ -165,13 +223,24 @@ def life_hours(revolutions: float, speed: float) -> float:
     return revolutions / (speed / (2.0 * math.pi)) / 3600.0
 
 
-def system_life(lives, slope: float = ROLLER_WEIBULL_SLOPE) -> float:
+def system_life(lives, slopes=ROLLER_WEIBULL_SLOPE) -> float:
     """L10 of a set of bearings that must all survive, from their own L10 ``lives`` (any one
-    unit): (sum L_i^-e)^(-1/e), e the Weibull slope (the survival probabilities multiply:
-    0.9 at the result).  Infinite lives drop out."""
-    inv = [1.0 / float(x) for x in lives if float(x) > 0.0]
-    total = sum(x ** slope for x in inv)
-    return math.inf if total == 0.0 else total ** (-1.0 / slope)
+    unit) and Weibull slopes e_i (one for all, or one each): each survives to t with the
+    probability 0.9^((t / L_i)^e_i), so all of them with 0.9 at the t where sum (t / L_i)^e_i
+    = 1; one slope e: (sum L_i^-e)^(-1/e).  Infinite lives drop out."""
+    lives = np.asarray(lives, dtype=float)
+    slopes = np.broadcast_to(np.asarray(slopes, dtype=float), lives.shape)
+    finite = np.isfinite(lives) & (lives > 0.0)
+    lives, slopes = lives[finite], slopes[finite]
+    if lives.size == 0:
+        return math.inf
+    if np.all(slopes == slopes[0]):
+        return float(np.sum(lives ** -slopes[0]) ** (-1.0 / slopes[0]))
+    from scipy.optimize import brentq
+
+    # sum (t / L_i)^e_i rises from 0; at t = min L_i it is >= 1
+    return float(brentq(lambda t: np.sum((t / lives) ** slopes) - 1.0, 0.0, lives.min(),
+                        rtol=1e-14))
 
 
 def catalogue_life(rated_life: float, rated_speed: float, speed: float, rated_torque: float,

@@ -18,7 +18,7 @@ from ..errors import ParameterError
 from ..parameters import Reducer
 
 __all__ = ["life", "LifeResult", "BearingLife", "crank_speed", "check_life_inputs",
-           "dynamic_ratings", "DEFAULT_POSITIONS"]
+           "dynamic_ratings", "main_bearing_rows", "DEFAULT_POSITIONS"]
 
 #: input positions over the output revolution whose loads are averaged (ltca's default)
 DEFAULT_POSITIONS = 360
@@ -40,6 +40,7 @@ class BearingLife:
     l10: float                     # [revolutions]
     l10_hours: float               # [h]
     status: str = "ok"
+    weibull_slope: float = 9.0 / 8.0   # e of the life scatter (roller 9/8, ball 10/9)
 
     def as_dict(self) -> dict:
         return {"name": self.name, "kind": self.kind, "status": self.status,
@@ -69,18 +70,27 @@ class LifeResult:
 
     @property
     def life_hours(self) -> float:
-        """The reducer's rating life: its shortest bearing life [h] (nan: none rated)."""
+        """The reducer's rating life: its shortest bearing life [h], the main bearings included
+        when they are loaded (nan: none rated)."""
         rated = self.rated_bearings
         return min(b.l10_hours for b in rated) if rated else math.nan
 
     @property
+    def crank_life_hours(self) -> float:
+        """The shortest life of the crank bearings [h], what the catalogue rule rates (it
+        leaves out the external loads on the main bearings)."""
+        crank = [b.l10_hours for b in self.rated_bearings if not b.name.startswith("main")]
+        return min(crank) if crank else math.nan
+
+    @property
     def system_life_hours(self) -> float:
         """L10 of all rated bearings together [h]: 90 % of reducers keep every one of them
-        (Weibull slope of roller bearings; :func:`~rvsim.physics.rating_life.system_life`)."""
+        (each with its Weibull slope; :func:`~rvsim.physics.rating_life.system_life`)."""
         from ..physics.rating_life import system_life
 
         rated = self.rated_bearings
-        return system_life([b.l10_hours for b in rated]) if rated else math.nan
+        return system_life([b.l10_hours for b in rated],
+                           [b.weibull_slope for b in rated]) if rated else math.nan
 
     @property
     def limiting(self) -> str:
@@ -88,8 +98,8 @@ class LifeResult:
         return min(rated, key=lambda b: b.l10_hours).name if rated else ""
 
     def summary(self) -> dict:
-        """The JSON keys: the life in hours, the limiting bearing, the catalogue rule's life
-        at the same point, and one entry per bearing."""
+        """The JSON keys: the life in hours, the limiting bearing, the crank bearings' life
+        and the catalogue rule's at the same point (and their ratio), one entry per bearing."""
         catalogue_h = self.catalogue_life / 3600.0
         return {"reducer": self.name, "torque_nm": self.torque,
                 "output_speed_rpm": self.output_speed / _RPM,
@@ -97,7 +107,8 @@ class LifeResult:
                 "life_hours": self.life_hours, "limiting_bearing": self.limiting,
                 "system_life_hours": self.system_life_hours,
                 "catalogue_life_hours": catalogue_h,
-                "life_ratio_to_catalogue": self.life_hours / catalogue_h,
+                "crank_life_hours": self.crank_life_hours,
+                "life_ratio_to_catalogue": self.crank_life_hours / catalogue_h,
                 "bearings": [b.as_dict() for b in self.bearings],
                 "positions": self.positions, "wall_s": self.wall_s, "status": self.status}
 
@@ -114,9 +125,11 @@ def crank_speed(reducer: Reducer, output_speed: float) -> float:
     return abs(g.sun_teeth / g.planet_teeth * (reducer.ratio - 1.0) * output_speed)
 
 
-def check_life_inputs(reducer: Reducer, torque: float, output_speed: float) -> None:
+def check_life_inputs(reducer: Reducer, torque: float, output_speed: float,
+                      **external: float) -> None:
     """Refuse what has no rating life: a single-stage drive, bushings only, a torque or an
-    output speed that is not positive (ParameterError)."""
+    output speed that is not positive, an ``external`` main-bearing load (name=value) that is
+    negative or not finite (ParameterError)."""
     if reducer.layout.single_stage:
         raise ParameterError("layout.stages", "rating life is modelled for the RV reducer's "
                              "crank bearings (layout.stages = 2) only")
@@ -130,6 +143,37 @@ def check_life_inputs(reducer: Reducer, torque: float, output_speed: float) -> N
         if not math.isfinite(value) or value <= 0.0:
             raise ParameterError(name, f"must be a positive finite number (got {value:g} "
                                  f"{unit})")
+    for name, value in external.items():
+        if not math.isfinite(value) or value < 0.0:
+            raise ParameterError(name, f"must be zero or a positive finite number (got "
+                                 f"{value:g})")
+
+
+def main_bearing_rows(reducer: Reducer, rating: float, output_speed: float,
+                      radial_load: float, moment: float, thrust: float) -> list:
+    """The two main bearing rows under the external loads (each row's C = ``rating``; ISO 281
+    with :func:`~rvsim.physics.rating_life.main_bearing_loads`).  The thrust's direction
+    relative to the moment's plane is not given: of the two, the one with the shorter life.
+    No external load: one row "needs_external_load" without life."""
+    from ..physics import rating_life as iso
+
+    b = reducer.bearings
+    kind, p = "angular contact ball", iso.BALL_EXPONENT
+    if not (radial_load or moment or thrust):
+        return [BearingLife("main bearings (each row)", kind, rating, math.nan, math.nan,
+                            output_speed, p, math.nan, math.nan, "needs_external_load",
+                            iso.BALL_WEIBULL_SLOPE)]
+    cases = [iso.main_bearing_loads(radial_load, sign * moment, thrust, b.main_span,
+                                    b.main_contact_angle, "bearings.main_contact_angle")
+             for sign in (1.0, -1.0)]
+    loads = max(cases, key=max)
+    rows = []
+    for k, load in enumerate(loads):
+        l10 = iso.rating_life(rating, load, p)
+        rows.append(BearingLife(f"main bearing row {k + 1}", kind, rating, load, load,
+                                output_speed, p, l10, iso.life_hours(l10, output_speed), "ok",
+                                iso.BALL_WEIBULL_SLOPE))
+    return rows
 
 
 def dynamic_ratings(reducer: Reducer) -> tuple[float, float, float]:
@@ -156,7 +200,8 @@ def dynamic_ratings(reducer: Reducer) -> tuple[float, float, float]:
 
 
 def life(reducer: Reducer, *, torque: float | None = None, output_speed: float | None = None,
-         positions: int = DEFAULT_POSITIONS) -> LifeResult:
+         positions: int = DEFAULT_POSITIONS, radial_load: float = 0.0, moment: float = 0.0,
+         thrust: float = 0.0) -> LifeResult:
     """L10 rating life of each crank bearing and the reducer's shortest, at the output
     ``torque`` [N*m] (default: ``rating.rated_torque``) and output speed [rad/s] (default:
     ``rating.rated_output_speed``).
@@ -164,7 +209,11 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     The loads come from :func:`ltca` over one output revolution at ``positions`` equally
     spaced input angles, with the input turning at ``output_speed`` times the ratio (the
     friction of the bearings follows it).  A run that does not converge returns its status
-    and no lives (nan)."""
+    and no lives (nan).
+
+    The main bearings carry only the external loads on the output flange: ``radial_load``
+    [N] midway between them, the tilting ``moment`` [N*m] and the ``thrust`` [N] (all zero:
+    no life, status "needs_external_load"); :func:`main_bearing_rows`."""
     import time
 
     from ..parameters import validate
@@ -175,7 +224,8 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     g = reducer.rating
     torque = float(g.rated_torque if torque is None else torque)
     output_speed = float(g.rated_output_speed if output_speed is None else output_speed)
-    check_life_inputs(reducer, torque, output_speed)
+    check_life_inputs(reducer, torque, output_speed, radial_load=radial_load, moment=moment,
+                      thrust=thrust)
     validate(reducer)
     check_torque(reducer, torque, "torque")
     c_needle, c_support, c_main = dynamic_ratings(reducer)
@@ -208,9 +258,7 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
         for where, p in (("lower", p_lower), ("upper", p_upper)):
             add(f"support rollers crank {j + 1} {where}", "tapered roller", c_support, p,
                 iso.ROLLER_EXPONENT, "ok" if b.support_rollers else "bushing")
-    rows.append(BearingLife("main bearings (each row)", "angular contact ball", c_main,
-                            math.nan, math.nan, output_speed, iso.BALL_EXPONENT, math.nan,
-                            math.nan, "needs_external_load"))
+    rows += main_bearing_rows(reducer, c_main, output_speed, radial_load, moment, thrust)
     catalogue = iso.catalogue_life(g.rated_life, g.rated_output_speed, output_speed,
                                    g.rated_torque, torque)
     return LifeResult(reducer.name, torque, output_speed, speed, rows, catalogue, run.status,
