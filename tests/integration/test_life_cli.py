@@ -106,3 +106,17 @@ def test_help_lists_life(cli):
     assert "life" in res.out
     res = cli("life", "--help")
     assert res.code == 0 and "--output-speed" in res.out and "ISO 281" in res.out
+
+
+def test_failed_solve_is_a_status(cli):
+    # the momentary rating raised with it (as in the ltca hostile test): the solve does not
+    # converge, exit 1, every crank bearing carries the status and no life
+    res = cli("life", *BEARINGS, "--positions", "81", "--torque", "1e9", "--json",
+              "--set", "rating.start_stop_torque=1e9", "--set", "rating.momentary_torque=1e9")
+    assert res.code == 1
+    data = json.loads(res.out)
+    assert data["status"] == "not_converged" and data["life_hours"] is None
+    crank = [b for b in data["bearings"] if not b["name"].startswith("main")]
+    assert {b["status"] for b in crank} == {"not_converged"}
+    assert all(b["l10_hours"] is None for b in crank)
+    assert res.err.splitlines()[0] == "rvsim: life failed: status not_converged"

@@ -229,6 +229,9 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     validate(reducer)
     check_torque(reducer, torque, "torque")
     c_needle, c_support, c_main = dynamic_ratings(reducer)
+    if radial_load or moment or thrust:     # refused before the solve, not after
+        iso.angular_contact_factors(reducer.bearings.main_contact_angle,
+                                    "bearings.main_contact_angle")
     start = time.perf_counter()
     running = dataclasses.replace(reducer, operating=dataclasses.replace(
         reducer.operating, input_speed=output_speed * abs(reducer.ratio)))
@@ -239,9 +242,10 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     rows = []
 
     def add(name, kind, rating, loads, exponent, status="ok"):
-        if status != "ok" or not ok:
+        if status != "ok" or not ok:       # a bushing, or the loads of a failed solve
             rows.append(BearingLife(name, kind, rating, math.nan, math.nan, speed, exponent,
-                                    math.nan, math.nan, status))
+                                    math.nan, math.nan, status if status != "ok"
+                                    else run.status))
             return
         p = iso.mean_load(loads, exponent)
         l10 = iso.rating_life(rating, p, exponent)
