@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ..errors import InputFileError, ParameterError
 from ..analysis.sampling import MAX_POSITIONS, check_positions
+from ..units import TO_SI
 from ._common import (number, add_command, add_reducer_options, check_load, check_output_file,
                       print_json, reducer_from_args)
 
@@ -22,6 +23,7 @@ __all__ = ["register", "MIN_POSITIONS", "MAX_POSITIONS"]
 #: up to a few orders, at most what a user could mean (0.01 deg of output per step at 36000);
 #: the reducer's own floor (its pin order unaliased) is rvsim.analysis.sampling's
 MIN_POSITIONS = 8
+RPM = TO_SI["rpm"]
 
 
 
@@ -226,6 +228,58 @@ def _print_budget(budget) -> None:
     print(f"  sum {100 * (1 - budget.residual):.1f} %, residual {100 * budget.residual:.1f} % "
           f"(what a stiffened element keeps, load sharing of parallel elements); "
           f"rigidity {budget.rigidity * ARCMIN:.2f} N*m/arcmin ({budget.wall_s:.2f} s)")
+def _life(args: argparse.Namespace) -> int:
+    for option, value in (("--torque", args.torque), ("--output-speed", args.output_speed)):
+        _finite(option, value)
+        if value is not None and value <= 0:
+            raise ParameterError(option, f"must be positive (got {value:g})")
+    external = {"radial_load": args.radial_load, "moment": args.moment, "thrust": args.thrust}
+    for name, value in external.items():
+        option = "--" + name.replace("_", "-")
+        _finite(option, value)
+        if value < 0:
+            raise ParameterError(option, f"must be zero or positive (got {value:g})")
+    if not MIN_POSITIONS <= args.positions <= MAX_POSITIONS:
+        raise ParameterError("--positions", f"must be {MIN_POSITIONS} to {MAX_POSITIONS} "
+                             f"(got {args.positions})")
+    reducer = reducer_from_args(args)
+    from ..quasistatic.bearing_life import check_life_inputs
+
+    rpm = reducer.rating.rated_output_speed / RPM if args.output_speed is None \
+        else args.output_speed
+    check_life_inputs(reducer, 1.0, rpm * RPM)      # the reducer: RV with rolling bearings
+    check_positions(reducer, args.positions, "--positions")
+    check_load(reducer, reducer.rating.rated_torque if args.torque is None else args.torque,
+               "rating.rated_torque" if args.torque is None else "--torque")
+    from ..quasistatic import life
+
+    result, code = _solve(lambda: life(reducer, torque=args.torque,
+                                       output_speed=None if args.output_speed is None
+                                       else args.output_speed * RPM,
+                                       positions=args.positions, **external), args, "life")
+    if result is None:
+        return code
+    summary = result.summary()
+    if args.json:
+        print_json(summary)
+        return 0
+    print(f"{reducer.name} at {summary['torque_nm']:g} N*m, output {summary['output_speed_rpm']:g}"
+          f" rpm (cranks {summary['crank_speed_rpm']:g} rpm relative to the carrier), "
+          f"{summary['positions']} positions ({summary['wall_s']:.2f} s), status "
+          f"{summary['status']}")
+    print(f"{'bearing':<32} {'C [N]':>8} {'P [N]':>8} {'L10 [1e6 rev]':>14} {'L10h [h]':>10}")
+    for b in summary["bearings"]:
+        if b["status"] != "ok":
+            print(f"{b['name']:<32} {b['dynamic_rating_n']:8.0f}  {b['status']}")
+            continue
+        print(f"{b['name']:<32} {b['dynamic_rating_n']:8.0f} {b['equivalent_load_n']:8.0f} "
+              f"{b['l10_million_revolutions']:14.4g} {b['l10_hours']:10.4g}")
+    print(f"rating life {summary['life_hours']:.4g} h (shortest: {summary['limiting_bearing']});"
+          f" all rated bearings together {summary['system_life_hours']:.4g} h")
+    print(f"crank bearings {summary['crank_life_hours']:.4g} h against the catalogue rule "
+          f"K (N0/N) (T0/T)^(10/3): {summary['catalogue_life_hours']:.4g} h (ratio "
+          f"{summary['life_ratio_to_catalogue']:.3g})")
+    return 0
 
 
 def _common(p: argparse.ArgumentParser) -> None:
@@ -275,3 +329,36 @@ def register(sub) -> None:
     p.add_argument("--budget-factor", type=number, metavar="S",
                    help="stiffening factor of one element for --budget (> 1, default 1e4)")
     p.set_defaults(func=_hysteresis)
+
+    p = add_command(sub, "life", "L10 rating life of the crank bearings (ISO 281)",
+                    "Basic rating life L10 of every needle and tapered crank bearing at an "
+                    "output torque and output speed: dynamic load rating C from the bearing's "
+                    "geometry (ISO 281), mean equivalent load P over one output revolution from "
+                    "the quasi-static model, speed of the crank relative to the carrier.  The "
+                    "reducer's life is its shortest bearing life, beside the catalogue rule "
+                    "K (N0/N) (T0/T)^(10/3).  Main bearings: their life under the external "
+                    "--moment, --thrust and --radial-load on the output flange (none given: C "
+                    "only).  Needs rolling crank bearings (--params RV-40E-bearings).",
+                    ["rvsim life --params RV-40E-bearings",
+                     "rvsim life --params RV-40E-bearings --torque 300 --output-speed 10 "
+                     "--json",
+                     "rvsim life --params RV-40E-bearings --moment 800 --thrust 2000"])
+    add_reducer_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--torque", type=number, metavar="NM",
+                   help="output torque [N*m] (default: rating.rated_torque, 412 N*m for the "
+                        "RV-40E)")
+    p.add_argument("--output-speed", type=number, metavar="RPM",
+                   help="output speed [rpm] (default: rating.rated_output_speed, 15 rpm)")
+    p.add_argument("--positions", type=int, default=360, metavar="N",
+                   help=f"input positions over one output revolution whose loads are averaged "
+                        f"({MIN_POSITIONS} to {MAX_POSITIONS}, default 360)")
+    p.add_argument("--moment", type=number, default=0.0, metavar="NM",
+                   help="external tilting moment on the output flange [N*m], carried by the "
+                        "main bearings (default 0: no main-bearing life)")
+    p.add_argument("--thrust", type=number, default=0.0, metavar="N",
+                   help="external axial force on the output flange [N] (default 0)")
+    p.add_argument("--radial-load", type=number, default=0.0, metavar="N",
+                   help="external radial force on the output flange, midway between the main "
+                        "bearings [N] (default 0)")
+    p.set_defaults(func=_life)

@@ -21,6 +21,7 @@ import of this package.
 * ``compliance`` - Palmgren coefficient and tooth, pin and ring compliances (plain Python).
 * ``stiffening`` - one element's force laws made s times stiffer, for the compliance budget
   (plain Python).
+* ``rating_life`` - ISO 281 rating life of rolling bearings (plain Python).
 
 The gear mesh, pin contacts, crank bearings, the kinematic pose and the one force evaluation
 (``forces_at``/``forces``) are still in ``rvsim.dynamics._kernel`` (issue 31, a later step).

@@ -11,4 +11,5 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "torque_reversal": ["hysteresis", "HysteresisResult"],
     "efficiency": ["efficiency", "EfficiencyResult"],
     "budget": ["compliance_budget", "ComplianceBudget"],
+    "bearing_life": ["life", "LifeResult"],
 })
