@@ -57,15 +57,11 @@ LAYERS = {
 #: (importer module, imported module) upward imports still allowed, with the step of the plan
 #: that removes each (measured on main cbfd02a; the moves rewrite these dotted names)
 ALLOWED_UPWARD = {
-    # step 4: the checks that need geometry leave parameters
-    ("rvsim.parameters._io", "rvsim.geometry.cycloid"),
-    ("rvsim.parameters._io", "rvsim.fe.sizes"),
-    ("rvsim.parameters._io", "rvsim.geometry.assembly"),
-    ("rvsim.parameters._io", "rvsim.geometry.involute"),
-    ("rvsim.parameters._io", "rvsim.geometry.layout"),
-    ("rvsim.parameters._io", "rvsim.geometry.validity"),
-    # step 4 too: the roller pitch diameter the geometry check needs moves below bearings
-    ("rvsim.geometry.validity", "rvsim.bearings"),
+    # kept (step 4, option (a) of the plan; docs/decisions.md "Issue 31 ... steps 4-8"): the
+    # public rvsim.parameters.validate (and load_toml, with_values, which call it) must refuse a
+    # bad geometry, so it forwards lazily to the checks that need geometry, now all in
+    # geometry.checks; removing it means moving validate out of parameters (an API change)
+    ("rvsim.parameters._io", "rvsim.geometry.checks"),
     # step 5: report's HTML helpers made public (rvsim.html)
     ("rvsim.doe.outputs", "rvsim.report"),
     ("rvsim.testrig.report", "rvsim.report"),
