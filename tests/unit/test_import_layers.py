@@ -62,10 +62,6 @@ ALLOWED_UPWARD = {
     # bad geometry, so it forwards lazily to the checks that need geometry, now all in
     # geometry.checks; removing it means moving validate out of parameters (an API change)
     ("rvsim.parameters._io", "rvsim.geometry.checks"),
-    # step 5: report's HTML helpers made public (rvsim.html)
-    ("rvsim.doe.outputs", "rvsim.report"),
-    ("rvsim.testrig.report", "rvsim.report"),
-    ("rvsim.tolerance.report", "rvsim.report"),
     # step 6: the analysis figures live in analysis, matplotlib set-up in the foundation
     ("rvsim.analysis.interactions", "rvsim.plots"),
     ("rvsim.analysis.range_analysis", "rvsim.plots"),
