@@ -7,62 +7,16 @@ from __future__ import annotations
 
 import math
 
+from ._matplotlib import plain, pyplot
+from .analysis.figures import main_effects_plot   # public here too (issue 31 step 6)
 
 __all__ = ["pyplot", "plain", "main_effects_plot", "speed_plot", "te_plot", "spectrum_plot", "figure_to_png",
            "pin_load_map", "te_revolution_plot", "order_spectrum_plot", "hysteresis_plot"]
 
 _ARCMIN = math.pi / 10800.0
 
-
-def pyplot():
-    """matplotlib.pyplot with the non-interactive Agg backend (unless one is already chosen),
-    imported on first use."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
 #: the old private name of :func:`pyplot` (issue 31 step 5)
 _pyplot = pyplot
-
-
-def plain(text) -> str:
-    """A user's text (a factor label, a column name) as matplotlib draws it literally: a "$"
-    would start its mathtext, and a label like "x$_$" failed the whole figure (a reviewer's
-    study ended in a traceback after all its runs)."""
-    return str(text).replace("$", r"\$")
-
-
-def main_effects_plot(analysis, ax=None, *, factors=None, ylabel=None):
-    """Level means of each factor (the paper's Figs. 8-10), one panel per factor."""
-    plt = pyplot()
-    factors = factors or list(analysis.level_means)
-    if ax is None:
-        cols = min(5, len(factors))
-        rows = math.ceil(len(factors) / cols)
-        fig, axes = plt.subplots(rows, cols, figsize=(2.4 * cols, 2.3 * rows), sharey=True,
-                                 squeeze=False)
-        axes = axes.ravel()
-        for extra in axes[len(factors):]:
-            extra.set_visible(False)
-    else:
-        axes = [ax] * len(factors)
-        fig = ax.figure
-    label = ylabel or f"mean of {plain(analysis.response)}"
-    for axis, factor in zip(axes, factors):
-        k = analysis.level_means[factor]
-        levels = getattr(analysis, "levels", {}).get(factor) or list(range(1, len(k) + 1))
-        axis.plot(levels, k, "o-", color="C0")
-        axis.axhline(analysis.grand_mean, color="0.6", lw=0.8, ls="--")
-        axis.set_title(plain(factor))
-        axis.set_xticks(levels)
-        axis.set_xlabel("level")
-    axes[0].set_ylabel(label)
-    fig.tight_layout()
-    return fig
 
 
 def speed_plot(result, ax=None):

@@ -35,7 +35,7 @@ LAYERS = {
     # 0 foundation: no physics, no numba kernels; imported by everything
     "rvsim.units": 0, "rvsim.errors": 0, "rvsim._files": 0, "rvsim._json": 0,
     "rvsim._fingerprint": 0, "rvsim._stopping": 0, "rvsim._jit": 0, "rvsim._cache_guard": 0,
-    "rvsim.data": 0,
+    "rvsim.data": 0, "rvsim._matplotlib": 0,
     # 1 inputs and metrics: parameter sets; pure functions of curves and tables
     "rvsim.parameters": 1, "rvsim.analysis": 1,
     # 2 geometry and finite-element tables
@@ -62,9 +62,6 @@ ALLOWED_UPWARD = {
     # bad geometry, so it forwards lazily to the checks that need geometry, now all in
     # geometry.checks; removing it means moving validate out of parameters (an API change)
     ("rvsim.parameters._io", "rvsim.geometry.checks"),
-    # step 6: the analysis figures live in analysis, matplotlib set-up in the foundation
-    ("rvsim.analysis.interactions", "rvsim.plots"),
-    ("rvsim.analysis.range_analysis", "rvsim.plots"),
     # step 7: the worker's parent-death guard moves to the foundation (fe.mesh uses it)
     ("rvsim.fe.mesh", "rvsim.doe._workers"),
 }
