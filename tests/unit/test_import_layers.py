@@ -62,15 +62,11 @@ ALLOWED_UPWARD = {
     # bad geometry, so it forwards lazily to the checks that need geometry, now all in
     # geometry.checks; removing it means moving validate out of parameters (an API change)
     ("rvsim.parameters._io", "rvsim.geometry.checks"),
-    # step 7: the worker's parent-death guard moves to the foundation (fe.mesh uses it)
-    ("rvsim.fe.mesh", "rvsim.doe._workers"),
 }
 
 #: (importer module, imported module) edges inside one layer that close a circle, allowed until
 #: the step named
 ALLOWED_CYCLE = {
-    # step 7: the runner's executors public in doe, tolerance's evaluator registered, not named
-    ("rvsim.doe.runner", "rvsim.tolerance.engine"),
     # step 8: the task evaluation in one module of doe
     ("rvsim.doe._workers", "rvsim.doe.runner"),
     # step 8: one lazy import between the two geometry modules
