@@ -54,8 +54,8 @@ LAYERS = {
     "rvsim.cli": 8, "rvsim.__main__": 8,
 }
 
-#: (importer module, imported module) upward imports still allowed, with the step of the plan
-#: that removes each (measured on main cbfd02a; the moves rewrite these dotted names)
+#: (importer module, imported module) upward imports still allowed, each with its reason (steps
+#: 1-8 of issue 31 removed every other entry; docs/architecture.md "Layers")
 ALLOWED_UPWARD = {
     # kept (step 4, option (a) of the plan; docs/decisions.md "Issue 31 ... steps 4-8"): the
     # public rvsim.parameters.validate (and load_toml, with_values, which call it) must refuse a
@@ -64,13 +64,14 @@ ALLOWED_UPWARD = {
     ("rvsim.parameters._io", "rvsim.geometry.checks"),
 }
 
-#: (importer module, imported module) edges inside one layer that close a circle, allowed until
-#: the step named
+#: (importer module, imported module) edges inside one layer that close a circle, each with its
+#: reason
 ALLOWED_CYCLE = {
-    # step 8: the task evaluation in one module of doe
+    # kept by step 8 (docs/decisions.md "Issue 31 (2026-11-28): steps 4-8"): the pool's task
+    # looks rvsim.doe.runner.evaluate up when a worker calls it, and tests pin that (they
+    # replace runner.evaluate and call run_workers without a task); the pool can take its task
+    # function as an argument instead once those tests pass it
     ("rvsim.doe._workers", "rvsim.doe.runner"),
-    # step 8: one lazy import between the two geometry modules
-    ("rvsim.geometry.deviations", "rvsim.geometry.cycloid"),
 }
 
 
