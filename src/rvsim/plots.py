@@ -10,8 +10,9 @@ import math
 from ._matplotlib import plain, pyplot
 from .analysis.figures import main_effects_plot   # public here too (issue 31 step 6)
 
-__all__ = ["pyplot", "plain", "main_effects_plot", "speed_plot", "te_plot", "spectrum_plot", "figure_to_png",
-           "pin_load_map", "te_revolution_plot", "order_spectrum_plot", "hysteresis_plot"]
+__all__ = ["pyplot", "plain", "main_effects_plot", "speed_plot", "te_plot", "spectrum_plot",
+           "figure_to_png", "pin_load_map", "te_revolution_plot", "order_spectrum_plot",
+           "hysteresis_plot"]
 
 _ARCMIN = math.pi / 10800.0
 
