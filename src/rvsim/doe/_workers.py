@@ -18,7 +18,7 @@ import sys
 from multiprocessing.connection import wait
 from typing import Callable
 
-from .._stopping import STOP_SIGNALS, check_stop, forget_stop, signals_blocked
+from .._stopping import STOP_SIGNALS, check_stop, die_with_parent, forget_stop, signals_blocked
 from ..errors import RvsimError
 
 __all__ = ["run_workers", "evaluate_task", "TEST_KILL_ENV", "MAX_ATTEMPTS", "WorkerStartError"]
@@ -46,19 +46,6 @@ def evaluate_task(key: str, reducer, time_step: float, engine: str = "dynamic",
     return key, evaluate(reducer, time_step, engine, hysteresis, positions, scheme)
 
 
-def _die_with_parent(parent_pid: int) -> None:
-    if sys.platform.startswith("linux"):
-        try:
-            import ctypes
-
-            libc = ctypes.CDLL(None, use_errno=True)
-            libc.prctl(1, signal.SIGKILL)          # PR_SET_PDEATHSIG
-        except (OSError, AttributeError):
-            pass
-    if os.getppid() != parent_pid:                 # the parent died before prctl
-        os._exit(1)
-
-
 def _worker_main(conn, parent_pid: int, inherited_fds: list[int]) -> None:
     # started with the stop signals held back (run_workers' spawn): the parent's handlers, its
     # remembered stop and its unraisable hook are replaced before a signal can reach them
@@ -71,7 +58,7 @@ def _worker_main(conn, parent_pid: int, inherited_fds: list[int]) -> None:
     sys.unraisablehook = sys.__unraisablehook__
     if hasattr(signal, "pthread_sigmask"):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
-    _die_with_parent(parent_pid)
+    die_with_parent(parent_pid)
     for fd in inherited_fds:       # the parent's folder lock must die with the parent
         try:
             os.close(fd)
