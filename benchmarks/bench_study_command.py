@@ -45,17 +45,16 @@ from _timing import machine
 #: the command, with the pool's start and end printed to stderr as "PHASE name time"
 _CHILD = """
 import json, os, sys, time
-import rvsim.doe._workers as workers
 import rvsim.doe.runner as runner
 import rvsim.doe.store as store
 runs = []
-evaluate = workers.evaluate_task
+evaluate = runner.evaluate_task
 def evaluate_timed(key, *args, **kwargs):
     start = time.time()
     key, outcome = evaluate(key, *args, **kwargs)
     outcome['_timing'] = (os.getpid(), start, time.time())
     return key, outcome
-workers.evaluate_task = evaluate_timed        # the workers are forked: they inherit it
+runner.evaluate_task = evaluate_timed         # run_local hands it to the forked workers
 put = store.ResultStore.put
 def put_timed(self, key, outcome):
     pid, start, end = outcome.pop('_timing', (0, 0.0, 0.0))

@@ -66,13 +66,7 @@ ALLOWED_UPWARD = {
 
 #: (importer module, imported module) edges inside one layer that close a circle, each with its
 #: reason
-ALLOWED_CYCLE = {
-    # kept by step 8 (docs/decisions.md "Issue 31 (2026-11-28): steps 4-8"): the pool's task
-    # looks rvsim.doe.runner.evaluate up when a worker calls it, and tests pin that (they
-    # replace runner.evaluate and call run_workers without a task); the pool can take its task
-    # function as an argument instead once those tests pass it
-    ("rvsim.doe._workers", "rvsim.doe.runner"),
-}
+ALLOWED_CYCLE: set = set()
 
 
 def _module_name(path: Path) -> tuple[str, bool]:

@@ -250,4 +250,4 @@ def _circles(graph) -> list:
 
 def test_the_allow_lists_hold_the_one_documented_exception():
     assert layers.ALLOWED_UPWARD == {("rvsim.parameters._io", "rvsim.geometry.checks")}
-    assert layers.ALLOWED_CYCLE == {("rvsim.doe._workers", "rvsim.doe.runner")}
+    assert layers.ALLOWED_CYCLE == set()

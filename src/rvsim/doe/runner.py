@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import os
+import signal
 from pathlib import Path
 from typing import Callable
 
@@ -25,14 +26,14 @@ from ..dynamics.model import EXPLICIT, SCHEMES
 from ..dynamics.simulate import default_time_step
 from ..errors import InputFileError, ParameterError, Terminated
 from ..parameters import Reducer
-from ._workers import evaluate_task, run_workers
+from ._workers import TEST_KILL_ENV, run_workers
 from .engines import EVALUATORS, compact_history
 from .folder import check_not_foreign, check_same_study, held_lock_fds, lock_folder
 from .store import ResultStore, run_key
 from .study import Study
 
-__all__ = ["run", "evaluate", "compact_history", "run_local", "run_dask", "check_scheduler",
-           "StudyTerminated"]
+__all__ = ["run", "evaluate", "evaluate_task", "compact_history", "run_local", "run_dask",
+           "check_scheduler", "StudyTerminated"]
 
 
 def evaluate(reducer: Reducer, time_step: float, engine="dynamic",
@@ -56,6 +57,17 @@ def evaluate(reducer: Reducer, time_step: float, engine="dynamic",
                 "error": f"ParameterError: unknown engine {engine!r} ({names})"}
     return evaluator(reducer, time_step=time_step, hysteresis=hysteresis, positions=positions,
                      scheme=scheme)
+
+
+def evaluate_task(key: str, reducer, time_step: float, engine="dynamic",
+                  hysteresis: bool = False, positions: int = 360,
+                  scheme: str = "explicit") -> tuple[str, dict]:
+    """Evaluate one run in a worker (the entry point of local and Dask workers; moved from
+    ``rvsim.doe._workers``, issue 31 step 8).  Looks :func:`evaluate` up when called."""
+    doomed = os.environ.get(TEST_KILL_ENV)
+    if doomed and key.startswith(doomed):
+        os.kill(os.getpid(), signal.SIGKILL)
+    return key, evaluate(reducer, time_step, engine, hysteresis, positions, scheme)
 
 
 def _progress(total: int, initial: int, enabled: bool):
@@ -158,7 +170,8 @@ def run_local(todo: dict, options: tuple, workers: int | None, store_result,
     :func:`rvsim.doe._workers.run_workers`."""
     workers = workers or os.cpu_count() or 1
     run_workers({key: (reducer, *options) for key, reducer in todo.items()},
-                min(workers, len(todo)), store_result, held_lock_fds(), on_idle)
+                min(workers, len(todo)), store_result, held_lock_fds(), on_idle,
+                task=evaluate_task)
 
 
 def _scheduler_address(scheduler: str) -> tuple[str, int]:
