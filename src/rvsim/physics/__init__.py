@@ -19,6 +19,8 @@ import of this package.
 * ``_fe_crank`` - the arm bushings of a finite-element crank, solved together.
 * ``_fe_carrier`` - the support bushings on the finite-element carrier and flange plates.
 * ``compliance`` - Palmgren coefficient and tooth, pin and ring compliances (plain Python).
+* ``losses`` - lubricant viscosity at a temperature (ASTM D341) and lip-seal drag
+  (ISO/TR 14179-2) (plain Python).
 
 The gear mesh, pin contacts, crank bearings, the kinematic pose and the one force evaluation
 (``forces_at``/``forces``) are still in ``rvsim.dynamics._kernel`` (issue 31, a later step).
