@@ -13,7 +13,7 @@ from .parameters import Reducer
 
 __all__ = ["TYPICAL_FRICTION", "TYPICAL_FRICTION_SOURCES", "gear_loss_factor",
            "bearing_diameters", "pin_friction_coefficient", "has_friction", "fill_constants",
-           "lubricant_viscosity", "seal_torques"]
+           "lubricant_viscosity", "seal_torques", "check_losses"]
 
 from .parameters.friction_values import TYPICAL_FRICTION, TYPICAL_FRICTION_SOURCES  # noqa: E402,F401
 
@@ -117,6 +117,14 @@ def seal_torques(reducer: Reducer) -> tuple[float, float]:
                                  f"with friction.{side}_seal_count = {seals}")
         torques.append(seals * seal_torque(diameter) if seals > 0 else 0.0)
     return torques[0], torques[1]
+
+
+def check_losses(reducer: Reducer) -> Reducer:
+    """Refuse (:class:`ParameterError`) a temperature outside the viscosity law and a seal
+    without its diameter before anything runs; return ``reducer``."""
+    lubricant_viscosity(reducer)
+    seal_torques(reducer)
+    return reducer
 
 
 def has_friction(reducer: Reducer) -> bool:
