@@ -8,8 +8,8 @@
   seal power + the mechanism's losses at the torque it carries) to the solver's tolerance;
 * the viscosity reaching the kernel: the no-load running torque with Palmgren's viscous
   bearing torque at the viscosity of 20 degC;
-* the seals in the dynamic engine: its energy balance holds and the mean input torque rises by
-  the seals' drag;
+* the seals in the dynamic engine: its energy balance holds, the extra dissipated work is the
+  seals' work and the mean input torque rises by the seals' drag;
 * default sets unchanged: at 40 degC the viscosity is friction.oil_viscosity to the bit.
 
 Tolerances are a small factor above what was measured (figures in each test).
@@ -110,11 +110,12 @@ def test_input_seal_adds_its_torque_to_the_input():
     kw = dict(speeds_rpm=[500.0], torques=[41.2, 412.0], positions=8)
     a, b = efficiency(base, **kw), efficiency(sealed, **kw)
     t_seal = seal_torque(0.025)
-    # power balance: omega_in T_in(sealed) = omega_in T_in(base) + seal power; measured 3e-12
-    assert b.input_torque - a.input_torque == pytest.approx(np.full((1, 2), t_seal), rel=1e-7)
+    # power balance: omega_in T_in(sealed) = omega_in T_in(base) + seal power; measured 4e-15
+    # of the seal torque (the input seal changes no equilibrium)
+    assert b.input_torque - a.input_torque == pytest.approx(np.full((1, 2), t_seal), rel=1e-12)
     assert b.no_load_running_torque - a.no_load_running_torque == pytest.approx(t_seal,
-                                                                                  rel=1e-7)
-    assert b.starting_torque == pytest.approx(a.starting_torque + t_seal, rel=1e-7)
+                                                                                  rel=1e-12)
+    assert b.starting_torque == pytest.approx(a.starting_torque + t_seal, rel=1e-12)
     assert np.all(b.efficiency < a.efficiency)
 
 
@@ -127,13 +128,14 @@ def test_output_seal_is_carried_by_the_mechanism_energy_balance():
     # the mechanism carries load + seal drag: the base reducer at that torque needs the same
     # input torque (the seal acts on the carrier like a load)
     a = efficiency(base, speeds_rpm=[500.0], torques=[load + t_seal], positions=8)
-    assert b.input_torque[0, 0] == pytest.approx(a.input_torque[0, 0], rel=1e-7)
+    # measured 1.4e-9 (the friction fixed point's tolerance)
+    assert b.input_torque[0, 0] == pytest.approx(a.input_torque[0, 0], rel=1e-8)
     # input power = output power + seal power + the mechanism's losses at load + seal
     omega_in = 500.0 * math.pi / 30.0
     omega_out = omega_in / abs(sealed.ratio)
     mech_loss = omega_in * a.input_torque[0, 0] - omega_out * (load + t_seal)
     balance = omega_out * load + omega_out * t_seal + mech_loss
-    assert omega_in * b.input_torque[0, 0] == pytest.approx(balance, rel=1e-7)
+    assert omega_in * b.input_torque[0, 0] == pytest.approx(balance, rel=1e-8)
     assert b.efficiency[0, 0] < a.efficiency[0, 0]
 
 
@@ -153,7 +155,7 @@ def test_viscosity_at_temperature_reaches_the_bearings():
     torque = sum(4 * 1e-7 * f0 * (nu * relative) ** (2.0 / 3.0) * (dm * 1e3) ** 3 * 1e-3
                  for dm in bearing_diameters(reducer))
     expected = torque * relative / speed
-    assert result.no_load_running_torque[0] == pytest.approx(expected, rel=1e-8)
+    assert result.no_load_running_torque[0] == pytest.approx(expected, rel=1e-8)  # 1.1e-9
     assert result.oil_viscosity == walther_viscosity(20.0, NU_40, NU_100)
 
 
@@ -161,14 +163,20 @@ def test_seals_in_the_dynamic_engine():
     base = with_values(RV40E, SHORT)
     sealed = with_values(base, {**SEALS_IN, **SEALS_OUT})
     a, b = simulate(base), simulate(sealed)
-    e = b.energy
-    # the seals dissipate: omega_in T_in + omega_out T_out over the steady speed
-    assert e["dissipated"] > 0.0
-    assert abs(e["relative_residual"]) < 2e-4
+    # energy balance of the sealed run (measured -2.8e-6, as without seals)
+    assert abs(b.energy["relative_residual"]) < 2e-5
     frame_a, frame_b = a.to_frame(), b.to_frame()
     steady_a = frame_a[frame_a["time"] >= 0.3]
     steady_b = frame_b[frame_b["time"] >= 0.3]
-    rise = steady_b["torque_in"].mean() - steady_a["torque_in"].mean()
+    # the seals' work over the steady window, T_in dtheta_in + T_out dtheta_out, is what the
+    # sealed run dissipates more (measured 6e-5: the histories are sampled, the energy is
+    # integrated at every step)
+    turn_in = steady_b["theta_in"].iloc[-1] - steady_b["theta_in"].iloc[0]
+    turn_out = steady_b["theta_out"].iloc[-1] - steady_b["theta_out"].iloc[0]
+    work = seal_torque(0.025) * turn_in + seal_torque(0.150) * turn_out
+    assert b.energy["dissipated"] - a.energy["dissipated"] == pytest.approx(work, rel=3e-4)
     # frictionless mechanism: the input pays the input seal and the output seal / ratio
+    # (mean over the window; measured 1.3 % below, the carrier's speed still settling)
+    rise = steady_b["torque_in"].mean() - steady_a["torque_in"].mean()
     expected = seal_torque(0.025) + seal_torque(0.150) / abs(base.ratio)
-    assert rise == pytest.approx(expected, rel=0.05)
+    assert rise == pytest.approx(expected, rel=0.03)

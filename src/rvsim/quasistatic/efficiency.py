@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
+from ..units import from_si
 
 __all__ = ["efficiency", "EfficiencyResult", "DEFAULT_SPEEDS_RPM", "DEFAULT_TORQUE_FRACTIONS",
            "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM", "RESOLVED_TORQUE_FRACTION"]
@@ -77,7 +78,7 @@ class EfficiencyResult:
             "positions": self.positions,
             "friction": self.friction,
             "temperature_c": self.temperature,
-            "oil_viscosity_mm2_s": self.oil_viscosity * 1e6,
+            "oil_viscosity_mm2_s": from_si(self.oil_viscosity, "mm^2/s"),
             "seal_torque_input_nm": self.seal_torque_input,
             "seal_torque_output_nm": self.seal_torque_output,
             "wall_s": self.wall_s,
