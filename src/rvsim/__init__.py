@@ -19,10 +19,10 @@ except PackageNotFoundError:  # running from a source tree without installation
 
 _lazy_getattr, _lazy_dir, _ = lazy_loader.attach(
     __name__, submod_attrs={"dynamics": ["simulate", "decompose_te", "Result"],
-                            "quasistatic": ["ltca", "hysteresis"]})
+                            "quasistatic": ["ltca", "hysteresis", "life"]})
 
 __all__ = ["Reducer", "RV40E", "load_toml", "with_values", "simulate", "decompose_te", "Result",
-           "ltca", "hysteresis", "RvsimError", "ParameterError", "InputFileError", "SimulationError", "__version__"]
+           "ltca", "hysteresis", "life", "RvsimError", "ParameterError", "InputFileError", "SimulationError", "__version__"]
 
 
 def __getattr__(name: str):

@@ -25,7 +25,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "analytical error model, contact dynamics, quasi-static loaded contact analysis "
                     "and the catalogue tests, designs of experiments.",
                     epilog=EXAMPLES + "rvsim params\n  rvsim sensitivity --json\n  "
-                    "rvsim profile --out disc.dxf\n  rvsim simulate --paper-run 2 --json",
+                    "rvsim profile --out disc.dxf\n  rvsim simulate --paper-run 2 --json\n  "
+                    "rvsim life --params RV-40E-bearings",
                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"rvsim {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ..errors import InputFileError, ParameterError
 from ..analysis.sampling import MAX_POSITIONS, check_positions
+from ..units import TO_SI
 from ._common import (number, add_command, add_reducer_options, check_load, check_output_file,
                       print_json, reducer_from_args)
 
@@ -22,6 +23,7 @@ __all__ = ["register", "MIN_POSITIONS", "MAX_POSITIONS"]
 #: up to a few orders, at most what a user could mean (0.01 deg of output per step at 36000);
 #: the reducer's own floor (its pin order unaliased) is rvsim.analysis.sampling's
 MIN_POSITIONS = 8
+RPM = TO_SI["rpm"]
 
 
 
@@ -119,6 +121,7 @@ def _hysteresis(args: argparse.Namespace) -> int:
     _finite("--rated-torque", args.rated_torque)
     if args.rated_torque is not None and args.rated_torque <= 0:
         raise ParameterError("--rated-torque", f"must be positive (got {args.rated_torque:g})")
+    _check_budget_options(args)
     report = _output_path("--report", args.report, ".html")
     export = _output_path("--export", args.export, ".json")
     reducer = reducer_from_args(args)
@@ -140,6 +143,12 @@ def _hysteresis(args: argparse.Namespace) -> int:
         if args.json:
             print_json({"status": "invalid_curve", "error": str(exc)})
         return 1
+    budget = None
+    if args.budget:
+        budget, code = _budget(reducer, result, args, summary)
+        if budget is None:
+            return code
+        summary["budget"] = budget.summary()
     model = None
     if export:
         from ..joint_model import joint_model
@@ -160,7 +169,7 @@ def _hysteresis(args: argparse.Namespace) -> int:
             from ..report import write_hysteresis_report
 
             _write("--report", report,
-                   lambda: write_hysteresis_report(result, reducer, report_tmp))
+                   lambda: write_hysteresis_report(result, reducer, report_tmp, budget=budget))
     if args.json:
         print_json(summary)
     else:
@@ -170,6 +179,106 @@ def _hysteresis(args: argparse.Namespace) -> int:
               f"N*m/arcmin (50-100 % of rated), lost motion {summary['lost_motion_arcmin']:.4f}"
               f" arcmin (+-3 %), backlash {summary['backlash_arcmin']:.4f} arcmin, hysteresis "
               f"loss {summary['hysteresis_loss_arcmin']:.4f} arcmin")
+        if budget is not None:
+            _print_budget(budget)
+    return 0
+
+
+def _check_budget_options(args: argparse.Namespace) -> None:
+    """--budget-factor only with --budget, and a finite number > 1 (1: nothing stiffened)."""
+    if args.budget_factor is None:
+        return
+    if not args.budget:
+        raise ParameterError("--budget-factor", "needs --budget")
+    if not (math.isfinite(args.budget_factor) and args.budget_factor > 1.0):
+        raise ParameterError("--budget-factor", f"must be a finite number > 1 (got "
+                             f"{args.budget_factor:g})")
+
+
+def _budget(reducer, result, args: argparse.Namespace, summary: dict):
+    """(the compliance budget of the test ``result``, exit code or None): a stiffened test that
+    fails is the command's failure, with the budget's status naming the element."""
+    from ..quasistatic.budget import DEFAULT_FACTOR, compliance_budget, rigidity_of
+
+    rigidity, _ = rigidity_of(result)
+    budget = compliance_budget(reducer, rated_torque=result.rated_torque,
+                               factor=args.budget_factor or DEFAULT_FACTOR, rigidity=rigidity)
+    if budget.status != "ok":
+        return None, _failed(args, "hysteresis --budget", budget.status,
+                             {**summary, "budget": budget.summary()})
+    return budget, None
+
+
+def _print_budget(budget) -> None:
+    """The budget as text, the softest element first (arcmin at the output)."""
+    from ..units import ARCMIN
+
+    shares, stiffness = budget.shares, budget.element_stiffness
+    order = budget.order()
+    first = order[0]
+    print(f"compliance budget (each element {budget.factor:g} x stiffer in turn, 50-100 % "
+          f"secant): softest {budget.labels[first]}, {100 * shares[first]:.1f} % of the "
+          "compliance")
+    width = max(len(label) for label in budget.labels)
+    print(f"  {'element':<{width}}   share   own stiffness [N*m/arcmin]")
+    for i in order:
+        own = (f"{stiffness[i] * ARCMIN:.0f}" if math.isfinite(stiffness[i])
+               and stiffness[i] > 0 else "-")
+        print(f"  {budget.labels[i]:<{width}}  {100 * shares[i]:5.1f} %  {own}")
+    print(f"  sum {100 * (1 - budget.residual):.1f} %, residual {100 * budget.residual:.1f} % "
+          f"(what a stiffened element keeps, load sharing of parallel elements); "
+          f"rigidity {budget.rigidity * ARCMIN:.2f} N*m/arcmin ({budget.wall_s:.2f} s)")
+def _life(args: argparse.Namespace) -> int:
+    for option, value in (("--torque", args.torque), ("--output-speed", args.output_speed)):
+        _finite(option, value)
+        if value is not None and value <= 0:
+            raise ParameterError(option, f"must be positive (got {value:g})")
+    external = {"radial_load": args.radial_load, "moment": args.moment, "thrust": args.thrust}
+    for name, value in external.items():
+        option = "--" + name.replace("_", "-")
+        _finite(option, value)
+        if value < 0:
+            raise ParameterError(option, f"must be zero or positive (got {value:g})")
+    if not MIN_POSITIONS <= args.positions <= MAX_POSITIONS:
+        raise ParameterError("--positions", f"must be {MIN_POSITIONS} to {MAX_POSITIONS} "
+                             f"(got {args.positions})")
+    reducer = reducer_from_args(args)
+    from ..quasistatic.bearing_life import check_life_inputs
+
+    rpm = reducer.rating.rated_output_speed / RPM if args.output_speed is None \
+        else args.output_speed
+    check_life_inputs(reducer, 1.0, rpm * RPM)      # the reducer: RV with rolling bearings
+    check_positions(reducer, args.positions, "--positions")
+    check_load(reducer, reducer.rating.rated_torque if args.torque is None else args.torque,
+               "rating.rated_torque" if args.torque is None else "--torque")
+    from ..quasistatic import life
+
+    result, code = _solve(lambda: life(reducer, torque=args.torque,
+                                       output_speed=None if args.output_speed is None
+                                       else args.output_speed * RPM,
+                                       positions=args.positions, **external), args, "life")
+    if result is None:
+        return code
+    summary = result.summary()
+    if args.json:
+        print_json(summary)
+        return 0
+    print(f"{reducer.name} at {summary['torque_nm']:g} N*m, output {summary['output_speed_rpm']:g}"
+          f" rpm (cranks {summary['crank_speed_rpm']:g} rpm relative to the carrier), "
+          f"{summary['positions']} positions ({summary['wall_s']:.2f} s), status "
+          f"{summary['status']}")
+    print(f"{'bearing':<32} {'C [N]':>8} {'P [N]':>8} {'L10 [1e6 rev]':>14} {'L10h [h]':>10}")
+    for b in summary["bearings"]:
+        if b["status"] != "ok":
+            print(f"{b['name']:<32} {b['dynamic_rating_n']:8.0f}  {b['status']}")
+            continue
+        print(f"{b['name']:<32} {b['dynamic_rating_n']:8.0f} {b['equivalent_load_n']:8.0f} "
+              f"{b['l10_million_revolutions']:14.4g} {b['l10_hours']:10.4g}")
+    print(f"rating life {summary['life_hours']:.4g} h (shortest: {summary['limiting_bearing']});"
+          f" all rated bearings together {summary['system_life_hours']:.4g} h")
+    print(f"crank bearings {summary['crank_life_hours']:.4g} h against the catalogue rule "
+          f"K (N0/N) (T0/T)^(10/3): {summary['catalogue_life_hours']:.4g} h (ratio "
+          f"{summary['life_ratio_to_catalogue']:.3g})")
     return 0
 
 
@@ -205,11 +314,51 @@ def register(sub) -> None:
                     "motion (+-3 % of rated), backlash and hysteresis loss (at 0 N*m).",
                     ["rvsim hysteresis --json",
                      "rvsim hysteresis --paper-run 5 --report loop.html",
-                     "rvsim hysteresis --export joint.json"])
+                     "rvsim hysteresis --export joint.json",
+                     "rvsim hysteresis --params RV-40E-bearings --budget"])
     _common(p)
     p.add_argument("--rated-torque", type=number, metavar="NM",
                    help="rated torque [N*m] (default: the reducer's rating.rated_torque, "
                         "412 N*m for the RV-40E)")
     p.add_argument("--export", metavar="FILE.json",
                    help="write the joint model for robot simulators (docs/joint_model.md)")
+    p.add_argument("--budget", action="store_true",
+                   help="where the compliance goes: each machine element's share of the "
+                        "torsional compliance (secant 50-100 %% of rated), each element "
+                        "stiffened in turn (docs/model.md section 12)")
+    p.add_argument("--budget-factor", type=number, metavar="S",
+                   help="stiffening factor of one element for --budget (> 1, default 1e4)")
     p.set_defaults(func=_hysteresis)
+
+    p = add_command(sub, "life", "L10 rating life of the crank bearings (ISO 281)",
+                    "Basic rating life L10 of every needle and tapered crank bearing at an "
+                    "output torque and output speed: dynamic load rating C from the bearing's "
+                    "geometry (ISO 281), mean equivalent load P over one output revolution from "
+                    "the quasi-static model, speed of the crank relative to the carrier.  The "
+                    "reducer's life is its shortest bearing life, beside the catalogue rule "
+                    "K (N0/N) (T0/T)^(10/3).  Main bearings: their life under the external "
+                    "--moment, --thrust and --radial-load on the output flange (none given: C "
+                    "only).  Needs rolling crank bearings (--params RV-40E-bearings).",
+                    ["rvsim life --params RV-40E-bearings",
+                     "rvsim life --params RV-40E-bearings --torque 300 --output-speed 10 "
+                     "--json",
+                     "rvsim life --params RV-40E-bearings --moment 800 --thrust 2000"])
+    add_reducer_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--torque", type=number, metavar="NM",
+                   help="output torque [N*m] (default: rating.rated_torque, 412 N*m for the "
+                        "RV-40E)")
+    p.add_argument("--output-speed", type=number, metavar="RPM",
+                   help="output speed [rpm] (default: rating.rated_output_speed, 15 rpm)")
+    p.add_argument("--positions", type=int, default=360, metavar="N",
+                   help=f"input positions over one output revolution whose loads are averaged "
+                        f"({MIN_POSITIONS} to {MAX_POSITIONS}, default 360)")
+    p.add_argument("--moment", type=number, default=0.0, metavar="NM",
+                   help="external tilting moment on the output flange [N*m], carried by the "
+                        "main bearings (default 0: no main-bearing life)")
+    p.add_argument("--thrust", type=number, default=0.0, metavar="N",
+                   help="external axial force on the output flange [N] (default 0)")
+    p.add_argument("--radial-load", type=number, default=0.0, metavar="N",
+                   help="external radial force on the output flange, midway between the main "
+                        "bearings [N] (default 0)")
+    p.set_defaults(func=_life)

@@ -26,6 +26,7 @@ SINGLE_STAGE = 1
 
 _MM = 1e-3
 _DEG = math.pi / 180.0
+_RPM = 2.0 * math.pi / 60.0
 
 
 def _material(name: str, e_gpa: float, density: float, poisson: float):
@@ -273,6 +274,12 @@ class Rating:
     momentary_torque: float = quantity(2058.0, "N*m", "momentary maximum output torque "
                                        "(emergency stop; RV-40E class: 2058 N*m): larger "
                                        "loads are refused", positive=True)
+    rated_output_speed: float = quantity(15.0 * _RPM, "rpm", "rated output "
+                                         "speed N0, at which the rated torque gives the rated "
+                                         "life (RV-E class: 15 rpm)", positive=True)
+    rated_life: float = quantity(6000.0 * 3600.0, "h", "rated service life K at the rated "
+                                 "torque and rated output speed (RV-E class: 6000 h)",
+                                 positive=True)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -19,6 +19,9 @@ import of this package.
 * ``_fe_crank`` - the arm bushings of a finite-element crank, solved together.
 * ``_fe_carrier`` - the support bushings on the finite-element carrier and flange plates.
 * ``compliance`` - Palmgren coefficient and tooth, pin and ring compliances (plain Python).
+* ``stiffening`` - one element's force laws made s times stiffer, for the compliance budget
+  (plain Python).
+* ``rating_life`` - ISO 281 rating life of rolling bearings (plain Python).
 * ``losses`` - lubricant viscosity at a temperature (ASTM D341) and lip-seal drag
   (ISO/TR 14179-2) (plain Python).
 

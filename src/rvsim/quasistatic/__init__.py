@@ -10,4 +10,6 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "transmission": ["ltca", "LtcaResult", "solve_path"],
     "torque_reversal": ["hysteresis", "HysteresisResult"],
     "efficiency": ["efficiency", "EfficiencyResult"],
+    "budget": ["compliance_budget", "ComplianceBudget"],
+    "bearing_life": ["life", "LifeResult"],
 })

@@ -91,7 +91,8 @@ def sweep_torques(rated: float, points_per_branch: int) -> tuple[np.ndarray, np.
 
 
 def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
-               points_per_branch: int = 50, raise_on_failure: bool = True) -> HysteresisResult:
+               points_per_branch: int = 50, raise_on_failure: bool = True,
+               stiffen=None) -> HysteresisResult:
     """Torque-reversal test with the input locked at 0 (rated torque default:
     reducer.rating.rated_torque).  ``torque`` is the torque applied to the output (positive
     turns it in the positive sense; the output load of the dynamic model and of :func:`ltca`
@@ -100,6 +101,9 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
     At exactly 0 N*m nothing holds the output: it stays at the contact on the side it comes
     from (the solver leaves an unloaded body where it was), so each branch crosses zero at its
     own side of the clearance.
+
+    ``stiffen`` (element name -> factor, :mod:`rvsim.physics.stiffening`): the test of the
+    model with those elements stiffer (the compliance budget, :mod:`rvsim.quasistatic.budget`).
     """
     rated = _finite("rated_torque", reducer.rating.rated_torque if rated_torque is None
                     else rated_torque)
@@ -120,7 +124,7 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
     # friction follows the output's motion: turning with the torque's change (the first point
     # belongs to the first, decreasing quarter)
     path = solve_path(reducer, np.zeros(len(torque)), -torque,
-                      carrier_rate=TEST_OUTPUT_SPEED * branch)
+                      carrier_rate=TEST_OUTPUT_SPEED * branch, stiffen=stiffen)
     converged = path.status_codes == 0
     angle = path.q[:, L.CARRIER].copy()
     angle[~converged] = np.nan

@@ -71,7 +71,7 @@ QS_FRICTION_VELOCITY = 1e-9
 
 
 def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_speed=None,
-               carrier_rate=None) -> PathSolution:
+               carrier_rate=None, stiffen=None) -> PathSolution:
     """Static equilibria at the points (input_angle[k] [rad], torque[k] [N*m]) in order, each
     started from the previous one (the first from the ideal pose at its input angle, or
     ``q_start``).  Stops at the first point that does not converge; its status is returned.
@@ -79,7 +79,12 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
     Friction (a reducer with any friction element) follows the direction of travel at each
     point: the kinematic motion at ``input_speed[k]`` [rad/s] plus the elastic motion at the
     output speed ``carrier_rate[k]`` [rad/s] with the input held (docs/model.md section 15);
-    without them, or without friction, the frictionless model is solved."""
+    without them, or without friction, the frictionless model is solved.
+
+    ``stiffen`` (element name -> factor; :func:`rvsim.physics.stiffening.stiffen`): those
+    elements give that many times their force at every approach, for the compliance budget
+    (None: the model as it is, P untouched).  The contact stresses stay those of the
+    unstiffened pin contact law at the solved forces."""
     from ..physics import _layout as L
     from ..physics.compliance import effective_modulus
     from ..dynamics.model import build_model
@@ -95,7 +100,11 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
     if not (np.all(np.isfinite(angle)) and np.all(np.isfinite(load))):
         raise ParameterError("torque", "the input angles and torques must be finite")
     model = build_model(reducer, 1e-5)
-    P = model.P
+    P, fe_tables = model.P, model.fe
+    if stiffen:
+        from ..physics.stiffening import stiffen as stiffened
+
+        P, fe_tables = stiffened(P, fe_tables, dict(stiffen))
     n, zp = len(angle), reducer.cycloid.pin_count
     scale = np.ones(L.N_DOF)
     # rotations times a length of their body: the crank circle and planet base radius (RV),
@@ -147,7 +156,7 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
                        out.torsional_stiffness[part], out.status_codes[part],
                        out.iterations[part], out.input_torque[part],
                        out.output_pin_forces[part], P_fric, moving[part], turning[part],
-                       friction[part], model.fe)
+                       friction[part], fe_tables)
         solved += done
         check_stop()        # a Ctrl-C or SIGTERM whose exception was swallowed on its way
         if done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK:
