@@ -10,7 +10,7 @@ import of this package.
 * ``_layout`` - slots of the constant vector P, coordinate indices, output channels, status codes.
 * ``_contact_law`` - Palmgren line contact, its damping, the carried Newton starts.
 * ``_bearings`` - conforming contact (Johnson), bushings in series, rolling-element sets.
-* ``_friction`` - pin, mesh and bearing friction on top of the normal forces.
+* ``_friction`` - pin, mesh, bearing and lip-seal friction on top of the normal forces.
 * ``_pin_compliance`` - the FE pin-in-groove compliance in series with its contact.
 * ``_single_stage`` - input shaft, output pins and pin-ring frame of the single-stage drive.
 * ``_fe_contacts`` - the pin contacts of a finite-element disc, solved together.
