@@ -38,6 +38,7 @@ def _params(args: argparse.Namespace) -> int:
 
 def _profile(args: argparse.Namespace) -> int:
     from ..geometry.export import export_profile, least_points
+    from ..geometry.layout import disc_count
 
     reducer = reducer_from_args(args)
     least = least_points(reducer)
@@ -45,13 +46,19 @@ def _profile(args: argparse.Namespace) -> int:
         raise ParameterError("--points", f"must be between {least:,} (3 per tooth of the "
                              f"{reducer.cycloid.disc_teeth}-tooth disc) and "
                              f"{MAX_PROFILE_POINTS:,} (got {args.points:,})")
+    if args.disc > disc_count(reducer):
+        raise ParameterError("--disc", f"the reducer has {disc_count(reducer)} disc "
+                             f"(layout.disc_count = 1); got {args.disc}")
     check_output_file(args.out, "--out")
-    summary = export_profile(reducer, args.out, points=args.points)
+    summary = export_profile(reducer, args.out, points=args.points, disc=args.disc - 1)
     if args.json:
         print_json(summary)
     else:
-        print(f"wrote {summary['file']}: {summary['teeth']}-tooth profile, {summary['points']} "
-              f"points, max chordal deviation {summary['chordal_deviation_mm'] * 1e3:.3f} um")
+        holes = "".join(f", {n} {layer.lower().replace('_', ' ')}"
+                        for layer, n in summary["holes"].items())
+        print(f"wrote {summary['file']}: disc {summary['disc']}, {summary['teeth']}-tooth "
+              f"profile, {summary['points']} points, max chordal deviation "
+              f"{summary['chordal_deviation_mm'] * 1e3:.3f} um{holes}")
     return 0
 
 
@@ -86,15 +93,22 @@ def register(sub) -> None:
                      help="print a complete TOML file to edit and pass to --params")
     p.set_defaults(func=_params)
 
-    p = add_command(sub, "profile", "export the cycloid disc profile (CSV or DXF)",
-                    "Write the (modified) cycloid disc profile in millimetres. "
-                    "The format follows the extension: .csv (x_mm,y_mm) or .dxf (closed "
-                    "polyline).",
+    p = add_command(sub, "profile", "export the cycloid disc (CSV profile, DXF or SVG drawing)",
+                    "Write the (modified) cycloid disc in millimetres. The format follows "
+                    "the extension: .csv (the profile's x_mm,y_mm), .dxf or .svg (the whole "
+                    "disc: the profile as a closed polyline on layer CYCLOID_PROFILE, the "
+                    "holes as circles on layers BORE, CRANK_HOLES, PILLAR_HOLES, or for the "
+                    "single-stage drive BORE and OUTPUT_PIN_HOLES).",
                     ["rvsim profile --out disc.dxf",
+                    "rvsim profile --out disc.svg --disc 2",
                     "rvsim profile --set I=0.016 --set J=0.026 --out disc.csv --points 7200"])
     add_reducer_options(p)
     p.add_argument("--out", required=True, metavar="FILE", type=path_text,
-                   help="output file (.csv or .dxf)")
+                   help="output file (.csv, .dxf or .svg)")
+    p.add_argument("--disc", type=int, choices=(1, 2), default=1,
+                   help="which disc (default 1; disc 2's teeth are cut half a pitch turned, "
+                   "so it is disc 1 turned half a turn only for an odd tooth count and an "
+                   "even pillar count)")
     p.add_argument("--points", type=int, default=36000, help="points on the profile "
                    "(default 36000: chordal deviation about 0.13 um for the RV-40E)")
     p.add_argument("--json", action="store_true", help="print a JSON summary")

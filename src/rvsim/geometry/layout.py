@@ -16,7 +16,7 @@ from ..parameters import Reducer
 
 __all__ = ["crank_angles", "crank_holes", "disc_count", "output_pins", "output_hole_clearance",
            "crank_hole_radius", "pillar_angles", "neighbour_distance",
-           "roller_pitch_diameter"]
+           "roller_pitch_diameter", "disc_holes"]
 
 
 def crank_angles(reducer: Reducer) -> np.ndarray:
@@ -82,3 +82,40 @@ def roller_pitch_diameter(inner_radius: float, roller_diameter: float) -> float:
     """Pitch (roller-centre) diameter of a set of rollers running directly on a shaft of
     ``inner_radius`` (the eccentric or the journal is the inner raceway) [m]."""
     return 2.0 * inner_radius + roller_diameter
+
+
+def disc_holes(reducer: Reducer) -> dict[str, np.ndarray]:
+    """Every hole of a disc in the disc's own frame (centre at the origin, crank holes on
+    the x axis), by kind: rows x, y, radius [m].
+
+    RV reducer: ``"bore"`` (the central bore, left out at radius 0), ``"crank_holes"`` (on
+    the crank circle: :func:`crank_holes`, :func:`crank_hole_radius`) and ``"pillar_holes"``
+    (:func:`pillar_angles` on the crank circle, left out when there are none).  Single-stage
+    drive: ``"bore"`` is the eccentric's hole (:func:`crank_hole_radius`; the set's
+    ``cycloid.disc_bore_radius`` and pillar holes are not parts of it) and
+    ``"output_pin_holes"`` those of the output pins (:func:`output_pins`, radius pin +
+    :func:`output_hole_clearance`).  The holes are the same in both discs."""
+    def rows(centres: np.ndarray, radius: float) -> np.ndarray:
+        return np.column_stack([centres, np.full(len(centres), radius)])
+
+    hole = crank_hole_radius(reducer)
+    if reducer.layout.single_stage:
+        holes = {"bore": rows(np.zeros((1, 2)), hole)}
+        pins = output_pins(reducer)
+        if len(pins):
+            holes["output_pin_holes"] = rows(pins, reducer.layout.output_pin_radius
+                                             + output_hole_clearance(reducer))
+        return holes
+    c = reducer.cycloid
+    holes = {"bore": rows(np.zeros((1, 2)), c.disc_bore_radius)} \
+        if c.disc_bore_radius > 0.0 else {}
+    holes["crank_holes"] = rows(crank_holes(reducer), hole)
+    if c.pillar_hole_count > 0 and c.pillar_hole_radius > 0.0:
+        from .involute import gear_geometry
+
+        angles = pillar_angles(reducer)
+        crank_circle = gear_geometry(reducer).centre_distance
+        holes["pillar_holes"] = rows(crank_circle * np.column_stack([np.cos(angles),
+                                                                     np.sin(angles)]),
+                                     c.pillar_hole_radius)
+    return holes
