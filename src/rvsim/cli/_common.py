@@ -65,7 +65,8 @@ def add_reducer_options(parser: argparse.ArgumentParser, *, paper_run: bool = Fa
     parser.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
                         dest="assignments",
                         help="override one parameter in its listed unit, e.g. "
-                             "errors.pin_circle_radius=0.02 or H=0.02 (repeatable)")
+                             "errors.pin_circle_radius=0.02 or H=0.02, or with a unit, "
+                             "e.g. H=20um or operating.input_speed=1000rpm (repeatable)")
 
 
 def reducer_from_args(args: argparse.Namespace) -> Reducer:

@@ -17,7 +17,7 @@ from typing import Any
 
 from .._files import read_toml
 from ..errors import ParameterError
-from ..units import TO_SI
+from ..units import TO_SI, si_from_text
 from ._schema import FieldSpec, field_specs
 from ._types import Reducer
 from .cycloid_drive import CYCLOID_DRIVE
@@ -82,7 +82,12 @@ def _coerce(spec: FieldSpec, raw: Any) -> Any:
     try:
         value = plain_number(raw)
     except (TypeError, ValueError):
-        raise ParameterError(spec.name, f"'{raw}' is not a number") from None
+        si = _with_unit(spec, raw)
+        if si is None:
+            raise ParameterError(spec.name, f"'{raw}' is not a number") from None
+        if not math.isfinite(si):
+            raise ParameterError(spec.name, f"'{raw}' is not a finite number") from None
+        return si
     if not math.isfinite(value):
         raise ParameterError(spec.name, f"'{raw}' is not a finite number")
     if spec.kind == "int":
@@ -90,6 +95,17 @@ def _coerce(spec: FieldSpec, raw: Any) -> Any:
             raise ParameterError(spec.name, f"'{raw}' is not a whole number")
         return int(value)
     return value * TO_SI[spec.unit]
+
+
+def _with_unit(spec: FieldSpec, raw: Any) -> float | None:
+    """The SI value of a text typed with a unit ("1000rpm", "5 um"), None for a text that is
+    no number with a unit; a unit of another quantity is refused naming the field's unit."""
+    if not isinstance(raw, str):
+        return None
+    try:
+        return si_from_text(raw, spec.unit)
+    except ValueError as exc:
+        raise ParameterError(spec.name, str(exc)) from None
 
 
 def plain_number(raw) -> float:
