@@ -64,6 +64,7 @@ def test_rv_dxf_holds_every_hole_on_its_layer(tmp_path, cli):
     assert res.code == 0, res.err
     assert "1 bore, 2 crank holes, 2 pillar holes" in res.out
     doc = ezdxf.readfile(out)
+    assert not doc.audit().has_errors
     assert doc.header["$INSUNITS"] == 4
     assert {layer.dxf.name for layer in doc.layers} >= {
         "CYCLOID_PROFILE", "BORE", "CRANK_HOLES", "PILLAR_HOLES", "CONSTRUCTION"}
@@ -163,6 +164,25 @@ def test_cycloid_drive_draws_its_own_holes(tmp_path, cli):
     expected = np.column_stack([36.0 * np.cos(angles), 36.0 * np.sin(angles),
                                 np.full(8, 5.0 + 1.5)])
     assert pins.shape == (8, 3) and np.max(np.abs(pins - expected)) < 1e-9
+
+
+@pytest.mark.parametrize("count", [0, 3])
+def test_pillar_holes_as_many_as_the_set_has(tmp_path, count):
+    """No pillar holes: no layer; three: evenly spaced from a quarter turn (pillar_angles)."""
+    reducer = rvsim.with_values(RV40E, {"cycloid.pillar_hole_count": count,
+                                        "cycloid.pillar_hole_radius": 6.0})
+    out = tmp_path / "disc.dxf"
+    summary = export_profile(reducer, out, points=POINTS)
+    doc = ezdxf.readfile(out)
+    layers = {layer.dxf.name for layer in doc.layers}
+    assert ("PILLAR_HOLES" in layers) == (count > 0) and summary["holes"].get(
+        "PILLAR_HOLES", 0) == count
+    crank = gear_geometry(RV40E).centre_distance * 1e3
+    angles = 0.5 * math.pi + 2.0 * math.pi * np.arange(count) / 3
+    expected = np.column_stack([crank * np.cos(angles), crank * np.sin(angles),
+                                np.full(count, 6.0)])
+    got = dxf_circles(doc, "PILLAR_HOLES").reshape(-1, 3)
+    assert got.shape == expected.shape and np.all(np.abs(got - expected) < 1e-9)
 
 
 def svg_layers(path) -> dict[str, ET.Element]:

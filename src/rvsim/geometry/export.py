@@ -109,6 +109,7 @@ def _write_svg(tmp: Path, layers: dict[str, np.ndarray]) -> None:
     flipped = ET.SubElement(svg, "g", {"transform": "scale(1,-1)", "fill": "none",
                                        "stroke": "black", "stroke-width": "0.1"})
     for layer, shapes in layers.items():
+        shapes = np.round(shapes, 9) + 0.0       # 9 decimals, and no "-0.000000000"
         group = ET.SubElement(flipped, "g", {"id": layer, f"{{{_INKSCAPE}}}label": layer,
                                              f"{{{_INKSCAPE}}}groupmode": "layer"})
         if layer == PROFILE_LAYER:
