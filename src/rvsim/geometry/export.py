@@ -30,6 +30,7 @@ __all__ = ["export_profile", "chordal_deviation", "least_points", "disc_drawing"
 SUPPORTED_SUFFIXES = (".csv", ".dxf", ".svg")
 PROFILE_LAYER = "CYCLOID_PROFILE"
 CONSTRUCTION_LAYER = "CONSTRUCTION"
+_INKSCAPE = "http://www.inkscape.org/namespaces/inkscape"    # its layers: groups of the SVG
 
 
 def chordal_deviation(reducer: Reducer, points: int) -> float:
@@ -120,9 +121,6 @@ def _write_svg(tmp: Path, layers: dict[str, np.ndarray]) -> None:
             ET.SubElement(group, "circle", {"cx": f"{x:.9f}", "cy": f"{y:.9f}",
                                             "r": f"{radius:.9f}"})
     ET.ElementTree(svg).write(tmp, encoding="utf-8", xml_declaration=True)
-
-
-_INKSCAPE = "http://www.inkscape.org/namespaces/inkscape"
 
 
 def export_profile(reducer: Reducer, path: str | Path, *, points: int = 36000,
