@@ -5,7 +5,7 @@ Each repeat starts the whole command in a fresh process (warm numba cache: run i
 first) into a fresh folder, for each ``--variant`` in turn (round robin, so that a change of
 the machine's load falls on every variant alike).  The process is the command line itself,
 started through ``rvsim.__main__.main`` with one addition: the study runner's local pool
-(``rvsim.doe.runner._run_local``) is wrapped so that it prints when it starts and ends.  So
+(``rvsim.doe.runner.run_local``) is wrapped so that it prints when it starts and ends.  So
 each command's wall time splits into
 
 * ``before``: from the process's start to the pool (Python, imports, the 36 reducers
@@ -45,17 +45,16 @@ from _timing import machine
 #: the command, with the pool's start and end printed to stderr as "PHASE name time"
 _CHILD = """
 import json, os, sys, time
-import rvsim.doe._workers as workers
 import rvsim.doe.runner as runner
 import rvsim.doe.store as store
 runs = []
-evaluate = workers.evaluate_task
+evaluate = runner.evaluate_task
 def evaluate_timed(key, *args, **kwargs):
     start = time.time()
     key, outcome = evaluate(key, *args, **kwargs)
     outcome['_timing'] = (os.getpid(), start, time.time())
     return key, outcome
-workers.evaluate_task = evaluate_timed        # the workers are forked: they inherit it
+runner.evaluate_task = evaluate_timed         # run_local hands it to the forked workers
 put = store.ResultStore.put
 def put_timed(self, key, outcome):
     pid, start, end = outcome.pop('_timing', (0, 0.0, 0.0))
@@ -63,7 +62,7 @@ def put_timed(self, key, outcome):
     put(self, key, outcome)
     runs.append((pid, start, end, outcome.get('wall_s') or 0.0, time.time() - begin))
 store.ResultStore.put = put_timed
-pool = runner._run_local
+pool = runner.run_local
 def timed(*args, **kwargs):
     print(f"PHASE start {time.time():.6f}", file=sys.stderr, flush=True)
     try:
@@ -71,7 +70,7 @@ def timed(*args, **kwargs):
     finally:
         print(f"PHASE end {time.time():.6f}", file=sys.stderr, flush=True)
         print("RUNS " + json.dumps(runs), file=sys.stderr, flush=True)
-runner._run_local = timed
+runner.run_local = timed
 from rvsim.__main__ import main
 sys.argv = ["rvsim"] + sys.argv[1:]
 main()

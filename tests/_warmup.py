@@ -1,56 +1,114 @@
-"""Compile rvsim's numba kernels once, before the tests run (``python -m tests._warmup KIND``).
+"""Compile rvsim's numba kernels once, before the tests run (``python -m tests._warmup``).
 
 The kernels are cached on disk (numba's ``cache=True``, guarded by
 ``rvsim._cache_guard``), so what one process compiles every later process loads.
 Without this, the first test of each kernel in each pytest-xdist worker compiled it, both
-workers the same kernels at once (a unit test took 68 s).  ``tests/conftest.py`` runs the two
-kinds in two processes side by side, one per core: the dynamic engine's kernel, and the
-quasi-static solver (which compiles the force elements into its own module) with the geometry's
-curve functions.  Each call is the smallest run that reaches every compiled function of its
-engine's schemes; with a warm cache a kind takes a few seconds.
+workers the same kernels at once (a unit test took 68 s).  ``tests/conftest.py`` runs this
+module once; it runs the two :data:`CHAINS` of tasks in two processes, one per core: the
+quasi-static solver's (the longest, about 60 % of the compile time) and the dynamic engine's.
+Both compile the force elements they share (neither can wait for the other without leaving a
+core idle).  Each task is the smallest run that reaches one engine's scheme; with a warm cache
+the whole takes a few seconds.  ``python -m tests._warmup CHAIN`` runs one chain.
 """
 
 from __future__ import annotations
 
 import sys
+import time
 
 #: a short schedule of the dynamic model (the integration tests' own, tests/integration)
 SHORT = {"operating.duration": 0.05, "operating.speed_ramp_time": 0.01,
          "operating.load_start": 0.01, "operating.load_ramp_end": 0.02,
          "operating.steady_start": 0.03}
 
+BEARINGS = {"bearings.arm_needles": True, "bearings.support_rollers": True}
 
-def dynamic() -> None:
+
+def _ltca() -> None:
+    from rvsim.parameters import RV40E
+    from rvsim.quasistatic import ltca
+
+    ltca(RV40E, positions=16, raise_on_failure=False)
+
+
+def _simulate() -> None:
     from rvsim.dynamics import simulate
-    from rvsim.parameters import BUILT_IN_SETS, RV40E, with_values
+    from rvsim.parameters import RV40E, with_values
 
     short = with_values(RV40E, SHORT)
     simulate(short, raise_on_failure=False)
-    simulate(short, scheme="implicit-bearings", raise_on_failure=False)
     simulate(short, time_step=7e-6, raise_on_failure=False)        # the step guard
-    simulate(with_values(BUILT_IN_SETS["cycloid-drive"], SHORT), raise_on_failure=False)
-    simulate(with_values(RV40E, {**SHORT, "bearings.arm_needles": True,
-                                 "bearings.support_rollers": True}), raise_on_failure=False)
 
 
-def quasistatic() -> None:
-    from rvsim.geometry.cycloid import pin_gaps, undercut_ratio
+def _implicit() -> None:
+    from rvsim.dynamics import simulate
+    from rvsim.parameters import RV40E, with_values
+
+    simulate(with_values(RV40E, SHORT), scheme="implicit-bearings", raise_on_failure=False)
+
+
+def _simulate_others() -> None:
+    from rvsim.dynamics import simulate
     from rvsim.parameters import BUILT_IN_SETS, RV40E, with_values
-    from rvsim.quasistatic import efficiency, hysteresis, ltca
 
-    pin_gaps(RV40E, 0.0)                     # the geometry's compiled curve functions
-    undercut_ratio(RV40E, samples=50)
-    ltca(RV40E, positions=16, raise_on_failure=False)
-    ltca(BUILT_IN_SETS["cycloid-drive"], positions=16, raise_on_failure=False)
-    hysteresis(RV40E, points_per_branch=6, raise_on_failure=False)
-    bearings = with_values(RV40E, {"bearings.arm_needles": True, "bearings.support_rollers": True})
-    hysteresis(bearings, points_per_branch=6, raise_on_failure=False)
+    simulate(with_values(BUILT_IN_SETS["cycloid-drive"], SHORT), raise_on_failure=False)
+    simulate(with_values(RV40E, {**SHORT, **BEARINGS}), raise_on_failure=False)
+
+
+def _efficiency() -> None:
+    from rvsim.parameters import RV40E, with_values
+    from rvsim.quasistatic import efficiency
+
     friction = with_values(RV40E, {"friction.mesh_coefficient": 0.05,
                                    "contact.friction_coefficient": 0.05})
     efficiency(friction, speeds_rpm=[500.0], torques=[200.0], positions=8)
 
 
-KINDS = {"dynamic": dynamic, "quasistatic": quasistatic}
+def _hysteresis() -> None:
+    from rvsim.parameters import RV40E, with_values
+    from rvsim.quasistatic import hysteresis
+
+    hysteresis(RV40E, points_per_branch=6, raise_on_failure=False)
+    hysteresis(with_values(RV40E, BEARINGS), points_per_branch=6, raise_on_failure=False)
+
+
+def _others() -> None:
+    from rvsim.geometry.cycloid import pin_gaps, undercut_ratio
+    from rvsim.parameters import BUILT_IN_SETS, RV40E
+    from rvsim.quasistatic import ltca
+
+    pin_gaps(RV40E, 0.0)                     # the geometry's compiled curve functions
+    undercut_ratio(RV40E, samples=50)
+    ltca(BUILT_IN_SETS["cycloid-drive"], positions=16, raise_on_failure=False)
+
+
+#: two chains of tasks, one per core (tests/conftest.py): the quasi-static solver's (the longest:
+#: ltca compiles the one sweep that efficiency and hysteresis reuse) and the dynamic engine's
+CHAINS = {"quasistatic": (_ltca, _efficiency, _hysteresis, _others),
+          "dynamic": (_simulate, _implicit, _simulate_others)}
+
+
+def run_chain(name: str) -> list[tuple[str, float]]:
+    """Run one chain's tasks in order; (task, seconds) of each."""
+    times = []
+    for task in CHAINS[name]:
+        start = time.perf_counter()
+        task()
+        times.append((task.__name__.lstrip("_"), time.perf_counter() - start))
+    return times
+
+
+def main() -> None:
+    """Both chains side by side, in two spawned processes (nothing of numba's inherited)."""
+    import multiprocessing
+
+    with multiprocessing.get_context("spawn").Pool(len(CHAINS)) as pool:
+        for times in pool.imap_unordered(run_chain, list(CHAINS)):
+            print(", ".join(f"{name} {seconds:.1f} s" for name, seconds in times), flush=True)
+
 
 if __name__ == "__main__":
-    KINDS[sys.argv[1]]()
+    if len(sys.argv) > 1:
+        print(run_chain(sys.argv[1]))
+    else:
+        main()

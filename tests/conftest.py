@@ -76,8 +76,8 @@ def _one_fe_cache(config) -> None:
 
 
 def _compile_kernels_once(config) -> None:
-    """Compile the numba kernels into their on-disk cache before any test runs, the dynamic
-    engine's and the quasi-static solver's side by side (tests/_warmup.py), so that no test
+    """Compile the numba kernels into their on-disk cache before any test runs, on two
+    processes (tests/_warmup.py), so that no test
     (and no pair of pytest-xdist workers at once) pays for compiling them.  Only in the first
     process (not in xdist's workers), not for --collect-only; RVSIM_TEST_NO_WARMUP=1 leaves it
     out.  A warm-up that fails is reported and the tests run anyway (they show the fault)."""
@@ -89,16 +89,12 @@ def _compile_kernels_once(config) -> None:
         [str(root / "src"), str(root)] + [os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep)}
     sys.stderr.write("rvsim tests: compiling the numba kernels once (a few seconds when "
                      "cached)\n")
-    procs = [subprocess.Popen([sys.executable, "-m", "tests._warmup", kind], cwd=root, env=env,
-                              stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.PIPE, text=True)
-             for kind in ("dynamic", "quasistatic")]
-    for proc in procs:
-        _, err = proc.communicate()
-        if proc.returncode != 0:
-            tail = "\n".join(err.strip().splitlines()[-5:])
-            sys.stderr.write(f"rvsim tests: warm-up {proc.args[-1]} failed "
-                             f"(exit {proc.returncode}):\n{tail}\n")
+    proc = subprocess.run([sys.executable, "-m", "tests._warmup"], cwd=root, env=env,
+                          stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                          stderr=subprocess.PIPE, text=True)
+    if proc.returncode != 0:
+        tail = "\n".join(proc.stderr.strip().splitlines()[-5:])
+        sys.stderr.write(f"rvsim tests: warm-up failed (exit {proc.returncode}):\n{tail}\n")
 
 
 @pytest.fixture

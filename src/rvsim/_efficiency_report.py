@@ -9,7 +9,8 @@ from pathlib import Path
 import pandas as pd
 
 from ._files import atomic_write_text
-from .report import _page, _parameters_table, _png, _table, _target
+from .html import page as _page, parameters_table as _parameters_table, png as _png, \
+    table as _table, target as _target
 
 __all__ = ["efficiency_plot", "write_efficiency_report"]
 
@@ -17,9 +18,9 @@ __all__ = ["efficiency_plot", "write_efficiency_report"]
 def efficiency_plot(result, fig=None):
     """Efficiency [%] against output torque, one curve per input speed (as catalogues draw
     it)."""
-    from .plots import _pyplot
+    from .plots import pyplot
 
-    plt = _pyplot()
+    plt = pyplot()
     if fig is None:
         fig = plt.figure(figsize=(7, 4.5))
     ax = fig.add_subplot(1, 1, 1)

@@ -11,7 +11,8 @@ from typing import Callable, Iterator
 
 from ._stopping import check_stop
 
-__all__ = ["atomic_write", "atomic_write_text", "atomic_outputs", "read_toml"]
+__all__ = ["atomic_write", "atomic_write_text", "atomic_outputs", "read_toml",
+           "read_study_toml"]
 
 
 def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
@@ -109,3 +110,9 @@ def read_toml(path: str | Path, what: str = "TOML file") -> dict:
         raise InputFileError(f"{path}: cannot read ({exc.strerror or exc})") from None
     except tomllib.TOMLDecodeError as exc:
         raise InputFileError(f"{path}: not valid TOML ({exc})") from None
+
+
+def read_study_toml(path: str | Path) -> dict:
+    """The TOML table of a study file (a design study or a tolerance study): the one reader
+    of both, so that their messages name the file alike (issue 31 step 7)."""
+    return read_toml(path, "TOML study file")

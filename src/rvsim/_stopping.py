@@ -16,6 +16,7 @@ one raises the stop again.  A signal the user ignores (``nohup``) stays ignored.
 from __future__ import annotations
 
 import contextlib
+import os
 import signal
 import sys
 import threading
@@ -25,7 +26,7 @@ from typing import Iterator
 from .errors import Terminated
 
 __all__ = ["stop_signals", "check_stop", "stop_requested", "request_stop", "signals_blocked",
-           "forget_stop", "STOP_SIGNALS"]
+           "forget_stop", "die_with_parent", "STOP_SIGNALS"]
 
 #: the signals that stop a command
 STOP_SIGNALS = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP")
@@ -133,3 +134,20 @@ def stop_signals(names: tuple[str, ...] = ("SIGINT", "SIGTERM", "SIGHUP")) -> It
             _DEPTH[0] -= 1
             if not _DEPTH[0]:
                 _STOP.clear()
+
+
+def die_with_parent(parent_pid: int) -> None:
+    """In a child process (a study's worker, a mesher child): die when the parent
+    ``parent_pid`` dies (PR_SET_PDEATHSIG on Linux), or at once if it already has.  Moved from
+    ``rvsim.doe._workers`` (issue 31 step 7) so that :mod:`rvsim.fe.mesh` need not import a
+    study module."""
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, signal.SIGKILL)          # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != parent_pid:                 # the parent died before prctl
+        os._exit(1)

@@ -16,6 +16,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from .geometry.layout import roller_pitch_diameter   # public here too (issue 31 step 4)
 from .physics.compliance import effective_modulus, palmgren_coefficient
 from .parameters import Reducer
 
@@ -45,12 +46,6 @@ def support_play(r: Reducer, upper: bool) -> float:
     if r.bearings.support_rollers:
         play += 0.5 * r.bearings.support_clearance
     return play
-
-
-def roller_pitch_diameter(inner_radius: float, roller_diameter: float) -> float:
-    """Pitch (roller-centre) diameter of a set of rollers running directly on a shaft of
-    ``inner_radius`` (the eccentric or the journal is the inner raceway) [m]."""
-    return 2.0 * inner_radius + roller_diameter
 
 
 def conforming_constants(length: float, m1, m2, radial_difference: float,

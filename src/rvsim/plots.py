@@ -7,61 +7,22 @@ from __future__ import annotations
 
 import math
 
+from ._matplotlib import plain, pyplot
+from .analysis.figures import main_effects_plot   # public here too (issue 31 step 6)
 
-__all__ = ["plain", "main_effects_plot", "speed_plot", "te_plot", "spectrum_plot", "figure_to_png",
-           "pin_load_map", "te_revolution_plot", "order_spectrum_plot", "hysteresis_plot"]
+__all__ = ["pyplot", "plain", "main_effects_plot", "speed_plot", "te_plot", "spectrum_plot",
+           "figure_to_png", "pin_load_map", "te_revolution_plot", "order_spectrum_plot",
+           "hysteresis_plot"]
 
 _ARCMIN = math.pi / 10800.0
 
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def plain(text) -> str:
-    """A user's text (a factor label, a column name) as matplotlib draws it literally: a "$"
-    would start its mathtext, and a label like "x$_$" failed the whole figure (a reviewer's
-    study ended in a traceback after all its runs)."""
-    return str(text).replace("$", r"\$")
-
-
-def main_effects_plot(analysis, ax=None, *, factors=None, ylabel=None):
-    """Level means of each factor (the paper's Figs. 8-10), one panel per factor."""
-    plt = _pyplot()
-    factors = factors or list(analysis.level_means)
-    if ax is None:
-        cols = min(5, len(factors))
-        rows = math.ceil(len(factors) / cols)
-        fig, axes = plt.subplots(rows, cols, figsize=(2.4 * cols, 2.3 * rows), sharey=True,
-                                 squeeze=False)
-        axes = axes.ravel()
-        for extra in axes[len(factors):]:
-            extra.set_visible(False)
-    else:
-        axes = [ax] * len(factors)
-        fig = ax.figure
-    label = ylabel or f"mean of {plain(analysis.response)}"
-    for axis, factor in zip(axes, factors):
-        k = analysis.level_means[factor]
-        levels = getattr(analysis, "levels", {}).get(factor) or list(range(1, len(k) + 1))
-        axis.plot(levels, k, "o-", color="C0")
-        axis.axhline(analysis.grand_mean, color="0.6", lw=0.8, ls="--")
-        axis.set_title(plain(factor))
-        axis.set_xticks(levels)
-        axis.set_xlabel("level")
-    axes[0].set_ylabel(label)
-    fig.tight_layout()
-    return fig
+#: the old private name of :func:`pyplot` (issue 31 step 5)
+_pyplot = pyplot
 
 
 def speed_plot(result, ax=None):
     """Input and output speed against time (paper Fig. 4)."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = (plt.subplots(figsize=(7, 3.2)) if ax is None else (ax.figure, ax))
     deg = 180.0 / math.pi
     ax.plot(result.time, result.omega_in * deg, label="input shaft")
@@ -76,7 +37,7 @@ def speed_plot(result, ax=None):
 
 def te_plot(results: dict, steady_start: float, ax=None):
     """Transmission error against time for several runs, steady window shaded (Fig. 5)."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = (plt.subplots(figsize=(7, 3.4)) if ax is None else (ax.figure, ax))
     arcmin = 180.0 * 60.0 / math.pi
     for label, result in results.items():
@@ -97,7 +58,7 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int | N
     the carrier (which turns ``pin_count`` times faster than the carrier).  A
     ``fluctuation_frequency`` [Hz] of the load is marked at its order too; ``planet_teeth``
     None (a single-stage drive): no sun-planet mesh order."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = (plt.subplots(figsize=(7, 3.2)) if ax is None else (ax.figure, ax))
     from .dynamics.result import crank_frequency, te_spectrum
 
@@ -127,7 +88,7 @@ def pin_load_map(result, fig=None):
     """Pin force [N] over one output revolution, one heat map per disc: pin number against
     the output angle (an LTCA result: ``pin_forces`` (n, discs, zp), ``input_angle``,
     ``ratio``)."""
-    plt = _pyplot()
+    plt = pyplot()
     import numpy as np
 
     forces = np.asarray(result.pin_forces)
@@ -150,7 +111,7 @@ def pin_load_map(result, fig=None):
 def te_revolution_plot(result, fig=None):
     """TE over the output revolution: from the nominal assembly (top) and relative to the
     loaded, clearance-taken-up state, i.e. minus its mean (bottom) [arcmin]."""
-    plt = _pyplot()
+    plt = pyplot()
     import numpy as np
 
     if fig is None:
@@ -174,7 +135,7 @@ def te_revolution_plot(result, fig=None):
 def order_spectrum_plot(orders, amplitude_arcmin, marks: dict, ax=None):
     """TE amplitude [arcmin] against orders of the output revolution, ``marks`` (name ->
     order) drawn as dashed lines (orders that coincide share one line)."""
-    plt = _pyplot()
+    plt = pyplot()
     import numpy as np
 
     fig, ax = (plt.subplots(figsize=(8, 3.4)) if ax is None else (ax.figure, ax))
@@ -207,7 +168,7 @@ def hysteresis_plot(result, rated: float, fig=None):
     the catalogue quantities marked: rigidity interval (50-100 % of rated, secants), the
     +-3 % lost-motion mid-points and the loop width at 0 N*m.  Left the whole loop, right a
     zoom on +-10 % of rated where lost motion and backlash live."""
-    plt = _pyplot()
+    plt = pyplot()
     import numpy as np
 
     from .analysis import catalogue as cat
@@ -269,7 +230,7 @@ def figure_to_png(fig, path=None) -> bytes:
     figure."""
     import io
 
-    plt = _pyplot()
+    plt = pyplot()
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=110)
     plt.close(fig)

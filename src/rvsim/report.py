@@ -7,10 +7,8 @@ simulation.  Figures come from :mod:`rvsim.plots`.
 
 from __future__ import annotations
 
-import base64
 import html
 import json
-import math
 import types
 from pathlib import Path
 
@@ -19,6 +17,8 @@ import pandas as pd
 
 from ._files import atomic_write_text
 from .errors import InputFileError
+from .html import page as _page, parameters_table as _parameters_table, png as _png, \
+    png_bytes as _png_bytes, table as _table, target as _target
 
 __all__ = ["write_study_report", "write_run_report", "write_ltca_report",
            "write_hysteresis_report"]
@@ -30,54 +30,6 @@ _SCHEME_NOTES = {"implicit-bearings": (
     "runs); its peaks (peak-to-peak TE, largest pin force) differ by about 0.3 % (median), "
     "up to a few % on some runs, because it slows the crank modes (docs/model.md section 9). "
     "The explicit scheme's answers: --scheme explicit")}
-
-_CSS = """
-body{font-family:system-ui,-apple-system,Segoe UI,Roboto,sans-serif;margin:2em auto;
-max-width:1100px;color:#222;padding:0 1em}
-h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;
-margin-top:2em}table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
-th,td{border:1px solid #ccc;padding:.2em .5em;text-align:right}th{background:#f3f3f3}
-td.l,th.l{text-align:left}.sig{font-weight:bold;background:#fff3cd}img{max-width:100%}
-.note{color:#555;font-size:.9em}.summary td{text-align:left}
-"""
-
-
-def _png(fig) -> str:
-    from .plots import figure_to_png
-
-    return _png_bytes(figure_to_png(fig))
-
-
-def _png_bytes(png: bytes) -> str:
-    data = base64.b64encode(png).decode("ascii")
-    return f'<img alt="figure" src="data:image/png;base64,{data}">'
-
-
-def _table(frame: pd.DataFrame, *, index: bool = True, highlight=None) -> str:
-    rows = []
-    head = ([f'<th class="l">{html.escape(str(frame.index.name or ""))}</th>'] if index else [])
-    head += [f"<th>{html.escape(str(c))}</th>" for c in frame.columns]
-    rows.append("<tr>" + "".join(head) + "</tr>")
-    for idx, row in frame.iterrows():
-        cls = ' class="sig"' if highlight and idx in highlight else ""
-        cells = [f'<td class="l">{html.escape(str(idx))}</td>'] if index else []
-        for value in row:
-            numeric = isinstance(value, (int, float, np.number)) and not isinstance(value, bool)
-            if isinstance(value, float):
-                text = "" if math.isnan(value) else f"{value:.4g}"
-            else:
-                text = str(value)
-            align = "" if numeric else ' class="l"'
-            cells.append(f"<td{align}>{html.escape(text)}</td>")
-        rows.append(f"<tr{cls}>" + "".join(cells) + "</tr>")
-    return "<table>" + "".join(rows) + "</table>"
-
-
-def _page(title: str, body: list[str]) -> str:
-    return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>"
-            f"{html.escape(title)}</title><style>{_CSS}</style></head><body>"
-            + "\n".join(body) + "</body></html>")
-
 
 def _arcmin(value) -> str:
     return "not available" if value is None else f"{float(value):.4f} arcmin"
@@ -493,21 +445,6 @@ def write_run_report(result, reducer, path: str | Path) -> Path:
 def _summary_table(summary: dict) -> str:
     return _table(pd.DataFrame([{"metric": k, "value": v} for k, v in summary.items()]
                                ).set_index("metric"))
-
-
-def _parameters_table(reducer) -> str:
-    from .parameters import parameter_table
-
-    params = pd.DataFrame(parameter_table(reducer)).set_index("name")
-    return _table(params[[not name.startswith(("materials", "operating"))
-                          for name in params.index]])
-
-
-def _target(path: str | Path) -> Path:
-    path = Path(path)
-    if not path.parent.exists():
-        raise InputFileError(f"{path}: folder {path.parent} does not exist")
-    return path
 
 
 def write_ltca_report(result, reducer, path: str | Path) -> Path:

@@ -412,5 +412,6 @@ def test_on_idle_runs_once_when_a_core_is_free_and_no_run_waits(monkeypatch):
     monkeypatch.setattr(rvsim.doe.runner, "evaluate", stand_in)
     log = []
     run_workers({"short1": (0.1, 0.0), "long": (0.8, 0.0), "short2": (0.1, 0.0)}, 2,
-                lambda key, outcome: log.append(key), on_idle=lambda: log.append("idle"))
+                lambda key, outcome: log.append(key), on_idle=lambda: log.append("idle"),
+                task=rvsim.doe.runner.evaluate_task)
     assert log == ["short1", "short2", "idle", "long"]

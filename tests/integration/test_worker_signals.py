@@ -10,6 +10,8 @@ import sys
 
 import pytest
 
+import rvsim.doe.runner
+
 from rvsim import _stopping
 from rvsim.doe import load_study
 from rvsim.doe._workers import run_workers
@@ -32,7 +34,7 @@ def test_a_stop_lost_before_the_workers_start_stops_the_pool(tmp_path):
         _stopping.request_stop(Terminated("SIGTERM"))     # its exception lost on its way
         with pytest.raises(Terminated):
             run_workers({"a": _task(tmp_path), "b": _task(tmp_path), "c": _task(tmp_path)},
-                        2, results.__setitem__)
+                        2, results.__setitem__, task=rvsim.doe.runner.evaluate_task)
     assert results == {}            # no run stored, least of all as "worker_died"
 
 
@@ -59,7 +61,8 @@ def test_a_worker_starts_with_its_own_signal_state(tmp_path, monkeypatch):
         with _stopping.signals_blocked():       # as during a fork
             _stopping.request_stop(Terminated("SIGTERM"))
             with pytest.raises(Terminated):
-                run_workers({"a": _task(tmp_path)}, 1, results.__setitem__)
+                run_workers({"a": _task(tmp_path)}, 1, results.__setitem__,
+                            task=rvsim.doe.runner.evaluate_task)
     assert json.loads(seen.read_text()) == {"stop": False, "default_hook": True, "blocked": [],
                                             "sigint_ignored": True, "sigterm_default": True}
     assert results == {}

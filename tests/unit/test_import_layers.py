@@ -35,7 +35,7 @@ LAYERS = {
     # 0 foundation: no physics, no numba kernels; imported by everything
     "rvsim.units": 0, "rvsim.errors": 0, "rvsim._files": 0, "rvsim._json": 0,
     "rvsim._fingerprint": 0, "rvsim._stopping": 0, "rvsim._jit": 0, "rvsim._cache_guard": 0,
-    "rvsim.data": 0,
+    "rvsim.data": 0, "rvsim._matplotlib": 0,
     # 1 inputs and metrics: parameter sets; pure functions of curves and tables
     "rvsim.parameters": 1, "rvsim.analysis": 1,
     # 2 geometry and finite-element tables
@@ -54,39 +54,19 @@ LAYERS = {
     "rvsim.cli": 8, "rvsim.__main__": 8,
 }
 
-#: (importer module, imported module) upward imports still allowed, with the step of the plan
-#: that removes each (measured on main cbfd02a; the moves rewrite these dotted names)
+#: (importer module, imported module) upward imports still allowed, each with its reason (steps
+#: 1-8 of issue 31 removed every other entry; docs/architecture.md "Layers")
 ALLOWED_UPWARD = {
-    # step 4: the checks that need geometry leave parameters
-    ("rvsim.parameters._io", "rvsim.geometry.cycloid"),
-    ("rvsim.parameters._io", "rvsim.fe.sizes"),
-    ("rvsim.parameters._io", "rvsim.geometry.assembly"),
-    ("rvsim.parameters._io", "rvsim.geometry.involute"),
-    ("rvsim.parameters._io", "rvsim.geometry.layout"),
-    ("rvsim.parameters._io", "rvsim.geometry.validity"),
-    # step 4 too: the roller pitch diameter the geometry check needs moves below bearings
-    ("rvsim.geometry.validity", "rvsim.bearings"),
-    # step 5: report's HTML helpers made public (rvsim.html)
-    ("rvsim.doe.outputs", "rvsim.report"),
-    ("rvsim.testrig.report", "rvsim.report"),
-    ("rvsim.tolerance.report", "rvsim.report"),
-    # step 6: the analysis figures live in analysis, matplotlib set-up in the foundation
-    ("rvsim.analysis.interactions", "rvsim.plots"),
-    ("rvsim.analysis.range_analysis", "rvsim.plots"),
-    # step 7: the worker's parent-death guard moves to the foundation (fe.mesh uses it)
-    ("rvsim.fe.mesh", "rvsim.doe._workers"),
+    # kept (step 4, option (a) of the plan; docs/decisions.md "Issue 31 ... steps 4-8"): the
+    # public rvsim.parameters.validate (and load_toml, with_values, which call it) must refuse a
+    # bad geometry, so it forwards lazily to the checks that need geometry, now all in
+    # geometry.checks; removing it means moving validate out of parameters (an API change)
+    ("rvsim.parameters._io", "rvsim.geometry.checks"),
 }
 
-#: (importer module, imported module) edges inside one layer that close a circle, allowed until
-#: the step named
-ALLOWED_CYCLE = {
-    # step 7: the runner's executors public in doe, tolerance's evaluator registered, not named
-    ("rvsim.doe.runner", "rvsim.tolerance.engine"),
-    # step 8: the task evaluation in one module of doe
-    ("rvsim.doe._workers", "rvsim.doe.runner"),
-    # step 8: one lazy import between the two geometry modules
-    ("rvsim.geometry.deviations", "rvsim.geometry.cycloid"),
-}
+#: (importer module, imported module) edges inside one layer that close a circle, each with its
+#: reason
+ALLOWED_CYCLE: set = set()
 
 
 def _module_name(path: Path) -> tuple[str, bool]:

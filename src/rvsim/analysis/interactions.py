@@ -1,4 +1,5 @@
-"""Two-factor interactions of a design: ANOVA with interaction terms, interaction plots.
+"""Two-factor interactions of a design: ANOVA with interaction terms, interaction plots
+(:mod:`.figures`).
 
 The model is y = mean + main effects + every two-factor interaction (all categorical), fitted
 with statsmodels; sums of squares are type II (for a balanced full factorial they equal the
@@ -16,6 +17,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import InputFileError
+from .figures import interaction_plots   # public here too (issue 31 step 6)
 
 __all__ = ["interaction_anova", "interaction_degrees", "interaction_plots"]
 
@@ -64,30 +66,3 @@ def interaction_anova(table: pd.DataFrame, response: str, factors: list[str]) ->
     effects = frame.drop(index=["Error", "Total"]).sort_values("SS", ascending=False)
     return pd.concat([effects, frame.loc[["Error", "Total"]]])[["DF", "SS", "MS", "F", "P",
                                                                   "share"]]
-
-
-def interaction_plots(table: pd.DataFrame, response: str, pairs: list[tuple[str, str]],
-                      ylabel: str | None = None):
-    """One panel per pair (A, B): the mean response at each level of A, a line per level of B
-    (parallel lines: no interaction)."""
-    from ..plots import _pyplot, plain
-
-    plt = _pyplot()
-    n = max(1, len(pairs))
-    cols = min(3, n)
-    rows = math.ceil(n / cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.3 * rows), squeeze=False)
-    for ax, (a, b) in zip(axes.flat, pairs):
-        means = table.groupby([b, a])[response].mean().unstack(a)
-        for level, row in means.iterrows():
-            ax.plot(range(1, row.size + 1), row.values, marker="o",
-                    label=plain(f"{b} = {level}"))
-        ax.set_xticks(range(1, means.shape[1] + 1), [str(c) for c in means.columns])
-        ax.set_xlabel(plain(f"level of {a}"))
-        ax.set_ylabel(plain(ylabel or response))
-        ax.set_title(plain(f"{a} x {b}"))
-        ax.legend(fontsize=7)
-    for ax in list(axes.flat)[n:]:
-        ax.set_visible(False)
-    fig.tight_layout()
-    return fig

@@ -62,7 +62,7 @@ class RangeAnalysis:
 
     def plot(self, ax=None):
         """Main-effect plot (level mean against level per factor, like the paper's Figs. 8-10)."""
-        from ..plots import main_effects_plot
+        from .figures import main_effects_plot
 
         return main_effects_plot(self, ax=ax)
 

@@ -18,10 +18,10 @@ import sys
 from multiprocessing.connection import wait
 from typing import Callable
 
-from .._stopping import STOP_SIGNALS, check_stop, forget_stop, signals_blocked
+from .._stopping import STOP_SIGNALS, check_stop, die_with_parent, forget_stop, signals_blocked
 from ..errors import RvsimError
 
-__all__ = ["run_workers", "evaluate_task", "TEST_KILL_ENV", "MAX_ATTEMPTS", "WorkerStartError"]
+__all__ = ["run_workers", "TEST_KILL_ENV", "MAX_ATTEMPTS", "WorkerStartError"]
 
 #: test-only hook: a worker given a run whose key starts with this value SIGKILLs itself
 TEST_KILL_ENV = "RVSIM_TEST_KILL_RUN"
@@ -34,32 +34,7 @@ class WorkerStartError(RvsimError):
     runs were still waiting; the finished ones are stored."""
 
 
-def evaluate_task(key: str, reducer, time_step: float, engine: str = "dynamic",
-                  hysteresis: bool = False, positions: int = 360,
-                  scheme: str = "explicit") -> tuple[str, dict]:
-    """Evaluate one run in a worker (the entry point of local and Dask workers)."""
-    from .runner import evaluate
-
-    doomed = os.environ.get(TEST_KILL_ENV)
-    if doomed and key.startswith(doomed):
-        os.kill(os.getpid(), signal.SIGKILL)
-    return key, evaluate(reducer, time_step, engine, hysteresis, positions, scheme)
-
-
-def _die_with_parent(parent_pid: int) -> None:
-    if sys.platform.startswith("linux"):
-        try:
-            import ctypes
-
-            libc = ctypes.CDLL(None, use_errno=True)
-            libc.prctl(1, signal.SIGKILL)          # PR_SET_PDEATHSIG
-        except (OSError, AttributeError):
-            pass
-    if os.getppid() != parent_pid:                 # the parent died before prctl
-        os._exit(1)
-
-
-def _worker_main(conn, parent_pid: int, inherited_fds: list[int]) -> None:
+def _worker_main(conn, parent_pid: int, inherited_fds: list[int], task: Callable) -> None:
     # started with the stop signals held back (run_workers' spawn): the parent's handlers, its
     # remembered stop and its unraisable hook are replaced before a signal can reach them
     signal.signal(signal.SIGINT, signal.SIG_IGN)
@@ -71,7 +46,7 @@ def _worker_main(conn, parent_pid: int, inherited_fds: list[int]) -> None:
     sys.unraisablehook = sys.__unraisablehook__
     if hasattr(signal, "pthread_sigmask"):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
-    _die_with_parent(parent_pid)
+    die_with_parent(parent_pid)
     for fd in inherited_fds:       # the parent's folder lock must die with the parent
         try:
             os.close(fd)
@@ -79,22 +54,22 @@ def _worker_main(conn, parent_pid: int, inherited_fds: list[int]) -> None:
             pass
     while True:
         try:
-            task = conn.recv()
+            job = conn.recv()
         except (EOFError, OSError):
             break
-        if task is None:
+        if job is None:
             break
         try:
-            conn.send(evaluate_task(*task))
+            conn.send(task(*job))
         except OSError:
             break
 
 
 class _Worker:
-    def __init__(self, context, inherited_fds: list[int]):
+    def __init__(self, context, inherited_fds: list[int], task: Callable):
         self.conn, child = context.Pipe()
         self.process = context.Process(target=_worker_main, daemon=True,
-                                       args=(child, os.getpid(), inherited_fds))
+                                       args=(child, os.getpid(), inherited_fds, task))
         self.process.start()
         child.close()
         self.task: tuple | None = None
@@ -118,9 +93,11 @@ def _death(code: int | None) -> str:
 
 
 def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str, dict], None],
-                inherited_fds: list[int] = (), on_idle: Callable[[], None] | None = None
-                ) -> None:
-    """Evaluate ``tasks`` (key -> arguments of :func:`evaluate_task` after the key) in ``workers`` processes.
+                inherited_fds: list[int] = (), on_idle: Callable[[], None] | None = None,
+                *, task: Callable[..., tuple[str, dict]]) -> None:
+    """Evaluate ``tasks`` in ``workers`` processes: each worker calls ``task(key, *tasks[key])``,
+    which returns ``(key, outcome)`` (:func:`rvsim.doe.runner.evaluate_task`; a module-level
+    function, so that a spawned worker can unpickle it).
 
     ``on_result(key, outcome)`` is called in this process as each run finishes.  ``on_idle()``
     is called once, the first time a worker finds no run left while another still works: a
@@ -142,7 +119,7 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
         # the child has its own handlers, and in the parent until the worker is in the pool
         with signals_blocked():
             try:
-                worker = _Worker(context, fds)
+                worker = _Worker(context, fds, task)
             except OSError as exc:
                 start_failure.append(f"{type(exc).__name__}: {exc}")
                 return None

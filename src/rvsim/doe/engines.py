@@ -13,10 +13,12 @@ from __future__ import annotations
 
 import time
 import traceback
+from typing import Callable
 
 from ..errors import InputFileError, SimulationError
 
-__all__ = ["ENGINES", "DEFAULT_ENGINE", "evaluate_quasi_static", "engine_options",
+__all__ = ["ENGINES", "DEFAULT_ENGINE", "evaluate_quasi_static", "evaluate_dynamic",
+           "engine_options", "compact_history", "EVALUATORS", "register_evaluator",
            "metric_columns"]
 
 DEFAULT_ENGINE = "dynamic"
@@ -95,3 +97,61 @@ def evaluate_quasi_static(reducer, *, hysteresis: bool = False, positions: int =
     except Exception as exc:  # noqa: BLE001 - a failed row must not stop the study
         return {"status": "error", "error": f"{type(exc).__name__}: {exc}", "metrics": {},
                 "wall_s": time.perf_counter() - start, "detail": traceback.format_exc(limit=3)}
+
+
+def evaluate_dynamic(reducer, *, time_step: float, scheme: str = "explicit", **_) -> dict:
+    """One run of the dynamic simulation at ``time_step`` with the integration ``scheme``;
+    never raises (the outcome carries the status; moved from ``rvsim.doe.runner.evaluate``,
+    issue 31 step 7)."""
+    from ..dynamics import simulate
+
+    try:
+        result = simulate(reducer, time_step=time_step, raise_on_failure=False, scheme=scheme)
+        outcome = {"status": result.status, "wall_s": result.wall_s, "metrics": {}}
+        if result.status != "ok":
+            outcome["error"] = f"simulation {result.status.replace('_', ' ')} at step " \
+                               f"{result.steps}"
+        try:
+            outcome["metrics"] = result.summary()
+            outcome["history"] = compact_history(result)
+        except Exception:  # noqa: BLE001 - a stopped run may have too few samples
+            if result.status == "ok":
+                raise
+        return outcome
+    except Exception as exc:  # noqa: BLE001 - a failed row must not stop the study
+        return {"status": "error", "error": f"{type(exc).__name__}: {exc}",
+                "metrics": {}, "detail": traceback.format_exc(limit=3)}
+
+
+def compact_history(result, rate: float = 1000.0) -> bytes:
+    """Time, input and output speed and TE at ``rate`` Hz, as compressed .npz bytes."""
+    import io
+
+    import numpy as np
+
+    sample = result.time[1] - result.time[0] if len(result.time) > 1 else 1.0 / rate
+    step = max(1, int(round(1.0 / (rate * sample))))
+    buffer = io.BytesIO()
+    np.savez_compressed(buffer, time=result.time[::step], omega_in=result.omega_in[::step],
+                        omega_out=result.omega_out[::step], te=result.te[::step],
+                        ratio=np.array(result.ratio), steady_start=np.array(result.steady_start))
+    return buffer.getvalue()
+
+
+def _quasi_static(reducer, *, hysteresis: bool = False, **_) -> dict:
+    return evaluate_quasi_static(reducer, hysteresis=hysteresis)
+
+
+#: the evaluators of a study's runs by engine name (issue 31 step 7): each is called as
+#: ``evaluator(reducer, *, time_step, hysteresis, positions, scheme)`` and returns an outcome
+#: ``{status, metrics, error, ...}`` without raising.  doe's own two are here; a package above
+#: doe registers its own (:mod:`rvsim.tolerance.engine` registers "tolerance"), so that doe
+#: never imports it
+EVALUATORS: dict[str, Callable[..., dict]] = {"dynamic": evaluate_dynamic,
+                                              "quasi-static": _quasi_static}
+
+
+def register_evaluator(name: str, evaluator: Callable[..., dict]) -> Callable[..., dict]:
+    """Make ``evaluator`` the engine ``name`` of :func:`rvsim.doe.runner.evaluate`."""
+    EVALUATORS[name] = evaluator
+    return evaluator

@@ -21,11 +21,11 @@ def prepare_outputs() -> None:
     import statsmodels.regression.linear_model  # noqa: F401
     import patsy  # noqa: F401
 
-    from .. import report  # noqa: F401
+    from .. import html  # noqa: F401     the report's building blocks (a layer below doe)
     from ..analysis import anova, interactions, range_analysis  # noqa: F401
-    from ..plots import _pyplot
+    from ..plots import pyplot
 
-    _pyplot()
+    pyplot()
 
 
 def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
@@ -37,11 +37,10 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
     """
     folder = Path(folder)
     from ..analysis._table import drop_failed_runs
+    from ..analysis.indices import response_bench_note, response_label
 
     ok, _ = drop_failed_runs(results)
     figure = None
-    from ..analysis.indices import response_bench_note, response_label
-
     try:
         analysis = analyze_table(ok, response, factors, alpha=alpha)
         analysis["runs_ok"] = int(len(ok))

@@ -14,7 +14,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import os
-import traceback
+import signal
 from pathlib import Path
 from typing import Callable
 
@@ -26,71 +26,48 @@ from ..dynamics.model import EXPLICIT, SCHEMES
 from ..dynamics.simulate import default_time_step
 from ..errors import InputFileError, ParameterError, Terminated
 from ..parameters import Reducer
-from ._workers import evaluate_task, run_workers
+from ._workers import TEST_KILL_ENV, run_workers
+from .engines import EVALUATORS, compact_history
 from .folder import check_not_foreign, check_same_study, held_lock_fds, lock_folder
 from .store import ResultStore, run_key
 from .study import Study
 
-__all__ = ["run", "evaluate", "compact_history", "StudyTerminated"]
+__all__ = ["run", "evaluate", "evaluate_task", "compact_history", "run_local", "run_dask",
+           "check_scheduler", "StudyTerminated"]
 
 
-def evaluate(reducer: Reducer, time_step: float, engine: str = "dynamic",
+def evaluate(reducer: Reducer, time_step: float, engine="dynamic",
              hysteresis: bool = False, positions: int = 360, scheme: str = "explicit") -> dict:
     """Evaluate one run; never raises (the outcome carries status and error).
 
-    ``engine`` is "dynamic" (a simulation at ``time_step`` with the integration ``scheme``) or
-    "quasi-static"
+    ``engine`` names an evaluator of :data:`rvsim.doe.engines.EVALUATORS` or is one (issue 31
+    step 7: one protocol, no dispatch by name on packages above doe): "dynamic" (a
+    simulation at ``time_step`` with the integration ``scheme``), "quasi-static"
     (:func:`rvsim.doe.engines.evaluate_quasi_static`, with the torque-reversal test when
-    ``hysteresis``).  A simulation that stops (even at step 0) keeps its own status; "error" is
-    reserved for an exception of the code itself.  ``engine`` "tolerance" evaluates one
-    Monte Carlo reducer (:func:`rvsim.tolerance.engine.evaluate_sample`, ``positions`` per
-    output revolution).
+    ``hysteresis``) and, registered by :mod:`rvsim.tolerance.engine` once it is imported,
+    "tolerance" (one Monte Carlo reducer, ``positions`` per output revolution).  A
+    simulation that stops (even at step 0) keeps its own status; "error" is reserved for an
+    exception of the code itself.
     """
-    if engine not in ("dynamic", "quasi-static", "tolerance"):   # a caller's mistake: said
+    evaluator = engine if callable(engine) else EVALUATORS.get(engine)
+    if evaluator is None:        # a caller's mistake: said
+        known = list(EVALUATORS)
+        names = ", ".join(known[:-1]) + f" or {known[-1]}" if len(known) > 1 else known[0]
         return {"status": "error", "metrics": {},
-                "error": f"ParameterError: unknown engine {engine!r} (dynamic, quasi-static "
-                         "or tolerance)"}
-    if engine == "tolerance":
-        from ..tolerance.engine import evaluate_sample
-
-        return evaluate_sample(reducer, positions)
-    if engine == "quasi-static":
-        from .engines import evaluate_quasi_static
-
-        return evaluate_quasi_static(reducer, hysteresis=hysteresis)
-    from ..dynamics import simulate
-
-    try:
-        result = simulate(reducer, time_step=time_step, raise_on_failure=False, scheme=scheme)
-        outcome = {"status": result.status, "wall_s": result.wall_s, "metrics": {}}
-        if result.status != "ok":
-            outcome["error"] = f"simulation {result.status.replace('_', ' ')} at step " \
-                               f"{result.steps}"
-        try:
-            outcome["metrics"] = result.summary()
-            outcome["history"] = compact_history(result)
-        except Exception:  # noqa: BLE001 - a stopped run may have too few samples
-            if result.status == "ok":
-                raise
-        return outcome
-    except Exception as exc:  # noqa: BLE001 - a failed row must not stop the study
-        return {"status": "error", "error": f"{type(exc).__name__}: {exc}",
-                "metrics": {}, "detail": traceback.format_exc(limit=3)}
+                "error": f"ParameterError: unknown engine {engine!r} ({names})"}
+    return evaluator(reducer, time_step=time_step, hysteresis=hysteresis, positions=positions,
+                     scheme=scheme)
 
 
-def compact_history(result, rate: float = 1000.0) -> bytes:
-    """Time, input and output speed and TE at ``rate`` Hz, as compressed .npz bytes."""
-    import io
-
-    import numpy as np
-
-    sample = result.time[1] - result.time[0] if len(result.time) > 1 else 1.0 / rate
-    step = max(1, int(round(1.0 / (rate * sample))))
-    buffer = io.BytesIO()
-    np.savez_compressed(buffer, time=result.time[::step], omega_in=result.omega_in[::step],
-                        omega_out=result.omega_out[::step], te=result.te[::step],
-                        ratio=np.array(result.ratio), steady_start=np.array(result.steady_start))
-    return buffer.getvalue()
+def evaluate_task(key: str, reducer, time_step: float, engine="dynamic",
+                  hysteresis: bool = False, positions: int = 360,
+                  scheme: str = "explicit") -> tuple[str, dict]:
+    """Evaluate one run in a worker (the entry point of local and Dask workers; moved from
+    ``rvsim.doe._workers``, issue 31 step 8).  Looks :func:`evaluate` up when called."""
+    doomed = os.environ.get(TEST_KILL_ENV)
+    if doomed and key.startswith(doomed):
+        os.kill(os.getpid(), signal.SIGKILL)
+    return key, evaluate(reducer, time_step, engine, hysteresis, positions, scheme)
 
 
 def _progress(total: int, initial: int, enabled: bool):
@@ -136,7 +113,7 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
             except ParameterError as exc:
                 raise ParameterError(exc.field, f"{exc.reason} (study run {number})") from None
     if scheduler:                            # the input's own errors first, then the cluster
-        _check_scheduler(scheduler)          # before anything is written
+        check_scheduler(scheduler)           # before anything is written
     definition = _definition(study, time_step, reducers[0])
     # the engine is part of a run's identity: a dynamic and a quasi-static result of the same
     # reducer are different rows
@@ -169,9 +146,9 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
                     bar.update(1)
 
                 if scheduler and todo:
-                    _run_dask(todo, options, scheduler, store_result)
+                    run_dask(todo, options, scheduler, store_result)
                 elif todo:
-                    _run_local(todo, options, workers, store_result, prepare)
+                    run_local(todo, options, workers, store_result, prepare)
             done = store.finished()
         finally:
             store.close()
@@ -185,13 +162,16 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
 RETRIED_ON_RESUME = "worker_died"
 
 
-def _run_local(todo: dict, options: tuple, workers: int | None, store_result,
+def run_local(todo: dict, options: tuple, workers: int | None, store_result,
                on_idle: Callable[[], None] | None = None) -> None:
-    """``options``: the (time_step, engine, hysteresis, positions, scheme) of
-    :func:`evaluate`; ``on_idle``: see :func:`rvsim.doe._workers.run_workers`."""
+    """Evaluate the runs ``todo`` (key -> reducer) in ``workers`` local processes (default:
+    one per core), calling ``store_result(key, outcome)`` as each finishes.  ``options``: the
+    (time_step, engine, hysteresis, positions, scheme) of :func:`evaluate`; ``on_idle``: see
+    :func:`rvsim.doe._workers.run_workers`."""
     workers = workers or os.cpu_count() or 1
     run_workers({key: (reducer, *options) for key, reducer in todo.items()},
-                min(workers, len(todo)), store_result, held_lock_fds(), on_idle)
+                min(workers, len(todo)), store_result, held_lock_fds(), on_idle,
+                task=evaluate_task)
 
 
 def _scheduler_address(scheduler: str) -> tuple[str, int]:
@@ -210,7 +190,7 @@ def _scheduler_address(scheduler: str) -> tuple[str, int]:
     return parts.hostname, port or 8786
 
 
-def _check_scheduler(scheduler: str) -> None:
+def check_scheduler(scheduler: str) -> None:
     """InputFileError unless ``scheduler`` is an address that accepts connections."""
     import socket
 
@@ -220,7 +200,8 @@ def _check_scheduler(scheduler: str) -> None:
         raise InputFileError(f"cannot reach the Dask scheduler at {scheduler} ({exc})") from None
 
 
-def _run_dask(todo: dict, options: tuple, scheduler: str, store_result) -> None:
+def run_dask(todo: dict, options: tuple, scheduler: str, store_result) -> None:
+    """As :func:`run_local`, on the workers of the Dask cluster at ``scheduler``."""
     from distributed import Client, as_completed as dask_completed
 
     try:

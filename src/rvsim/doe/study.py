@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .._files import read_toml
+from .._files import read_study_toml
 from ..errors import InputFileError, ParameterError
 from ..parameters import (BUILT_IN_SETS, RV40E, TABLE2_FACTORS, Reducer, load_toml, resolve_name,
                           with_values)
@@ -222,7 +222,7 @@ BUILT_IN_STUDIES = {"paper-l36": paper_l36}
 def load_study(path: str | Path) -> Study:
     """Read a study TOML file (see module docstring); every error names the key at fault."""
     path = Path(path)
-    data = _read_toml(path)
+    data = read_study_toml(path)
     known = {"name", "design", "samples", "seed", "params", "set", "factors", "time_step",
              "engine", "hysteresis", "scheme"}
     extra = set(data) - known
@@ -275,10 +275,6 @@ def load_study(path: str | Path) -> Study:
                                  "table's)")
     study.reducers()  # validate every run now
     return study
-
-
-def _read_toml(path: Path) -> dict:
-    return read_toml(path, "TOML study file")
 
 
 def _is_int(value) -> bool:

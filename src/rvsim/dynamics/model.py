@@ -14,7 +14,7 @@ import numpy as np
 from ..geometry.cycloid import profile_offset
 from ..geometry.deviations import bore_offsets, eccentric_errors, hole_offsets, pin_table
 from ..geometry.involute import gear_geometry
-from ..fe.sizes import check_element_sizes
+from ..parameters.fe_sizes import check_element_sizes
 from ..friction import fill_constants as fill_friction_constants
 from ..parameters import Reducer
 from ..physics import _layout as L

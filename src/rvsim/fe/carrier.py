@@ -36,7 +36,7 @@ CARRIER_FE_VERSION = 1
 def carrier_geometry(reducer: Reducer, thickness: float | None = None) -> dict:
     """Everything the carrier's mesh depends on, in SI (the cache key's input)."""
     from ..geometry.involute import gear_geometry
-    from .sizes import disc_element_size
+    from ..parameters.fe_sizes import disc_element_size
 
     c, k, m = reducer.cycloid, reducer.crank, reducer.materials.carrier
     return {"radius": c.carrier_radius, "bore": c.disc_bore_radius,

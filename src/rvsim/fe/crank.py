@@ -34,10 +34,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..parameters import Reducer
+from ..parameters.fe_sizes import check_crank_element_size
 from . import cache
 from .elasticity import Factor
 from .mesh import drop_unused_nodes, gmsh_elements, gmsh_model, in_child
-from .sizes import check_crank_element_size
 
 __all__ = ["CRANK_ELEMENT_SIZE", "crank_geometry", "crank_table", "shaft_compliance"]
 

@@ -22,10 +22,10 @@ import scipy.sparse as sp
 
 from ..errors import ParameterError
 from ..parameters import Reducer
+from ..parameters.fe_sizes import disc_element_size
 from . import cache
 from .elasticity import PlaneStressBody, edge_load
 from .mesh import Circle, disc_outline, mesh_plane_region
-from .sizes import disc_element_size
 
 __all__ = ["DiscTable", "disc_body", "disc_geometry", "disc_table", "disc_tables", "FE_VERSION"]
 

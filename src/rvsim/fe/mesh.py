@@ -302,9 +302,9 @@ def _child_main(send, parent: int, function, args) -> None:
             signal.signal(number, signal.SIG_IGN if number == signal.SIGINT else signal.SIG_DFL)
     if hasattr(signal, "pthread_sigmask"):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT, signal.SIGTERM])
-    from ..doe._workers import _die_with_parent
+    from .._stopping import die_with_parent
 
-    _die_with_parent(parent)
+    die_with_parent(parent)
     try:
         result = (True, function(*args))
     except Exception as exc:          # noqa: BLE001 - raised again in the parent

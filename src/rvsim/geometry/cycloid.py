@@ -24,6 +24,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..parameters import Reducer
 from ._curve import curvatures, pin_gaps_at, profile_points
+from .deviations import pin_centres, pin_table   # pin_centres public here too
 
 __all__ = [
     "CycloidProfile", "profile_of", "pin_centres", "profile_offset", "nominal_disc_pose",
@@ -72,24 +73,6 @@ def profile_of(reducer: Reducer) -> CycloidProfile:
     )
 
 
-def pin_centres(reducer: Reducer) -> np.ndarray:
-    """Actual pin centres in housing axes, shape (zp, 2) [m].
-
-    Pin circle r_p + H; with ``errors.pin_position_tolerance`` t > 0 every pin is moved
-    radially and along the circle by independent uniform amounts in [-t, t], drawn from
-    ``numpy.random.default_rng(errors.pin_position_seed)`` (reproducible).
-    """
-    c, e = reducer.cycloid, reducer.errors
-    gamma = 2.0 * np.pi * np.arange(c.pin_count) / c.pin_count
-    radius = np.full(c.pin_count, c.pin_circle_radius + e.pin_circle_radius)
-    if e.pin_position_tolerance > 0.0:
-        rng = np.random.default_rng(e.pin_position_seed)
-        tol = e.pin_position_tolerance
-        radius = radius + rng.uniform(-tol, tol, c.pin_count)
-        gamma = gamma + rng.uniform(-tol, tol, c.pin_count) / c.pin_circle_radius
-    return radius[:, None] * np.column_stack([np.cos(gamma), np.sin(gamma)])
-
-
 def profile_offset(reducer: Reducer, disc: int) -> tuple[float, float]:
     """Centre of disc ``disc``'s profile relative to its crank-hole pattern, in profile axes.
 
@@ -131,8 +114,6 @@ def _disc_gaps(reducer: Reducer, crank_angle: float, disc: int, extra_rotation: 
     angle = rot + extra_rotation - disc * math.pi / reducer.cycloid.disc_teeth + prof.rotation
     shift_x, shift_y = profile_offset(reducer, disc)
     clearance = prof.offset - (reducer.cycloid.pin_radius - reducer.errors.pin_radius)
-    from .deviations import pin_table
-
     return pin_gaps_at(pin_table(reducer), x + offset[0], y + offset[1], angle, shift_x,
                        shift_y, prof.generating_radius, prof.eccentricity,
                        float(prof.pin_count), clearance, disc), angle

@@ -2,6 +2,8 @@
 
 One implementation for the dynamic model, the quasi-static engine and the assembly check:
 
+* :func:`pin_centres`: the actual pin centres in housing axes (nominal circle, its error and
+  the random pin positions; moved from :mod:`.cycloid`, issue 31 step 8, which imports it).
 * :func:`pin_table`: the kernel's ``pins`` array, (zp, 3) or (zp, 3 + 2 K): pin centres
   (column 0, 1), the opening of each pin's gap by its own size and the pin-hole clearance
   (column 2: minus the radius deviation plus half the diametral pin-hole clearance), and, when
@@ -28,8 +30,9 @@ from ..errors import ParameterError
 from ..parameters import Reducer
 from ._curve import lever_arms
 
-__all__ = ["check_parts", "pin_table", "profile_deviation_samples", "eccentric_errors",
-           "hole_offsets", "bore_offsets", "SAMPLES_PER_TOOTH", "read_profile_csv"]
+__all__ = ["check_parts", "pin_centres", "pin_table", "profile_deviation_samples",
+           "eccentric_errors", "hole_offsets", "bore_offsets", "SAMPLES_PER_TOOTH",
+           "read_profile_csv"]
 
 #: samples of a disc's profile deviation per tooth (linear interpolation between them)
 SAMPLES_PER_TOOTH = 64
@@ -104,6 +107,24 @@ def profile_deviation_samples(r: Reducer, disc: int, u: np.ndarray) -> np.ndarra
     return out
 
 
+def pin_centres(reducer: Reducer) -> np.ndarray:
+    """Actual pin centres in housing axes, shape (zp, 2) [m].
+
+    Pin circle r_p + H; with ``errors.pin_position_tolerance`` t > 0 every pin is moved
+    radially and along the circle by independent uniform amounts in [-t, t], drawn from
+    ``numpy.random.default_rng(errors.pin_position_seed)`` (reproducible).
+    """
+    c, e = reducer.cycloid, reducer.errors
+    gamma = 2.0 * np.pi * np.arange(c.pin_count) / c.pin_count
+    radius = np.full(c.pin_count, c.pin_circle_radius + e.pin_circle_radius)
+    if e.pin_position_tolerance > 0.0:
+        rng = np.random.default_rng(e.pin_position_seed)
+        tol = e.pin_position_tolerance
+        radius = radius + rng.uniform(-tol, tol, c.pin_count)
+        gamma = gamma + rng.uniform(-tol, tol, c.pin_count) / c.pin_circle_radius
+    return radius[:, None] * np.column_stack([np.cos(gamma), np.sin(gamma)])
+
+
 def pin_table(r: Reducer) -> np.ndarray:
     """The kernel's ``pins`` array (module docstring), a fresh copy (built once per reducer:
     the assembly check, the model and both quasi-static tests of a Monte Carlo reducer share
@@ -113,8 +134,6 @@ def pin_table(r: Reducer) -> np.ndarray:
 
 @functools.lru_cache(maxsize=8)
 def _pin_table(r: Reducer) -> np.ndarray:
-    from .cycloid import pin_centres
-
     check_parts(r)
     p, c = r.parts, r.cycloid
     centres = pin_centres(r)

@@ -15,7 +15,8 @@ import numpy as np
 from ..parameters import Reducer
 
 __all__ = ["crank_angles", "crank_holes", "disc_count", "output_pins", "output_hole_clearance",
-           "crank_hole_radius", "pillar_angles", "neighbour_distance"]
+           "crank_hole_radius", "pillar_angles", "neighbour_distance",
+           "roller_pitch_diameter"]
 
 
 def crank_angles(reducer: Reducer) -> np.ndarray:
@@ -75,3 +76,9 @@ def neighbour_distance(radius: float, count: int) -> float:
     """Distance between the centres of neighbours of ``count`` parts evenly spaced on a circle
     of ``radius`` (pins, rollers, holes): the chord 2 r sin(pi / n) [m]."""
     return 2.0 * radius * math.sin(math.pi / count)
+
+
+def roller_pitch_diameter(inner_radius: float, roller_diameter: float) -> float:
+    """Pitch (roller-centre) diameter of a set of rollers running directly on a shaft of
+    ``inner_radius`` (the eccentric or the journal is the inner raceway) [m]."""
+    return 2.0 * inner_radius + roller_diameter

@@ -18,7 +18,7 @@ import math
 from ..errors import ParameterError
 from ..parameters import Reducer
 from .layout import crank_angles, crank_hole_radius, disc_count, neighbour_distance, \
-    pillar_angles
+    pillar_angles, roller_pitch_diameter
 
 __all__ = ["check_parts"]
 
@@ -99,8 +99,6 @@ def _check_axial_stations(r: Reducer) -> None:
 
 def _check_rolling_elements(r: Reducer) -> None:
     """Rollers and balls of a set must not overlap their neighbours on their pitch circle."""
-    from ..bearings import roller_pitch_diameter
-
     b, k = r.bearings, r.crank
     sets = []
     if b.arm_needles:

@@ -805,7 +805,8 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
     solved.  ``output_pin_out`` (points x 2 discs x output pins) receives the output pins'
     forces of the single-stage drive.
 
-    ``P_fric`` (None: frictionless) evaluates the friction at each point's virtual velocity
+    ``P_fric`` (an empty vector: frictionless; one ``sweep`` compiled for both, issue 30)
+    evaluates the friction at each point's virtual velocity
     (:func:`virtual_velocity` with ``omega[k]``, ``carrier_rate[k]``); the friction forces of
     each equilibrium go to ``friction_out`` (points x 17) and the input torque includes the
     mesh friction.
@@ -849,7 +850,7 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
                 factor = 1.0 if largest <= TRUST_START else TRUST_START / largest
                 for i in range(N_DOF):
                     q[i] += factor * dx[i] / scale[i]
-        if P_fric is None:
+        if P_fric.shape[0] == 0:
             status, iterations, torque_in = _solve_point(
                 P, q, theta_in[k], torque[k], scale, tol, max_iter, pins, pin_angle, holes,
                 crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, Q,

@@ -137,7 +137,7 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
         np.asarray(input_speed, dtype=float), (n,)).copy()
     turning = np.zeros(n) if carrier_rate is None else np.broadcast_to(
         np.asarray(carrier_rate, dtype=float), (n,)).copy()
-    P_fric = None
+    P_fric = np.zeros(0)                  # frictionless (S.sweep)
     friction = np.zeros((n, L.N_DOF))
     if has_friction(reducer) and (moving.any() or turning.any()):
         P_fric = P.copy()

@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 from .._files import atomic_write_text
-from ..report import _page, _png, _table
+from ..html import page as _page, png as _png, table as _table
 from .analysis import ARCMIN, ARCSEC
 
 __all__ = ["write_testrig_report"]
@@ -26,9 +26,9 @@ _ROWS = ("ate_pp_arcmin", "te_rms_arcsec", "forward_backward_offset_arcmin",
 
 
 def _te_figure(measured, simulated):
-    from ..plots import _pyplot
+    from ..plots import pyplot
 
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 3.4))
     for source, style, result in (("measured", "-", measured), ("model", "--", simulated)):
         if result is None:
@@ -47,9 +47,9 @@ def _te_figure(measured, simulated):
 
 
 def _spectrum_figure(measured, simulated, marks):
-    from ..plots import _pyplot
+    from ..plots import pyplot
 
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 3.4))
     lines = []
     for result in (measured, simulated):
@@ -91,9 +91,9 @@ def _spectrum_figure(measured, simulated, marks):
 
 
 def _loop_figure(measured, simulated):
-    from ..plots import _pyplot
+    from ..plots import pyplot
 
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 3.6))
     for source, style, result in (("measured", ".-", measured), ("model", "--", simulated)):
         if result is None:

@@ -28,7 +28,7 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
     from .._files import atomic_write_text
     from ..doe.folder import check_same_study, lock_folder
     from .._stopping import stop_signals
-    from ..doe.runner import _check_scheduler
+    from ..doe.runner import check_scheduler
     from ..doe.store import ResultStore
 
     folder = Path(folder)
@@ -42,7 +42,7 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
         raise InputFileError(f"{folder}: holds a tolerance allocation (allocation.json), whose "
                              "report.html this study would replace: give another --out folder")
     if scheduler:
-        _check_scheduler(scheduler)
+        check_scheduler(scheduler)
     study.nominal                                     # validated before anything is written
     from .allocation import cost_table
 

@@ -10,7 +10,9 @@ from __future__ import annotations
 import time
 import traceback
 
-__all__ = ["evaluate_sample", "METRICS", "BINDS"]
+from ..doe.engines import register_evaluator
+
+__all__ = ["evaluate_sample", "evaluate_run", "METRICS", "BINDS"]
 
 BINDS = "binds"
 #: torque steps per quarter of the torque-reversal test (the catalogue command's 50 change the
@@ -62,3 +64,13 @@ def evaluate_sample(reducer, positions: int = 360) -> dict:
     except Exception as exc:  # noqa: BLE001 - a failed sample must not stop the study
         return {"status": "error", "error": f"{type(exc).__name__}: {exc}", "metrics": {},
                 "wall_s": time.perf_counter() - start, "detail": traceback.format_exc(limit=3)}
+
+
+def evaluate_run(reducer, *, positions: int = 360, **_) -> dict:
+    """:func:`evaluate_sample` as an evaluator of the study runner
+    (:data:`rvsim.doe.engines.EVALUATORS`, engine "tolerance"; issue 31 step 7): the runner's
+    workers are handed this function, not a name doe would have to import."""
+    return evaluate_sample(reducer, positions)
+
+
+register_evaluator("tolerance", evaluate_run)

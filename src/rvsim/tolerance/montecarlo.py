@@ -53,13 +53,16 @@ def run_samples(study: ToleranceStudy, folder: Path, designs: dict[str, tuple[in
     """Evaluate every design into the store of ``folder`` (locked by the caller, or opened
     here); ``designs``: label -> (count, function returning the iterable of unit vectors).
     Returns the store keys of each design's samples, in order."""
-    from ..doe.runner import _run_dask, _run_local
+    from ..doe.runner import run_dask, run_local
     from ..doe.store import ResultStore
     from ..dynamics import DEFAULT_TIME_STEP
+    from .engine import evaluate_run, evaluate_sample
 
     own = store is None
     store = store or ResultStore(folder)
-    options = (DEFAULT_TIME_STEP, "tolerance", False, study.positions)
+    # the evaluator itself, not its name: a worker (forked, spawned or on a Dask cluster)
+    # unpickles it by reference and so imports rvsim.tolerance.engine
+    options = (DEFAULT_TIME_STEP, evaluate_run, False, study.positions)
     nominal = study.nominal
     keys: dict[str, list[str]] = {}
     total = sum(count for count, _ in designs.values())
@@ -89,14 +92,12 @@ def run_samples(study: ToleranceStudy, folder: Path, designs: dict[str, tuple[in
                         bar.update(1)
 
                     if scheduler:
-                        _run_dask(todo, options, scheduler, store_result)
+                        run_dask(todo, options, scheduler, store_result)
                     elif workers == 1:        # in this process: no worker start-up
-                        from .engine import evaluate_sample
-
                         for key, reducer in todo.items():
                             store_result(key, evaluate_sample(reducer, study.positions))
                     else:
-                        _run_local(todo, options, workers, store_result)
+                        run_local(todo, options, workers, store_result)
     finally:
         if own:
             store.close()

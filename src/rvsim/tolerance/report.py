@@ -18,9 +18,9 @@ __all__ = ["write_tolerance_report", "distribution_figure", "sobol_figure",
 
 def distribution_figure(name: str, x: np.ndarray, stats: dict):
     """Histogram and empirical cumulative distribution of one metric, p5/p50/p95 marked."""
-    from ..plots import _pyplot
+    from ..plots import pyplot
 
-    plt = _pyplot()
+    plt = pyplot()
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 3.4))
     x = np.sort(x[np.isfinite(x)])
     if x.size:
@@ -42,9 +42,9 @@ def distribution_figure(name: str, x: np.ndarray, stats: dict):
 
 def sobol_figure(metric: str, indices: dict):
     """Bar chart of S1 and ST with their 95 % confidence intervals."""
-    from ..plots import _pyplot
+    from ..plots import pyplot
 
-    plt = _pyplot()
+    plt = pyplot()
     names = list(indices)
     pos = np.arange(len(names))
     fig, ax = plt.subplots(figsize=(10, 3.4))
@@ -61,7 +61,7 @@ def sobol_figure(metric: str, indices: dict):
 
 
 def write_tolerance_report(folder: Path, summary: dict, values: dict, status) -> Path:
-    from ..report import _page, _png, _table
+    from ..html import page as _page, png as _png, table as _table
 
     body = [f"<h1>Tolerance study: {html.escape(summary['study'])}</h1>",
             f"<p>{summary['samples']} reducers ({html.escape(summary['reducer'])}) drawn from "
@@ -105,7 +105,7 @@ def write_tolerance_report(folder: Path, summary: dict, values: dict, status) ->
 
 
 def write_allocation_report(folder: Path, result: dict) -> Path:
-    from ..report import _page, _table
+    from ..html import page as _page, table as _table
 
     body = [f"<h1>Tolerance allocation: {html.escape(result['study'])}</h1>",
             f"<p>status: <b>{html.escape(result['status'])}</b>; relative cost "

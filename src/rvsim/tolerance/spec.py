@@ -364,10 +364,10 @@ def is_tolerance_file(path: str | Path) -> bool:
 
 def load_tolerance_study(path: str | Path) -> ToleranceStudy:
     """Read a tolerance study TOML file (module docstring); errors name the key at fault."""
-    from ..doe.study import _read_toml
+    from .._files import read_study_toml
 
     path = Path(path)
-    data = _read_toml(path)
+    data = read_study_toml(path)
     known = {"name", "params", "samples", "seed", "positions", "set", "tolerances", "cost",
              "profile_csv"}
     extra = set(data) - known

@@ -2,8 +2,11 @@
 (docs/decisions.md, "Admissible finite-element sizes").
 
 Imports nothing heavy: :func:`rvsim.parameters.validate` applies :func:`check_element_sizes`
-to every reducer, so that a study, a tolerance run or ``rvsim params`` refuses an inadmissible
-size before anything is meshed or run.
+to every reducer (through :func:`rvsim.geometry.checks.check_geometry`), so that a study, a
+tolerance run or ``rvsim params`` refuses an inadmissible size before anything is meshed or
+run.  A rule on parameter values only (eccentricity, journal radius, the flexibility flags),
+so it lives with the parameters, below both the geometry checks and the meshers of
+:mod:`rvsim.fe` that use it (moved from ``rvsim.fe.sizes``, issue 31 step 4).
 """
 
 from __future__ import annotations

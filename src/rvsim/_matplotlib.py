@@ -1,0 +1,27 @@
+"""matplotlib, set up once for every figure of rvsim (issue 31 step 6: moved out of
+:mod:`rvsim.plots` so that the figures of :mod:`rvsim.analysis` and the reports use it without
+importing a higher layer).  Foundation layer: imports nothing of rvsim; matplotlib is imported
+on the first call only (the command line starts without it, tests/unit/test_lazy_imports.py).
+"""
+
+from __future__ import annotations
+
+__all__ = ["pyplot", "plain"]
+
+
+def pyplot():
+    """matplotlib.pyplot with the non-interactive Agg backend (unless one is already chosen),
+    imported on first use."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plain(text) -> str:
+    """A user's text (a factor label, a column name) as matplotlib draws it literally: a "$"
+    would start its mathtext, and a label like "x$_$" failed the whole figure (a reviewer's
+    study ended in a traceback after all its runs)."""
+    return str(text).replace("$", r"\$")

@@ -1,0 +1,92 @@
+"""HTML building blocks of rvsim's self-contained reports: one page, tables, figures embedded
+as PNG data, no network requests (issue 31 step 5: moved out of :mod:`rvsim.report` unchanged,
+so that the reports of studies, tolerance runs, test-rig fits and efficiency maps share them
+without reaching into another module's private names).
+
+Layer "figures and HTML" (docs/architecture.md): imports only the foundation and, inside the
+functions, :mod:`rvsim.plots` (figures) and :mod:`rvsim.parameters` (the parameters table).
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .errors import InputFileError
+
+__all__ = ["page", "table", "png", "png_bytes", "parameters_table", "target", "CSS"]
+
+#: the style sheet of every report page
+CSS = """
+body{font-family:system-ui,-apple-system,Segoe UI,Roboto,sans-serif;margin:2em auto;
+max-width:1100px;color:#222;padding:0 1em}
+h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;
+margin-top:2em}table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
+th,td{border:1px solid #ccc;padding:.2em .5em;text-align:right}th{background:#f3f3f3}
+td.l,th.l{text-align:left}.sig{font-weight:bold;background:#fff3cd}img{max-width:100%}
+.note{color:#555;font-size:.9em}.summary td{text-align:left}
+"""
+
+
+def png(fig) -> str:
+    """A matplotlib figure as an ``<img>`` element with its PNG inline."""
+    from .plots import figure_to_png
+
+    return png_bytes(figure_to_png(fig))
+
+
+def png_bytes(png: bytes) -> str:
+    """PNG bytes as an ``<img>`` element (data URL)."""
+    data = base64.b64encode(png).decode("ascii")
+    return f'<img alt="figure" src="data:image/png;base64,{data}">'
+
+
+def table(frame: pd.DataFrame, *, index: bool = True, highlight=None) -> str:
+    """``frame`` as an HTML table (numbers to 4 significant digits, right-aligned; text
+    escaped); rows whose index is in ``highlight`` are marked."""
+    rows = []
+    head = ([f'<th class="l">{html.escape(str(frame.index.name or ""))}</th>'] if index else [])
+    head += [f"<th>{html.escape(str(c))}</th>" for c in frame.columns]
+    rows.append("<tr>" + "".join(head) + "</tr>")
+    for idx, row in frame.iterrows():
+        cls = ' class="sig"' if highlight and idx in highlight else ""
+        cells = [f'<td class="l">{html.escape(str(idx))}</td>'] if index else []
+        for value in row:
+            numeric = isinstance(value, (int, float, np.number)) and not isinstance(value, bool)
+            if isinstance(value, float):
+                text = "" if math.isnan(value) else f"{value:.4g}"
+            else:
+                text = str(value)
+            align = "" if numeric else ' class="l"'
+            cells.append(f"<td{align}>{html.escape(text)}</td>")
+        rows.append(f"<tr{cls}>" + "".join(cells) + "</tr>")
+    return "<table>" + "".join(rows) + "</table>"
+
+
+def page(title: str, body: list[str]) -> str:
+    """A complete HTML page of the ``body`` fragments, with the report style sheet."""
+    return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>"
+            f"{html.escape(title)}</title><style>{CSS}</style></head><body>"
+            + "\n".join(body) + "</body></html>")
+
+
+def parameters_table(reducer) -> str:
+    """The reducer's parameters in user units (materials and operating left out)."""
+    from .parameters import parameter_table
+
+    params = pd.DataFrame(parameter_table(reducer)).set_index("name")
+    return table(params[[not name.startswith(("materials", "operating"))
+                          for name in params.index]])
+
+
+def target(path: str | Path) -> Path:
+    """``path`` of a report to write; :class:`InputFileError` if its folder does not exist."""
+    path = Path(path)
+    if not path.parent.exists():
+        raise InputFileError(f"{path}: folder {path.parent} does not exist")
+    return path
