@@ -175,3 +175,18 @@ def test_the_engines_metric_lists_are_what_runs_give(qs_folder):
     dynamic = set(_result(1.5).summary()) - {"status", "reducer"}
     assert dynamic <= set(metric_columns("dynamic"))
     assert {"ate_arcmin", "te_mean_arcmin", "te_window_revolutions"} <= dynamic
+
+
+def test_a_table_whose_runs_have_no_ate_is_refused_with_the_reason(tmp_path, cli):
+    """A dynamic study's rows (steady windows shorter than a revolution): ate_arcmin empty."""
+    from tests.conftest import reference_table
+
+    table = reference_table("table3_l36_results.csv")
+    table = table.rename(columns={"te_arcmin": "te_mean_arcmin"}).drop(columns=["note"])
+    table["ate_arcmin"] = float("nan")
+    table["te_window_revolutions"] = 0.4
+    path = tmp_path / "results.csv"
+    table.to_csv(path, index=False)
+    res = cli("analyze", str(path), "--response", "ate_arcmin")
+    _one_line(res, "holds no number", "te_window_revolutions", "te_mean_arcmin")
+    assert cli("analyze", str(path), "--json").code == 0       # the default: the paper's index

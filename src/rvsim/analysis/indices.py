@@ -88,6 +88,8 @@ def check_response(table: pd.DataFrame, response: str | None, *, factors=(),
         what = "the run number" if response == "run" else "a factor column"
         raise ParameterError(option, f"'{response}' is {what}, not a response ({available})")
     if not _numeric(table[response]).notna().any():
+        why = (" (their windows cover less than an output revolution: te_window_revolutions)"
+               if response == "ate_arcmin" else "")
         raise ParameterError(option, f"response column '{response}' holds no number in the "
-                                     f"finished runs ({available})")
+                                     f"finished runs{why} ({available})")
     return response
