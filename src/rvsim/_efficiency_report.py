@@ -60,5 +60,9 @@ def write_efficiency_report(result, reducer, path: str | Path) -> Path:
             "<h2>No-load running torque (input) [N*m]</h2>", _table(running),
             f"<p>Starting torque (input): {summary['starting_torque_nm']:.4g} N*m; "
             f"computed in {summary['wall_s']:.2f} s, status {summary['status']}.</p>",
+            f"<p>Lubricant at {summary['temperature_c']:g} degC: "
+            f"{summary['oil_viscosity_mm2_s']:.4g} mm^2/s (ASTM D341); lip seals' drag "
+            f"(ISO/TR 14179-2): {summary['seal_torque_input_nm']:.4g} N*m on the input, "
+            f"{summary['seal_torque_output_nm']:.4g} N*m on the output.</p>",
             "<h2>Parameters</h2>", _parameters_table(reducer)]
     return atomic_write_text(path, _page(f"rvsim efficiency {reducer.name}", body))

@@ -12,7 +12,8 @@ import math
 from .parameters import Reducer
 
 __all__ = ["TYPICAL_FRICTION", "TYPICAL_FRICTION_SOURCES", "gear_loss_factor",
-           "bearing_diameters", "pin_friction_coefficient", "has_friction", "fill_constants"]
+           "bearing_diameters", "pin_friction_coefficient", "has_friction", "fill_constants",
+           "lubricant_viscosity", "seal_torques", "check_losses"]
 
 from .parameters.friction_values import TYPICAL_FRICTION, TYPICAL_FRICTION_SOURCES  # noqa: E402,F401
 
@@ -62,12 +63,77 @@ def pin_friction_coefficient(reducer: Reducer) -> float:
     return min(mu, f.pin_groove_coefficient + f.pin_rolling_coefficient)
 
 
+def lubricant_viscosity(reducer: Reducer) -> float:
+    """Kinematic viscosity [m^2/s] of the lubricant at ``operating.temperature``: with
+    ``friction.oil_viscosity_100`` the ASTM D341 law through it and ``friction.oil_viscosity``
+    (40 degC), else ``friction.oil_viscosity`` itself, which then only holds at 40 degC (another
+    temperature without a law is refused).  Outside the law's range (below the cloud point,
+    or hotter than where it gives 2 mm^2/s) raises :class:`ParameterError`."""
+    from .errors import ParameterError
+    from .physics.losses import (REFERENCE_TEMPERATURES, WALTHER_MIN_VISCOSITY,
+                                 walther_viscosity)
+
+    f, temperature = reducer.friction, reducer.operating.temperature
+    t_40, t_100 = REFERENCE_TEMPERATURES
+    if f.oil_viscosity_100 == 0.0:
+        if temperature != t_40:
+            raise ParameterError("operating.temperature", f"{temperature:g} degC needs a "
+                                 "viscosity-temperature law: set friction.oil_viscosity_100 "
+                                 f"(friction.oil_viscosity is the viscosity at {t_40:g} degC)")
+        return f.oil_viscosity
+    if f.oil_viscosity_100 >= f.oil_viscosity:
+        raise ParameterError("friction.oil_viscosity_100", f"{f.oil_viscosity_100 * 1e6:g} "
+                             f"mm^2/s must be below the {t_40:g} degC viscosity "
+                             f"friction.oil_viscosity ({f.oil_viscosity * 1e6:g} mm^2/s)")
+    if f.oil_viscosity_100 < WALTHER_MIN_VISCOSITY:
+        raise ParameterError("friction.oil_viscosity_100", f"{f.oil_viscosity_100 * 1e6:g} "
+                             f"mm^2/s: the law (ASTM D341) holds from "
+                             f"{WALTHER_MIN_VISCOSITY * 1e6:g} mm^2/s")
+    if temperature < f.oil_cloud_point:
+        raise ParameterError("operating.temperature", f"{temperature:g} degC is below the "
+                             f"lubricant's cloud point friction.oil_cloud_point = "
+                             f"{f.oil_cloud_point:g} degC (ASTM D341 holds from it up)")
+    nu = walther_viscosity(temperature, f.oil_viscosity, f.oil_viscosity_100)
+    if not nu >= WALTHER_MIN_VISCOSITY:
+        raise ParameterError("operating.temperature", f"{temperature:g} degC: the viscosity "
+                             f"law gives {nu * 1e6:.3g} mm^2/s, below the "
+                             f"{WALTHER_MIN_VISCOSITY * 1e6:g} mm^2/s it holds for")
+    return nu
+
+
+def seal_torques(reducer: Reducer) -> tuple[float, float]:
+    """Drag torques [N*m] of the input shaft's and of the output's lip seals, all seals of
+    each together (ISO/TR 14179-2, :func:`rvsim.physics.losses.seal_torque`).  A seal count
+    without its diameter raises :class:`ParameterError`."""
+    from .errors import ParameterError
+    from .physics.losses import seal_torque
+
+    f = reducer.friction
+    torques = []
+    for side, seals, diameter in (("input", f.input_seal_count, f.input_seal_diameter),
+                                  ("output", f.output_seal_count, f.output_seal_diameter)):
+        if seals > 0 and diameter <= 0.0:
+            raise ParameterError(f"friction.{side}_seal_diameter", f"must be given (> 0 mm) "
+                                 f"with friction.{side}_seal_count = {seals}")
+        torques.append(seals * seal_torque(diameter) if seals > 0 else 0.0)
+    return torques[0], torques[1]
+
+
+def check_losses(reducer: Reducer) -> Reducer:
+    """Refuse (:class:`ParameterError`) a temperature outside the viscosity law and a seal
+    without its diameter before anything runs; return ``reducer``."""
+    lubricant_viscosity(reducer)
+    seal_torques(reducer)
+    return reducer
+
+
 def has_friction(reducer: Reducer) -> bool:
     """True when any friction element of the reducer is active."""
     f = reducer.friction
     return (pin_friction_coefficient(reducer) > 0.0 or f.mesh_coefficient > 0.0
             or f.arm_bearing_f0 > 0.0 or f.arm_bearing_f1 > 0.0 or f.support_bearing_f0 > 0.0
-            or f.support_bearing_f1 > 0.0)
+            or f.support_bearing_f1 > 0.0 or f.input_seal_count > 0
+            or f.output_seal_count > 0)
 
 
 def fill_constants(reducer: Reducer, P) -> None:
@@ -77,9 +143,13 @@ def fill_constants(reducer: Reducer, P) -> None:
     f = reducer.friction
     P[L.MU] = pin_friction_coefficient(reducer)
     P[L.MESH_LOSS] = f.mesh_coefficient * gear_loss_factor(reducer)
-    P[L.NU_OIL] = f.oil_viscosity
+    P[L.NU_OIL] = lubricant_viscosity(reducer)
     P[L.ARM_DM], P[L.SUP_DM] = bearing_diameters(reducer)
     P[L.ARM_F0], P[L.ARM_F1] = f.arm_bearing_f0, f.arm_bearing_f1
     P[L.SUP_F0], P[L.SUP_F1] = f.support_bearing_f0, f.support_bearing_f1
+    P[L.SEAL_IN], P[L.SEAL_OUT] = seal_torques(reducer)
+    P[L.SEAL_IN_R] = 0.5 * f.input_seal_diameter
+    P[L.SEAL_OUT_R] = 0.5 * f.output_seal_diameter
     bearings = f.arm_bearing_f0 + f.arm_bearing_f1 + f.support_bearing_f0 + f.support_bearing_f1
-    P[L.FRICTION_ON] = 1.0 if (P[L.MESH_LOSS] > 0.0 or bearings > 0.0) else 0.0
+    seals = P[L.SEAL_IN] + P[L.SEAL_OUT]
+    P[L.FRICTION_ON] = 1.0 if (P[L.MESH_LOSS] > 0.0 or bearings > 0.0 or seals > 0.0) else 0.0

@@ -35,6 +35,7 @@ TO_SI: dict[str, float] = {
     "N*m": 1.0,
     "Pa": 1.0,
     "GPa": 1e9,
+    "degC": 1.0,     # temperatures stay in degC (an SI derived unit; an offset, not a factor)
     "kg": 1.0,
     "kg/m^3": 1.0,
     "kg*m^2": 1.0,

@@ -82,7 +82,9 @@ def reducer_from_args(args: argparse.Namespace) -> Reducer:
                              f"'{reducer.name}' is a single-stage drive")
     values = dict(preset or {})
     values.update(parse_assignment(a) for a in args.assignments)
-    return with_values(reducer, values)
+    from ..friction import check_losses
+
+    return check_losses(with_values(reducer, values))
 
 
 def _reducer_of(params: str | None) -> Reducer:

@@ -87,6 +87,10 @@ def _efficiency(args: argparse.Namespace) -> int:
                         for r in summary["no_load_running_torque"])
     print(f"no-load running torque (input): {running}")
     print(f"starting torque (input): {summary['starting_torque_nm']:.4g} N*m")
+    print(f"lubricant at {summary['temperature_c']:g} degC: "
+          f"{summary['oil_viscosity_mm2_s']:.4g} mm^2/s; lip seals' drag: "
+          f"{summary['seal_torque_input_nm']:.4g} N*m on the input, "
+          f"{summary['seal_torque_output_nm']:.4g} N*m on the output")
     return 0
 
 

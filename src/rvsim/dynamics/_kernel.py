@@ -33,7 +33,8 @@ from ..physics._fe_carrier import bore_centre_at, plate_supports
 from ..physics._fe_holes import add_hole_load, begin_arms, end_arms
 from ..physics._fe_holes import free_stretch, hole_css, hole_row, hole_shift, holes_on
 from ..physics._fe_crank import arm_law, compliance_torque, crank_compliance, pair_forces
-from ..physics._friction import arm_bearing_friction, mesh_friction, support_bearing_friction
+from ..physics._friction import (arm_bearing_friction, mesh_friction, seal_friction,
+                                 support_bearing_friction)
 from ..physics._layout import (BUSH_COLUMNS, BUSH_SLOT0, ECC_ERR0, ECC_PHASE0, ECC_TURN0, FRAME_TURN0)
 from ..physics._layout import (NODE_ALERT, NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_OMEGA_DT,
                                NODE_SUBSTEPS,
@@ -56,7 +57,7 @@ from ..physics._layout import (A_GEN, ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB
                                MINV_UU, MU, N_DOF, OUT_COUNT, OUT_SLOT0, PEN_LIMIT, PIN_C,
                                PIN_RADIUS, FE_PLATE_XX1, PROFILE_OFFSET,
                                PROFILE_ROT, RAMP_TIME, RB1, RB2, RG, RING_OUTPUT, RUNOUT_X0, RUNOUT_X1,
-                               RUNOUT_Y0, RUNOUT_Y1, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
+                               RUNOUT_Y0, RUNOUT_Y1, SEAL_IN, SEAL_OUT, SIN_AW, STAGES, STATUS_NONFINITE, STATUS_OK,
                                STATUS_PENETRATION, STEADY_START, SUP_C, SUP_CLEAR_L, SUP_CLEAR_U,
                                SUP_SLOT0, V_FRIC, W_D1_L, W_D1_U, W_D2_L, W_D2_U, W_G_L, W_G_U, ZC, ZETA,
                                ZP)
@@ -1061,6 +1062,10 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
                 force, e, pw = output_pin(P, q, v, Q, K, disc, m, arm_elastic)
                 energy += e
                 power += pw
+    if P[FRICTION_ON] == 1.0 and (P[SEAL_IN] > 0.0 or P[SEAL_OUT] > 0.0):
+        torque, pw = seal_friction(P, v, Q, omega_in)
+        torque_in += torque
+        power += pw
     Q[CARRIER] -= torque_load
     return energy, power, torque_in, worst
 

@@ -241,6 +241,10 @@ class Operating:
                                    "torque sensor; docs/model.md)")
     duration: float = quantity(4.0, "s", "simulated time", positive=True)
     steady_start: float = quantity(1.5, "s", "start of the steady window for TE metrics")
+    temperature: float = quantity(40.0, "degC", "operating temperature of the lubricant "
+                                  "(sets its viscosity through friction.oil_viscosity_100; "
+                                  "40: friction.oil_viscosity as given)", minimum=-273.15,
+                                  positive=True)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -333,8 +337,23 @@ class Friction:
     mesh_coefficient: float = quantity(0.0, "-", "mean Coulomb friction coefficient of the "
                                        "sun-planet tooth flanks", maximum=1.0)
     oil_viscosity: float = quantity(100.0 * (_MM * _MM), "mm^2/s", "kinematic viscosity of "
-                                    "the lubricant (grease: its base oil) at operating "
-                                    "temperature", positive=True)
+                                    "the lubricant (grease: its base oil) at 40 degC, the "
+                                    "operating temperature's default (without "
+                                    "oil_viscosity_100: the viscosity used)", positive=True)
+    oil_viscosity_100: float = quantity(0.0, "mm^2/s", "kinematic viscosity of the lubricant "
+                                        "at 100 degC: with oil_viscosity, the viscosity-"
+                                        "temperature law (ASTM D341) that gives the viscosity "
+                                        "at operating.temperature (0: no law)")
+    oil_cloud_point: float = quantity(-20.0, "degC", "lowest temperature of the viscosity-"
+                                      "temperature law (ASTM D341: from the lubricant's cloud "
+                                      "point up)", minimum=-273.15, positive=True)
+    input_seal_count: int = count(0, "radial lip seals on the input shaft", minimum=0)
+    input_seal_diameter: float = quantity(0.0, "mm", "shaft diameter at the input seals' lips "
+                                          "(ISO/TR 14179-2 drag)")
+    output_seal_count: int = count(0, "radial lip seals on the output (carrier in the "
+                                   "housing)", minimum=0)
+    output_seal_diameter: float = quantity(0.0, "mm", "diameter at the output seals' lips "
+                                           "(ISO/TR 14179-2 drag)")
     arm_bearing_f0: float = quantity(0.0, "-", "Palmgren f0 (speed-dependent, viscous torque) "
                                      "of each turning-arm bearing (eccentric in its disc hole)")
     arm_bearing_f1: float = quantity(0.0, "-", "Palmgren f1 (load-dependent torque) of each "

@@ -14,7 +14,8 @@ TYPICAL_FRICTION: dict[str, float | bool] = {
     "friction.pin_groove_coefficient": 0.05,    # pin turning in its greased groove
     "friction.pin_rolling_coefficient": 0.001,  # rolling resistance of hardened steel
     "friction.mesh_coefficient": 0.05,          # involute flanks, mixed lubrication
-    "friction.oil_viscosity": 100.0,            # mm^2/s: grease base oil near 40 C
+    "friction.oil_viscosity": 100.0,            # mm^2/s: grease base oil at 40 C
+    "friction.oil_viscosity_100": 12.1,         # mm^2/s: the same at 100 C (ISO VG 100 curve)
     "friction.arm_bearing_f0": 3.0,             # needle roller bearing, grease
     "friction.arm_bearing_f1": 0.0005,
     "friction.support_bearing_f0": 3.0,         # tapered roller bearing, grease
@@ -33,6 +34,10 @@ TYPICAL_FRICTION_SOURCES: dict[str, str] = {
     "(ISO/TR 14179-2:2001; Niemann & Winter, Maschinenelemente II)",
     "friction.oil_viscosity": "base oil of lithium / urea greases for reducers: ISO VG 100-220 "
     "at 40 C",
+    "friction.oil_viscosity_100": "estimate: ASTM D341 (Walther) line fitted to the 25 points "
+    "of the ISO VG 100 curve of SKF's viscosity-temperature diagram (VI 95), digitised in "
+    "JRaposo-m/SKF-Bearing-Selection-Tool (docs/production_rv40e.md section 4.4): 12.1 mm^2/s "
+    "at 100 C; the grease's own data sheet (Molywhite RE No.00) was not found",
     "friction.arm_bearing_f0": "Palmgren f0 for needle roller bearings, grease: 2-4; f1 = 0.0005 "
     "(Harris & Kotzalas Ch. 13 tables after Palmgren 1959; SKF General Catalogue 4000, 1989)",
     "friction.support_bearing_f0": "Palmgren f0 for tapered roller bearings, grease: 2-4; f1 = "

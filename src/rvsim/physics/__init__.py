@@ -10,7 +10,7 @@ import of this package.
 * ``_layout`` - slots of the constant vector P, coordinate indices, output channels, status codes.
 * ``_contact_law`` - Palmgren line contact, its damping, the carried Newton starts.
 * ``_bearings`` - conforming contact (Johnson), bushings in series, rolling-element sets.
-* ``_friction`` - pin, mesh and bearing friction on top of the normal forces.
+* ``_friction`` - pin, mesh, bearing and lip-seal friction on top of the normal forces.
 * ``_pin_compliance`` - the FE pin-in-groove compliance in series with its contact.
 * ``_single_stage`` - input shaft, output pins and pin-ring frame of the single-stage drive.
 * ``_fe_contacts`` - the pin contacts of a finite-element disc, solved together.
@@ -22,6 +22,8 @@ import of this package.
 * ``stiffening`` - one element's force laws made s times stiffer, for the compliance budget
   (plain Python).
 * ``rating_life`` - ISO 281 rating life of rolling bearings (plain Python).
+* ``losses`` - lubricant viscosity at a temperature (ASTM D341) and lip-seal drag
+  (ISO/TR 14179-2) (plain Python).
 
 The gear mesh, pin contacts, crank bearings, the kinematic pose and the one force evaluation
 (``forces_at``/``forces``) are still in ``rvsim.dynamics._kernel`` (issue 31, a later step).

@@ -21,11 +21,11 @@ from .._jit import NO_REFCOUNT
 invalidate_stale_cache(__file__)
 
 from ._layout import (ARM_DM, ARM_F0, ARM_F1, CARRIER, CRANK0, CRANK_STRIDE,  # noqa: E402
-                      DISC0, DISC_STRIDE, MESH_LOSS, NU_OIL, RB1, SUP_DM, SUP_F0, SUP_F1,
-                      V_FRIC)
+                      DISC0, DISC_STRIDE, MESH_LOSS, NU_OIL, RB1, SEAL_IN, SEAL_IN_R,
+                      SEAL_OUT, SEAL_OUT_R, SUP_DM, SUP_F0, SUP_F1, V_FRIC)
 
 __all__ = ["bearing_torque", "bearing_friction", "arm_bearing_friction",
-           "support_bearing_friction", "mesh_friction", "PALMGREN_LOW_SPEED"]
+           "support_bearing_friction", "mesh_friction", "seal_friction", "PALMGREN_LOW_SPEED"]
 
 #: below nu * n = 2000 mm^2/s * rpm the Palmgren viscous torque is constant (Harris & Kotzalas,
 #: Rolling Bearing Analysis, 5th ed., Ch. 13; SKF General Catalogue 4000, 1989)
@@ -103,3 +103,22 @@ def mesh_friction(P, force, omega_in, px, py, pvx, pvy):
     torque = P[MESH_LOSS] * force * P[RB1] * math.tanh(rolling / P[V_FRIC])
     # moment +torque about the sun axis on the planet: force torque / r along (-py, px) / r
     return torque, -torque * py / r2, torque * px / r2, torque * (omega_in - beta_rate)
+
+
+@numba.njit(**NO_REFCOUNT)
+def seal_friction(P, v, Q, omega_in):
+    """Lip seals (ISO/TR 14179-2; the constant drag torques rvsim.friction.seal_torques puts
+    in P): those of the output act on the output rotation against the housing, -T tanh(w /
+    w_s) with w_s = v_s / r_lip; those of the input shaft add their drag to the input torque
+    (the input's motion is given).  Returns (input torque, dissipated power)."""
+    torque_in = 0.0
+    power = 0.0
+    if P[SEAL_OUT] > 0.0:
+        omega = v[CARRIER]
+        torque = P[SEAL_OUT] * math.tanh(omega * P[SEAL_OUT_R] / P[V_FRIC])
+        Q[CARRIER] -= torque
+        power += torque * omega
+    if P[SEAL_IN] > 0.0:
+        torque_in = P[SEAL_IN] * math.tanh(omega_in * P[SEAL_IN_R] / P[V_FRIC])
+        power += torque_in * omega_in
+    return torque_in, power

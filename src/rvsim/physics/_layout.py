@@ -148,7 +148,11 @@ ARM_DM         = 90
 SUP_F0         = 91        # ... of a crank support bearing
 SUP_F1         = 92
 SUP_DM         = 93
-FRICTION_ON    = 94        # 1: some bearing or mesh friction to evaluate (0: skip the calls)
+FRICTION_ON    = 94        # 1: some bearing, mesh or seal friction to evaluate (0: skip the calls)
+SEAL_IN        = 95        # drag torque of the input shaft's lip seals [N*m] (ISO/TR 14179-2) ...
+SEAL_IN_R      = 96        # ... and their lip radius [m] (regularisation speed)
+SEAL_OUT       = 97        # drag torque of the output's lip seals [N*m] ...
+SEAL_OUT_R     = 98        # ... and their lip radius [m]
 
 
 # ---- per-part manufacturing errors (tolerances): 100-119 ---------------------------------

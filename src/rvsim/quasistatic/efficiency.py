@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
+from ..units import from_si
 
 __all__ = ["efficiency", "EfficiencyResult", "DEFAULT_SPEEDS_RPM", "DEFAULT_TORQUE_FRACTIONS",
            "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM", "RESOLVED_TORQUE_FRACTION"]
@@ -56,6 +57,10 @@ class EfficiencyResult:
     friction: bool                 # False: the reducer has no friction (efficiency 1)
     status: str
     wall_s: float
+    temperature: float = 40.0      # [degC] operating temperature of the lubricant
+    oil_viscosity: float = 0.0     # [m^2/s] its kinematic viscosity there (ASTM D341)
+    seal_torque_input: float = 0.0   # [N*m] input seals' drag torque
+    seal_torque_output: float = 0.0  # [N*m] output seals' drag torque
 
     def summary(self) -> dict:
         """The JSON keys of ``rvsim efficiency`` (speeds in rpm, torques in N*m)."""
@@ -72,6 +77,10 @@ class EfficiencyResult:
             "ratio": self.ratio,
             "positions": self.positions,
             "friction": self.friction,
+            "temperature_c": self.temperature,
+            "oil_viscosity_mm2_s": from_si(self.oil_viscosity, "mm^2/s"),
+            "seal_torque_input_nm": self.seal_torque_input,
+            "seal_torque_output_nm": self.seal_torque_output,
             "wall_s": self.wall_s,
             "status": self.status,
         }
@@ -150,10 +159,12 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
     if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
             or positions < 2:
         raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
-    from ..friction import has_friction
+    from ..friction import has_friction, lubricant_viscosity, seal_torques
     from ..parameters.rating import check_torque
 
     check_torque(reducer, float(np.max(loads)), "torques")
+    viscosity = lubricant_viscosity(reducer)      # refuses a temperature outside its law
+    seal_in, seal_out = seal_torques(reducer)
 
     start = _time.perf_counter()
     ratio = reducer.ratio
@@ -181,4 +192,6 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
                             input_torque=t_in, no_load_running_torque=no_load,
                             starting_torque=starting, ratio=ratio, positions=positions,
                             friction=friction, status="ok",
-                            wall_s=_time.perf_counter() - start)
+                            wall_s=_time.perf_counter() - start,
+                            temperature=reducer.operating.temperature, oil_viscosity=viscosity,
+                            seal_torque_input=seal_in, seal_torque_output=seal_out)
