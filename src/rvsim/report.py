@@ -35,6 +35,13 @@ def _arcmin(value) -> str:
     return "not available" if value is None else f"{float(value):.4f} arcmin"
 
 
+def _value(value, response: str) -> str:
+    """A predicted ``response`` with its unit (arcmin for the TE indices)."""
+    if response.endswith("_arcmin"):
+        return _arcmin(value)
+    return "not available" if value is None else f"{float(value):.4g}"
+
+
 def _history_object(history: dict):
     return types.SimpleNamespace(time=history["time"], omega_in=history["omega_in"],
                                  omega_out=history["omega_out"], te=history["te"],
@@ -42,9 +49,12 @@ def _history_object(history: dict):
                                  steady_start=float(history["steady_start"]))
 
 
-def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict) -> pd.DataFrame:
+def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict,
+                    response: str = "te_mean_arcmin") -> pd.DataFrame:
     """Table 3 layout: runs, then k1..k3, R, rank and optimum rows."""
-    table = results.set_index("run")[factors + ["te_mean_arcmin"]].copy()
+    from .analysis.indices import response_label
+
+    table = results.set_index("run")[factors + [response]].copy()
     table = table.astype(object)
     table.index = table.index.astype(str)
     order = analysis["order"].split(">") if analysis.get("order") else []
@@ -64,18 +74,46 @@ def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict) -
     for name, values in extra.items():
         table.loc[name] = values
     table.index.name = "run"
-    return table.rename(columns={"te_mean_arcmin": "TE [arcmin]"})
+    label = "TE [arcmin]" if response == "te_mean_arcmin" else response_label(response)
+    return table.rename(columns={response: label})
 
 
-def write_study_report(folder: str | Path, *, study=None, alpha: float | None = None) -> Path:
-    """Write ``folder/report.html`` from a finished study folder (nothing if it is damaged)."""
+def _response_analysis(results: pd.DataFrame, analysis: dict, factors: list[str],
+                       response: str | None) -> tuple[str, dict]:
+    """(response, its analysis): analysis.json's when it analysed ``response`` (default: the
+    one it analysed, else the paper's mean TE), else the analysis of ``response`` computed
+    from the finished runs.  A response the table cannot give raises ParameterError
+    (--response)."""
+    from .analysis import analyze_table
+    from .analysis._table import drop_failed_runs
+    from .analysis.indices import check_response
+
+    stored = analysis.get("response", "te_mean_arcmin")
+    if response is None or response == stored:
+        return stored, analysis
+    ok, _ = drop_failed_runs(results)
+    check_response(ok, response, factors=factors)
+    try:
+        fresh = analyze_table(ok, response, factors, alpha=analysis.get("alpha", 0.1))
+    except InputFileError as exc:
+        fresh = {"error": f"analysis not possible: {exc}"}
+    fresh.update(runs_ok=int(len(ok)), runs_total=int(len(results)), response=response,
+                 fresh=True)
+    return response, fresh
+
+
+def write_study_report(folder: str | Path, *, study=None, alpha: float | None = None,
+                       response: str | None = None) -> Path:
+    """Write ``folder/report.html`` from a finished study folder (nothing if it is damaged),
+    analysing ``response`` (default: the column analysis.json analysed)."""
     folder = Path(folder)
     results, analysis, definition = _read_study_folder(folder)
     factors = [f["label"] for f in definition["factors"]]
     if alpha is not None and not 0.0 < alpha < 1.0:
         raise InputFileError(f"alpha: must be between 0 and 1, exclusive (got {alpha})")
+    response, analysis = _response_analysis(results, analysis, factors, response)
     try:
-        page = _study_page(folder, results, analysis, definition, factors, alpha)
+        page = _study_page(folder, results, analysis, definition, factors, alpha, response)
     except (KeyError, TypeError, ValueError, IndexError, AttributeError) as exc:
         # files that pass the structure checks but still disagree with each other
         raise InputFileError(f"{folder}: damaged study files ({type(exc).__name__}: {exc}); "
@@ -178,9 +216,11 @@ def _read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
 
 
 def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition: dict,
-                factors: list[str], alpha: float | None) -> str:
+                factors: list[str], alpha: float | None,
+                response: str = "te_mean_arcmin") -> str:
     from .analysis import range_analysis, sn_response_table
     from .analysis.anova import ZERO_RESPONSE_NOTE
+    from .analysis.indices import response_bench_note, response_label
     from .doe.store import ResultStore
     from .plots import main_effects_plot, spectrum_plot, speed_plot, te_plot
 
@@ -193,7 +233,10 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
             f"<p class='note'>Reducer: {html.escape(definition['reducer'])}. Design "
             f"{html.escape(definition['design'])}, {len(results)} runs, "
             f"{int((results['status'] == 'ok').sum())} finished. Transmission error TE = "
-            f"theta_in/i - theta_out (paper Eq. 22); index: {index}.</p>"]
+            f"theta_in/i - theta_out (paper Eq. 22); index: {index}.</p>",
+            "<p class='note'>Analysed here: " + html.escape(response_bench_note(response))
+            + ". Which index is which: docs/validation.md; another column: rvsim report "
+            "--response COLUMN.</p>"]
     body.append("<h2>Study definition</h2>")
     fdef = pd.DataFrame([{"factor": f["label"], "parameter": f["parameter"],
                           "levels / range": ", ".join(map(str, f["levels"])) if f["levels"]
@@ -245,7 +288,7 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
     else:
         ok = results[results["status"] == "ok"]
         body += ["<h2>Results and range analysis (Table 3 layout)</h2>",
-                 _table(_results_layout(ok, factors, analysis)),
+                 _table(_results_layout(ok, factors, analysis, response)),
                  "<p>Factor order by range: <b>"
                  + html.escape(analysis["order"] or "none (the response is constant)")
                  + "</b>. "
@@ -261,20 +304,23 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
         body += ["<h2>Analysis of variance (Table 8 layout)</h2>",
                  _table(anova, highlight=significant),
                  f"<p>Significant at alpha = {alpha:g} (highlighted): "
-                 f"{html.escape(', '.join(significant) or 'none')}. Predicted TE at the "
-                 "optimum from the significant factors"
+                 f"{html.escape(', '.join(significant) or 'none')}. Predicted "
+                 + ("TE" if response == "te_mean_arcmin" else html.escape(response))
+                 + " at the optimum from the significant factors"
                  + (": " if significant else " (none: the grand mean): ")
-                 + _arcmin(analysis["prediction"].get("predicted")) + ".</p>"]
+                 + _value(analysis["prediction"].get("predicted"), response) + ".</p>"]
         body += [f"<p class='note'>{html.escape(note)}</p>" for note in analysis.get("notes", [])]
         # the study's main_effects.png (doe.outputs draws it from the same rows, whatever the
         # alpha) rather than the same figure drawn again: 1.3 s of the paper study's 18 s
+        # (not when this report analyses another column than the study did)
         effects = folder / "main_effects.png"
         body += ["<h2>Main effects (Figs. 8-10)</h2>",
-                 _png_bytes(effects.read_bytes()) if effects.is_file() else
-                 _png(main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
-                                        ylabel="mean TE [arcmin]")),
+                 _png_bytes(effects.read_bytes())
+                 if effects.is_file() and not analysis.get("fresh") else
+                 _png(main_effects_plot(range_analysis(ok, response, factors),
+                                        ylabel=response_label(response))),
                  "<h2>Signal-to-noise ratios (smaller is better)</h2>"]
-        sn = sn_response_table(ok, "te_mean_arcmin", factors)
+        sn = sn_response_table(ok, response, factors)
         body.append(_table(sn.round(4)) if sn is not None else
                     f"<p class='note'>{html.escape(ZERO_RESPONSE_NOTE)}</p>")
     failed = results[results["status"] != "ok"]

@@ -62,7 +62,7 @@ def read_table(path) -> pd.DataFrame:
 #: metric column starts with ``te_`` or is listed here (tests/integration/test_study_engines.py
 #: checks the list against real runs of each engine).
 RESULT_COLUMNS = frozenset({
-    "run", "status", "error", "key", "reducer", "steps", "wall_s",
+    "run", "status", "error", "key", "reducer", "steps", "wall_s", "ate_arcmin", "ate_note",
     # the dynamic engine
     "sim_time_s", "speed_ratio", "energy_residual", "max_pin_force_n", "guard_substep_checks",
     "guard_substep_checks_steady", "guard_peak_omega_dt", "implicit_factorisations",

@@ -28,7 +28,7 @@ from ..errors import RvsimError
 
 __all__ = ["CurveError", "loop_branches", "sweep_branches", "branch_side", "angle_at",
            "torsional_rigidity", "lost_motion", "backlash", "hysteresis_loss",
-           "transmission_error_pp", "order_spectrum", "reducer_orders", "loop_arrays",
+           "transmission_error_pp", "angular_transmission_error", "order_spectrum", "reducer_orders", "loop_arrays",
            "LOST_MOTION_FRACTION", "turning_points", "binned_sweep"]
 
 #: lost motion is read at +- this fraction of rated torque (GB/T 35089-2018, catalogues)
@@ -360,6 +360,33 @@ def transmission_error_pp(te) -> float:
     if te.size < 2:
         raise CurveError("te", f"too few points ({te.size}, at least 2 needed)")
     return float(np.ptp(te))
+
+
+def angular_transmission_error(output_angle, te) -> tuple[float, float]:
+    """(ATE, output revolutions covered) of a TE curve sampled in one direction of rotation.
+
+    The ATE (GB/T 35089-2018, the catalogues; docs/catalogue_tests.md) is the peak-to-peak of
+    ``te`` over one output revolution; over several complete revolutions the largest of their
+    peak-to-peaks (as :mod:`rvsim.testrig.analysis` reads a bench recording), NaN when the
+    samples cover less than one revolution.  ``output_angle`` [rad] is the output's angle at
+    each sample, equally spaced (in time or angle); each sample stands for its spacing, so
+    ``n`` samples cover ``n`` spacings: 360 positions ``k * 2 pi / 360`` are one revolution.
+    Sample ``k`` belongs to revolution ``floor(|output_angle[k] - output_angle[0]| / 2 pi)``.
+    Returns the ATE in the unit of ``te`` and the revolutions covered (0 below two samples).
+    """
+    angle = _vector("output_angle", output_angle)
+    te = _vector("te", te)
+    if te.size != angle.size:
+        raise CurveError("te", f"has {te.size} values, the output angle has {angle.size}")
+    if angle.size < 2:
+        return math.nan, 0.0
+    travel = np.abs(angle - angle[0]) / (2.0 * math.pi)
+    covered = float(travel[-1] * angle.size / (angle.size - 1))
+    complete = int(math.floor(covered + 1e-9))       # round-off of n equal spacings
+    if complete < 1:
+        return math.nan, covered
+    revolution = np.floor(travel + 1e-9).astype(int)
+    return max(transmission_error_pp(te[revolution == k]) for k in range(complete)), covered
 
 
 def order_spectrum(angle_out, te, *, window: str = "rectangular", with_phase: bool = False):

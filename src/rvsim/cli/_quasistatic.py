@@ -108,7 +108,8 @@ def _ltca(args: argparse.Namespace) -> int:
         print(f"{reducer.name} at {result.torque:g} N*m, {summary['positions']} positions over "
               f"one output revolution ({summary['wall_s']:.3f} s), status {summary['status']}")
         print(f"TE mean {summary['te_mean_arcmin']:.4f} arcmin (from the nominal assembly), "
-              f"peak-to-peak {summary['te_pp_arcmin']:.4f} arcmin; max pin force "
+              f"peak-to-peak {summary['te_pp_arcmin']:.4f} arcmin (ATE "
+              f"{summary['ate_arcmin']:.4f} arcmin); max pin force "
               f"{summary['max_pin_force_n']:.1f} N, max contact stress "
               f"{summary['max_contact_stress_mpa']:.0f} MPa, pins in contact "
               f"{summary['pins_in_contact_min']}..{summary['pins_in_contact_max']}; "

@@ -55,7 +55,22 @@ def _simulate(args: argparse.Namespace) -> int:
               f"{summary['te_pp_arcmin']:.4f}, RMS {summary['te_rms_arcmin']:.4f}; speed ratio "
               f"{summary['speed_ratio']:.4f}; largest pin force {summary['max_pin_force_n']:.1f}"
               f" N")
+        print(_ate_line(summary))
     return 0
+
+
+def _ate_line(summary: dict) -> str:
+    """The bench's index (ATE) or why the run has none."""
+    import math
+
+    ate, covered = summary["ate_arcmin"], summary["te_window_revolutions"]
+    if math.isfinite(ate):
+        return (f"ATE (peak-to-peak TE over one output revolution, what a bench measures): "
+                f"{ate:.4f} arcmin; the steady window covers {covered:.3g} revolutions")
+    if math.isfinite(covered):
+        return ("ATE: none: the steady window covers "
+                f"{covered:.3g} of an output revolution (raise --duration)")
+    return "ATE: none"
 
 
 def register(sub) -> None:

@@ -14,13 +14,19 @@ from ._common import (number, add_command, check_load, check_output_folder, path
 __all__ = ["register"]
 
 
-def _response_column(table, response: str | None) -> str:
-    if response:
-        return response
-    for name in ("te_mean_arcmin", "te_arcmin"):
-        if name in table.columns:
-            return name
-    raise InputFileError("no response column: name one with --response")
+def _response_column(table, response: str | None, factors=None) -> str:
+    """The analysed column: --response (checked: in the table, numeric, not a factor) or the
+    default (the paper's mean TE).  Without named factors, a column of level codes the table's
+    own factors would include is a factor too."""
+    from ..analysis._table import factor_columns, is_coded
+    from ..analysis.indices import check_response
+
+    if factors is None:
+        try:
+            factors = [c for c in factor_columns(table, "") if is_coded(table[c])]
+        except InputFileError:            # no factor at all: the analysis says so
+            factors = []
+    return check_response(table, response, factors=factors)
 
 
 def _as_option(exc: ParameterError, args: argparse.Namespace) -> ParameterError:
@@ -59,6 +65,8 @@ def _study(args: argparse.Namespace) -> int:
         if args.time_step is not None:
             raise ParameterError("--time-step", "a tolerance study runs the quasi-static "
                                  "engine, which takes no time step")
+        if args.response is not None:
+            raise ParameterError("--response", _TOLERANCE_RESPONSE)
 
         return run_tolerance_command(load_any_tolerance_study(args.study), args)
     if args.study in BUILT_IN_STUDIES:
@@ -83,6 +91,7 @@ def _study(args: argparse.Namespace) -> int:
         except ParameterError as exc:
             raise _as_option(exc, args) from None
     _check_loads(study)
+    response = _study_response(study, args.response)
     check_output_folder(args.out, "--out")   # before the runs, not after them
     folder = Path(args.out)
     progress = not args.no_progress and sys.stderr.isatty()
@@ -90,7 +99,14 @@ def _study(args: argparse.Namespace) -> int:
     summary = {}
 
     def finish(results) -> None:       # runs while the folder is locked
-        summary["analysis"] = write_study_outputs(folder, results, factors, alpha=args.alpha)
+        if args.response is not None and (results["status"] == "ok").any():
+            from ..analysis._table import drop_failed_runs
+            from ..analysis.indices import check_response
+
+            # a metric only some schemes give (the guard's counters): before any output
+            check_response(drop_failed_runs(results)[0], response, factors=factors)
+        summary["analysis"] = write_study_outputs(folder, results, factors, alpha=args.alpha,
+                                                  response=response)
         if not args.no_report:
             from ..report import write_study_report
 
@@ -132,6 +148,8 @@ def _study(args: argparse.Namespace) -> int:
     else:
         print(f"{study.name}: {len(results)} runs, {failed} failed -> {folder}/results.csv, "
               f"analysis.json" + ("" if args.no_report else ", report.html"))
+        if args.response is not None:
+            print(f"response {analysis['response_note']}")
         if analysis.get("constant_response"):
             print("factor order by range: none (the response is constant)")
         elif "order" in analysis:
@@ -139,6 +157,47 @@ def _study(args: argparse.Namespace) -> int:
         elif "error" in analysis:        # e.g. too few finished runs for the model
             print(analysis["error"])
     return 0
+
+
+_TOLERANCE_RESPONSE = ("a tolerance study reports the distribution of every metric "
+                       "(summary.json: ate_arcmin, te_mean_arcmin, ...); --response chooses "
+                       "the analysed column of a designed study")
+
+
+def _study_response(study, response: str | None) -> str:
+    """The column a study's analysis and report analyse: --response, checked against the
+    metric columns of the study's engine before any run, or the paper's mean TE."""
+    from ..doe.engines import metric_columns
+
+    if response is None:
+        return "te_mean_arcmin"
+    columns = metric_columns(study.engine, study.hysteresis)
+    if response not in columns:
+        raise ParameterError("--response", f"'{response}' is not a metric of the "
+                             f"{study.engine} engine's runs (numeric columns: "
+                             f"{', '.join(columns)})")
+    if response == "ate_arcmin" and study.engine == "dynamic":
+        _check_ate_window(study)
+    return response
+
+
+def _check_ate_window(study) -> None:
+    """A dynamic study analysed by its ATE needs steady windows of an output revolution
+    (docs/decisions.md, issue 33): refused before any run when the first run's is shorter."""
+    import math
+
+    reducer = study.reducers()[0]
+    op = reducer.operating
+    revolutions = ((op.duration - op.steady_start) * op.input_speed
+                   / (2.0 * math.pi * abs(reducer.ratio)))
+    if revolutions < 1.0:
+        needed = 2.0 * math.pi * abs(reducer.ratio) / op.input_speed
+        raise ParameterError("--response", f"ate_arcmin (peak-to-peak TE over one output "
+                             f"revolution) needs a steady window of {needed:.4g} s at "
+                             f"{math.degrees(op.input_speed):g} deg/s; the study's run 1 has "
+                             f"{op.duration - op.steady_start:.4g} s "
+                             f"({revolutions:.3g} revolution; raise operating.duration, or "
+                             "analyse te_pp_arcmin, the peak-to-peak over that window)")
 
 
 def _names(option: str, text: str | None) -> list[str] | None:
@@ -178,14 +237,19 @@ def _analyze(args: argparse.Namespace) -> int:
     if factors is None:
         factors = _study_factors(args.table, table)
     pool = tuple(_names("--pool", args.pool) or ())
-    response = _response_column(table, args.response)
+    response = _response_column(table, args.response, factors)
     result = analyze_table(table, response, factors, pool=pool, alpha=args.alpha)
     if failed:
         result.setdefault("notes", []).insert(0, f"{failed} run(s) whose status is not 'ok' "
                                               "left out")
+    from ..analysis.indices import response_bench_note
+
+    result["response"] = response
+    result["response_note"] = response_bench_note(response)
     if args.json:
         print_json(result)
         return 0
+    print(f"response {response_bench_note(response)}\n")
     ra = range_analysis(table, response, factors)
     print(ra.to_df().round(4).to_string())
     if result.get("constant_response"):
@@ -208,9 +272,11 @@ def _report(args: argparse.Namespace) -> int:
     if (folder / "summary.json").is_file() and not (folder / "analysis.json").is_file():
         from ..tolerance.report import rebuild_tolerance_report   # a tolerance study's folder
 
+        if args.response is not None:
+            raise ParameterError("--response", _TOLERANCE_RESPONSE)
         path = rebuild_tolerance_report(folder)
     else:
-        path = write_study_report(args.folder, alpha=args.alpha)
+        path = write_study_report(args.folder, alpha=args.alpha, response=args.response)
     if args.json:
         print_json({"report": str(path)})
     else:
@@ -227,6 +293,10 @@ def register(sub) -> None:
     p.add_argument("folder", type=path_text, help="study folder")
     p.add_argument("--alpha", type=probability, help="significance level marked in the ANOVA "
                    "(default: the study's)")
+    p.add_argument("--response", metavar="COLUMN", help="analyse this numeric column of "
+                   "results.csv (default: the one the study analysed, te_mean_arcmin unless "
+                   "'rvsim study --response' chose another; ate_arcmin is what a bench "
+                   "measures)")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_report)
 
@@ -259,6 +329,10 @@ def register(sub) -> None:
                    "else the scheme's: 2e-5 s implicit-bearings, 5e-6 s explicit; paper-l36 "
                    "at 2.5e-5 s: 12-16 %% less CPU, its energy residuals up to 1.3e-4 "
                    "instead of 5.8e-5; docs/benchmarks.md)")
+    p.add_argument("--response", metavar="COLUMN", help="metric column analysed (range "
+                   "analysis, ANOVA, report; default te_mean_arcmin, the paper's index, which "
+                   "no bench can check; ate_arcmin: the peak-to-peak TE over one output "
+                   "revolution a bench measures; docs/validation.md)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-report", action="store_true", help="skip report.html")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
@@ -272,7 +346,9 @@ def register(sub) -> None:
                     ["rvsim analyze study/results.csv --json",
                     "rvsim analyze table3.csv --response te_arcmin --pool B,C"])
     p.add_argument("table", type=path_text, help="CSV file")
-    p.add_argument("--response", help="response column (default te_mean_arcmin or te_arcmin)")
+    p.add_argument("--response", metavar="COLUMN", help="numeric response column (default "
+                   "te_mean_arcmin, the paper's index, or te_arcmin; e.g. ate_arcmin, the "
+                   "bench's index)")
     p.add_argument("--factors", help="comma-separated factor columns (default: a study "
                    "folder's own factors, else the single-letter columns and the columns of "
                    "level codes)")

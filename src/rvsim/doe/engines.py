@@ -18,10 +18,35 @@ from typing import Callable
 from ..errors import InputFileError, SimulationError
 
 __all__ = ["ENGINES", "DEFAULT_ENGINE", "evaluate_quasi_static", "evaluate_dynamic",
-           "engine_options", "compact_history", "EVALUATORS", "register_evaluator"]
+           "engine_options", "compact_history", "EVALUATORS", "register_evaluator",
+           "metric_columns"]
 
 DEFAULT_ENGINE = "dynamic"
 ENGINES = ("dynamic", "quasi-static")
+
+#: the numeric columns each engine adds to a study's rows (``rvsim study --response`` names
+#: one of them; tests/integration/test_response_option.py checks them against real runs).
+#: The dynamic engine's guard and implicit-scheme counters appear with their scheme only.
+_METRICS = {
+    "dynamic": ("te_mean_arcmin", "te_pp_arcmin", "te_rms_arcmin", "te_std_arcmin",
+                "te_max_arcmin", "speed_ratio", "energy_residual", "max_pin_force_n",
+                "ate_arcmin", "te_window_revolutions", "sim_time_s", "steps", "wall_s",
+                "guard_substep_checks", "guard_substep_checks_steady", "guard_peak_omega_dt",
+                "implicit_factorisations", "implicit_alerts", "implicit_fallbacks"),
+    "quasi-static": ("te_mean_arcmin", "te_pp_arcmin", "ate_arcmin", "te_window_revolutions",
+                     "max_pin_force_n", "pins_in_contact_min", "pins_in_contact_max",
+                     "max_contact_stress_mpa", "torsional_stiffness_nm_per_arcmin",
+                     "torque_nm", "positions", "wall_s"),
+    "hysteresis": ("rated_torque_nm", "torsional_rigidity_nm_per_arcmin",
+                   "lost_motion_arcmin", "backlash_arcmin", "hysteresis_loss_arcmin",
+                   "points"),
+}
+
+
+def metric_columns(engine: str, hysteresis: bool = False) -> tuple[str, ...]:
+    """The metric columns a study on ``engine`` (with the torque-reversal test when
+    ``hysteresis``) gives its rows."""
+    return _METRICS[engine] + (_METRICS["hysteresis"] if hysteresis else ())
 
 
 def engine_options(data: dict, path) -> tuple[str, bool]:

@@ -29,18 +29,20 @@ def prepare_outputs() -> None:
 
 
 def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
-                        *, alpha: float = 0.1) -> dict:
-    """results.csv, analysis.json and main_effects.png in ``folder``; returns the analysis.
+                        *, alpha: float = 0.1, response: str = "te_mean_arcmin") -> dict:
+    """results.csv, analysis.json and main_effects.png in ``folder``; returns the analysis
+    of ``response`` (default the paper's mean TE; analysis.json names it).
 
     Everything is computed before the first file is written; each file is written atomically.
     """
     folder = Path(folder)
     from ..analysis._table import drop_failed_runs
+    from ..analysis.indices import response_bench_note, response_label
 
     ok, _ = drop_failed_runs(results)
     figure = None
     try:
-        analysis = analyze_table(ok, "te_mean_arcmin", factors, alpha=alpha)
+        analysis = analyze_table(ok, response, factors, alpha=alpha)
         analysis["runs_ok"] = int(len(ok))
         analysis["runs_total"] = int(len(results))
     except InputFileError as exc:
@@ -49,9 +51,11 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
     else:
         from ..plots import main_effects_plot
 
-        figure = main_effects_plot(range_analysis(ok, "te_mean_arcmin", factors),
-                                   ylabel="mean TE [arcmin]")
-    interactions = _interactions(ok, factors, analysis)
+        figure = main_effects_plot(range_analysis(ok, response, factors),
+                                   ylabel=response_label(response))
+    analysis["response"] = response
+    analysis["response_note"] = response_bench_note(response)
+    interactions = _interactions(ok, factors, analysis, response)
     try:
         atomic_write_text(folder / "results.csv", results.to_csv(index=False))
         atomic_write_text(folder / "analysis.json", dumps(analysis, indent=2))
@@ -73,20 +77,23 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
     return analysis
 
 
-def _interactions(ok: pd.DataFrame, factors: list[str], analysis: dict):
+def _interactions(ok: pd.DataFrame, factors: list[str], analysis: dict,
+                  response: str = "te_mean_arcmin"):
     """ANOVA with two-factor interactions into ``analysis["interactions"]`` when the design
     leaves the degrees of freedom (issue 11); returns the interaction plots of the strongest
     pairs (None when it does not)."""
     from ..analysis.interactions import interaction_anova, interaction_degrees, \
         interaction_plots
 
-    if "te_mean_arcmin" not in ok.columns or len(factors) < 2:
+    from ..analysis.indices import response_label
+
+    if response not in ok.columns or len(factors) < 2:
         return None
     need, have = interaction_degrees(ok, factors)
     if need >= have:
         return None
-    table = interaction_anova(ok, "te_mean_arcmin", factors)
+    table = interaction_anova(ok, response, factors)
     analysis["interactions"] = {name: {k: (None if v != v else float(v)) for k, v in row.items()}
                                 for name, row in table.iterrows()}
     pairs = [tuple(name.split(" x ")) for name in table.index if " x " in name][:6]
-    return interaction_plots(ok, "te_mean_arcmin", pairs, ylabel="mean TE [arcmin]")
+    return interaction_plots(ok, response, pairs, ylabel=response_label(response))

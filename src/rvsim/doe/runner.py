@@ -269,8 +269,8 @@ def _results_table(study: Study, table: pd.DataFrame, keys: list[str], done: dic
     rows = []
     for (_, row), key in zip(table.iterrows(), keys):
         outcome = done.get(key, {"status": "missing", "metrics": {}})
-        metrics = {k: v for k, v in outcome["metrics"].items()
-                   if k not in ("status", "reducer")}
+        metrics = {k: v for k, v in outcome["metrics"].items()     # ate_note: ate_arcmin's
+                   if k not in ("status", "reducer", "ate_note")}   # null says it per row
         rows.append({**row.to_dict(), **metrics, "status": outcome["status"],
                      "error": outcome.get("error") or "", "key": key[:16]})
     frame = pd.DataFrame(rows)

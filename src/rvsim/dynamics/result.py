@@ -13,7 +13,7 @@ from ..errors import InputFileError
 from ..units import ARCMIN
 from ..physics import _layout as L
 
-__all__ = ["Result", "te_metrics", "te_spectrum", "crank_frequency"]
+__all__ = ["Result", "te_metrics", "te_spectrum", "crank_frequency", "ate_note"]
 
 
 def crank_frequency(time: np.ndarray, omega_out: np.ndarray, steady_start: float,
@@ -65,6 +65,13 @@ def te_metrics(time: np.ndarray, te: np.ndarray, omega_in: np.ndarray, omega_out
         "te_max_arcmin": float(np.max(te_w)),
         "speed_ratio": float(np.mean(omega_in[window]) / np.mean(omega_out[window])),
     }
+
+
+def ate_note(revolutions: float) -> str:
+    """Why a run has no ATE: its steady window covers ``revolutions`` (< 1) of an output
+    revolution."""
+    return (f"no ATE: the steady window covers {revolutions:.3g} of an output revolution "
+            "(the ATE needs one); te_pp_arcmin is the peak-to-peak over that part of one")
 
 
 @dataclasses.dataclass
@@ -147,13 +154,33 @@ class Result:
             m["max_pin_force_n"] = self.pin_force_peak
         else:
             m["max_pin_force_n"] = float(self.pin_forces[window].max())
+        m.update(self.ate())
         return m
 
+    def ate(self) -> dict[str, float]:
+        """``ate_arcmin``: the angular transmission error (peak-to-peak TE over one output
+        revolution, :func:`rvsim.analysis.catalogue.angular_transmission_error`) of the steady
+        window, NaN when the window covers less than a revolution (then ``te_pp_arcmin`` is
+        the peak-to-peak over a part of one); ``te_window_revolutions``: the output
+        revolutions the steady window covers (docs/decisions.md, issue 33)."""
+        from ..analysis.catalogue import angular_transmission_error
+
+        window = self.time >= self.steady_start - 1e-12
+        angle, te = self.theta_out[window], self.te[window]
+        if not (np.isfinite(angle).all() and np.isfinite(te).all()):    # a run that blew up
+            return {"ate_arcmin": float("nan"), "te_window_revolutions": float("nan")}
+        ate, covered = angular_transmission_error(angle, te / ARCMIN)   # as te_pp_arcmin
+        return {"ate_arcmin": ate, "te_window_revolutions": covered}
+
     def summary(self) -> dict:
-        """The JSON object ``rvsim simulate --json`` prints."""
-        return {**self.metrics, "sim_time_s": float(self.time[-1]) if len(self.time) else 0.0,
-                "steps": self.steps, "wall_s": self.wall_s, "status": self.status,
-                "reducer": self.reducer_name, **self.guard}
+        """The JSON object ``rvsim simulate --json`` prints (with ``ate_note`` saying why
+        ``ate_arcmin`` is null when the steady window covers less than an output revolution)."""
+        out = {**self.metrics, "sim_time_s": float(self.time[-1]) if len(self.time) else 0.0,
+               "steps": self.steps, "wall_s": self.wall_s, "status": self.status,
+               "reducer": self.reducer_name, **self.guard}
+        if not np.isfinite(out["ate_arcmin"]) and np.isfinite(out["te_window_revolutions"]):
+            out["ate_note"] = ate_note(out["te_window_revolutions"])
+        return out
 
     def spectrum(self, pin_count: int | None = None):
         """Steady-window TE spectrum: DataFrame of ``order`` (crank rotation relative to the

@@ -217,9 +217,12 @@ class LtcaResult:
         contacts = self.pins_in_contact[ok]
         empty = not ok.any()
         nan = float("nan")
+        ate, revolutions = self.ate()
         return {
             "te_mean_arcmin": nan if empty else float(np.mean(te)),
             "te_pp_arcmin": nan if te.size < 2 else transmission_error_pp(te),
+            "ate_arcmin": ate,
+            "te_window_revolutions": revolutions,
             "max_pin_force_n": nan if empty else float(self.pin_forces[ok].max()),
             "pins_in_contact_min": -1 if empty else int(contacts.min()),
             "pins_in_contact_max": -1 if empty else int(contacts.max()),
@@ -232,6 +235,18 @@ class LtcaResult:
             "wall_s": self.wall_s,
             "status": self.status,
         }
+
+    def ate(self) -> tuple[float, float]:
+        """(ATE [arcmin], output revolutions covered): the angular transmission error, the
+        peak-to-peak TE over one output revolution (the largest over complete ones,
+        :func:`rvsim.analysis.catalogue.angular_transmission_error`) at the nominal output
+        angles input_angle / ratio; NaN when the positions cover less than a revolution or one
+        of its positions did not converge (docs/decisions.md, issue 33)."""
+        from ..analysis.catalogue import angular_transmission_error
+
+        te = np.where(self.converged, self.te, 0.0) / ARCMIN     # as te_pp_arcmin, to the bit
+        ate, revolutions = angular_transmission_error(self.input_angle / self.ratio, te)
+        return (ate if self.converged.all() else float("nan")), revolutions
 
     def to_frame(self):
         """One row per position: angles [rad], TE [rad and arcmin], stiffness, forces."""

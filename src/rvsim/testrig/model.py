@@ -118,6 +118,7 @@ def point_summary(point: PointResult, reducer) -> dict:
             out.update(_offset_across_files(point))
     else:
         out.update(ate_pp_arcmin=None, te_rms_arcsec=None, orders=[])
+    out["ate_arcmin"] = out["ate_pp_arcmin"]     # the name every other JSON uses (issue 33)
     loops = [f.loop for f in point.files if f.loop is not None]
     if loops:
         out.update(A.reversal_summary(*loops[0], reducer.rating.rated_torque))
