@@ -69,13 +69,18 @@ def _study(args: argparse.Namespace) -> int:
             raise ParameterError("--response", _TOLERANCE_RESPONSE)
 
         return run_tolerance_command(load_any_tolerance_study(args.study), args)
+    from ..tolerance.robust import BUILT_IN_ROBUST_STUDIES, is_robust_file, load_robust_study
+
     if args.study in BUILT_IN_STUDIES:
         study = BUILT_IN_STUDIES[args.study]()
+    elif args.study in BUILT_IN_ROBUST_STUDIES:
+        study = BUILT_IN_ROBUST_STUDIES[args.study]()
     elif Path(args.study).suffix == ".toml":
-        study = load_study(args.study)
+        study = (load_robust_study if is_robust_file(args.study) else load_study)(args.study)
     else:
         raise InputFileError(f"unknown study '{args.study}' (built in: "
-                             f"{', '.join(BUILT_IN_STUDIES)}; or a .toml file)")
+                             f"{', '.join([*BUILT_IN_STUDIES, *BUILT_IN_ROBUST_STUDIES])}; "
+                             "or a .toml file)")
     if args.scheme is not None:
         if study.engine != "dynamic" and args.scheme != "explicit":
             raise ParameterError("--scheme", f"the study runs the {study.engine} engine: the "
@@ -106,7 +111,8 @@ def _study(args: argparse.Namespace) -> int:
             # a metric only some schemes give (the guard's counters): before any output
             check_response(drop_failed_runs(results)[0], response, factors=factors)
         summary["analysis"] = write_study_outputs(folder, results, factors, alpha=args.alpha,
-                                                  response=response)
+                                                  response=response,
+                                                  also=_robust_also(study, response))
         if not args.no_report:
             from ..report import write_study_report
 
@@ -150,13 +156,41 @@ def _study(args: argparse.Namespace) -> int:
               f"analysis.json" + ("" if args.no_report else ", report.html"))
         if args.response is not None:
             print(f"response {analysis['response_note']}")
-        if analysis.get("constant_response"):
-            print("factor order by range: none (the response is constant)")
-        elif "order" in analysis:
-            print(f"factor order by range: {analysis['order']}")
-        elif "error" in analysis:        # e.g. too few finished runs for the model
-            print(analysis["error"])
+        if study.noise is not None:
+            print(f"robust study: {study.noise.samples} noise replicates per run")
+        _print_order(analysis, response if study.noise is not None else "")
+        for column, other in analysis.get("also", {}).items():
+            _print_order(other, column)
     return 0
+
+
+def _print_order(analysis: dict, column: str) -> None:
+    """The factor order line of one analysed column (``column``: named when given)."""
+    by = f"factor order by range{f' of {column}' if column else ''}"
+    if analysis.get("constant_response"):
+        print(f"{by}: none (the response is constant)")
+    elif "order" in analysis:
+        print(f"{by}: {analysis['order']}")
+    elif "error" in analysis:        # e.g. too few finished runs for the model
+        print(analysis["error"])
+
+
+def _robust_also(study, response: str) -> tuple:
+    """A robust study's companion column of ``response``: the mean beside an S/N ratio
+    (the S/N beside a mean), analysed alike (issue 33: effects on S/N and on the mean)."""
+    if study.noise is None:
+        return ()
+    return _companion(response)
+
+
+def _companion(response: str) -> tuple:
+    import re
+
+    found = re.fullmatch(r"(.+)_sn(_smaller|_nominal|_larger)?", response)
+    if found:
+        return (f"{found.group(1)}_mean",)
+    found = re.fullmatch(r"(.+)_mean", response)
+    return (f"{found.group(1)}_sn",) if found else ()
 
 
 _TOLERANCE_RESPONSE = ("a tolerance study reports the distribution of every metric "
@@ -169,6 +203,17 @@ def _study_response(study, response: str | None) -> str:
     metric columns of the study's engine before any run, or the paper's mean TE."""
     from ..doe.engines import metric_columns
 
+    if study.noise is not None:
+        columns = study.noise.columns(study)
+        if response is None:          # the bench's index's S/N, or the paper's
+            return "ate_arcmin_sn" if "ate_arcmin_sn" in columns else "te_mean_arcmin_sn"
+        if response not in columns:
+            raise ParameterError("--response", f"'{response}' is not a column of the robust "
+                                 f"study's rows (e.g. ate_arcmin_sn, ate_arcmin_mean, "
+                                 f"ate_arcmin_std, ate_arcmin_p95; docs/user_guide.md)")
+        if response.startswith("ate_arcmin") and study.engine == "dynamic":
+            _check_ate_window(study)
+        return response
     if response is None:
         return "te_mean_arcmin"
     columns = metric_columns(study.engine, study.hysteresis)

@@ -138,8 +138,8 @@ def compact_history(result, rate: float = 1000.0) -> bytes:
     return buffer.getvalue()
 
 
-def _quasi_static(reducer, *, hysteresis: bool = False, **_) -> dict:
-    return evaluate_quasi_static(reducer, hysteresis=hysteresis)
+def _quasi_static(reducer, *, hysteresis: bool = False, positions: int = 360, **_) -> dict:
+    return evaluate_quasi_static(reducer, hysteresis=hysteresis, positions=positions)
 
 
 #: the evaluators of a study's runs by engine name (issue 31 step 7): each is called as

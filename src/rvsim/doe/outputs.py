@@ -29,9 +29,12 @@ def prepare_outputs() -> None:
 
 
 def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
-                        *, alpha: float = 0.1, response: str = "te_mean_arcmin") -> dict:
+                        *, alpha: float = 0.1, response: str = "te_mean_arcmin",
+                        also: tuple = ()) -> dict:
     """results.csv, analysis.json and main_effects.png in ``folder``; returns the analysis
-    of ``response`` (default the paper's mean TE; analysis.json names it).
+    of ``response`` (default the paper's mean TE; analysis.json names it).  ``also``: further
+    columns analysed alike into ``analysis["also"][column]`` (a robust study's mean beside
+    its S/N ratio, issue 33).
 
     Everything is computed before the first file is written; each file is written atomically.
     """
@@ -56,6 +59,13 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
     analysis["response"] = response
     analysis["response_note"] = response_bench_note(response)
     interactions = _interactions(ok, factors, analysis, response)
+    for column in also:
+        try:
+            other = analyze_table(ok, column, factors, alpha=alpha)
+        except InputFileError as exc:
+            other = {"error": f"analysis not possible: {exc}"}
+        other["response_note"] = response_bench_note(column)
+        analysis.setdefault("also", {})[column] = other
     try:
         atomic_write_text(folder / "results.csv", results.to_csv(index=False))
         atomic_write_text(folder / "analysis.json", dumps(analysis, indent=2))

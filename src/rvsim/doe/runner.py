@@ -123,8 +123,12 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
         tag = time_step
     else:
         tag = f"{time_step} {study.scheme}"
+    engine = study.engine
+    if study.noise is not None:   # a robust study: each row's replicates in one task (issue 33)
+        tag = f"{tag} noise {study.noise.digest()}"
+        engine = study.noise.evaluator(study)
     keys = [run_key(r, tag) for r in reducers]
-    options = (time_step, study.engine, study.hysteresis, 360, study.scheme)
+    options = (time_step, engine, study.hysteresis, 360, study.scheme)
     check_not_foreign(folder)
     folder.mkdir(parents=True, exist_ok=True)
     # Ctrl-C, SIGTERM and SIGHUP stop the workers and keep every finished row
@@ -261,6 +265,9 @@ def _definition(study: Study, time_step: float, first: Reducer) -> dict:
         "factors": [{"label": f.label, "parameter": f.parameter, "levels": list(f.levels),
                      "low": f.low, "high": f.high} for f in study.factors],
         "fixed": [[k, v] for k, v in study.fixed],
+        # a robust study's noise factors (issue 33): absent for a plain study (its folders
+        # resume as before)
+        **({"noise": study.noise.definition()} if study.noise is not None else {}),
     }
 
 

@@ -42,8 +42,8 @@ from ..parameters import (BUILT_IN_SETS, RV40E, TABLE2_FACTORS, Reducer, load_to
 from ..analysis._table import RESULT_COLUMNS   # the columns besides the factors (re-exported)
 from . import designs
 
-__all__ = ["StudyFactor", "Study", "paper_l36", "load_study", "BUILT_IN_STUDIES", "MAX_RUNS",
-           "RESULT_COLUMNS"]
+__all__ = ["StudyFactor", "Study", "paper_l36", "load_study", "study_from_data",
+           "BUILT_IN_STUDIES", "MAX_RUNS", "RESULT_COLUMNS"]
 
 #: most runs a study may have: beyond this the design table alone strains memory and the runs
 #: would take weeks (docs/decisions.md)
@@ -78,6 +78,10 @@ class Study:
     hysteresis: bool = False
     # issue 14: the dynamic engine's integration scheme (rvsim.simulate)
     scheme: str = "explicit"
+    # issue 33 item 2: noise factors (rvsim.tolerance.robust.Noise): every run is then built
+    # noise.samples times with drawn part errors; doe uses only its protocol (definition(),
+    # evaluator(study), columns(study)) and never imports the package that makes it
+    noise: object = None
 
     def __post_init__(self) -> None:
         seen_labels: set[str] = set()
@@ -220,9 +224,19 @@ BUILT_IN_STUDIES = {"paper-l36": paper_l36}
 
 
 def load_study(path: str | Path) -> Study:
-    """Read a study TOML file (see module docstring); every error names the key at fault."""
+    """Read a study TOML file (see module docstring); every error names the key at fault.
+    A file with a [noise] section is a robust study: :func:`rvsim.tolerance.load_robust_study`
+    reads it (and ``rvsim study``)."""
     path = Path(path)
     data = read_study_toml(path)
+    if "noise" in data:
+        raise InputFileError(f"{path}: has a [noise] section: a robust study, read by "
+                             "rvsim.tolerance.load_robust_study (or 'rvsim study')")
+    return study_from_data(data, path)
+
+
+def study_from_data(data: dict, path: Path) -> Study:
+    """The study of a study file's TOML ``data`` read from ``path`` (:func:`load_study`)."""
     known = {"name", "design", "samples", "seed", "params", "set", "factors", "time_step",
              "engine", "hysteresis", "scheme"}
     extra = set(data) - known

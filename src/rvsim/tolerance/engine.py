@@ -12,7 +12,7 @@ import traceback
 
 from ..doe.engines import register_evaluator
 
-__all__ = ["evaluate_sample", "evaluate_run", "METRICS", "BINDS"]
+__all__ = ["evaluate_sample", "evaluate_run", "assembly_binds", "METRICS", "BINDS"]
 
 BINDS = "binds"
 #: torque steps per quarter of the torque-reversal test (the catalogue command's 50 change the
@@ -32,18 +32,14 @@ METRICS = {
 def evaluate_sample(reducer, positions: int = 360) -> dict:
     """Evaluate one drawn reducer (module docstring)."""
     from ..errors import ParameterError, SimulationError
-    from ..geometry.assembly import CONTACT_TOLERANCE, assembly_overlaps
-    from ..parameters import validate
     from ..quasistatic import hysteresis, ltca
 
     start = time.perf_counter()
     cpu = time.process_time()
     try:
-        validate(reducer, assembly=False)   # a value the model refuses: invalid, even if it binds
-        worst = max(assembly_overlaps(reducer), key=lambda o: o.approach)
-        if worst.approach > CONTACT_TOLERANCE:
-            return {"status": BINDS, "metrics": {"binds": 1},
-                    "error": f"{worst.parts} by {worst.approach * 1e6:.2f} um",
+        binding = assembly_binds(reducer)
+        if binding:
+            return {"status": BINDS, "metrics": {"binds": 1}, "error": binding,
                     "wall_s": time.perf_counter() - start}
         run = ltca(reducer, positions=positions).summary()
         loop = hysteresis(reducer, points_per_branch=HYSTERESIS_POINTS).summary()
@@ -64,6 +60,20 @@ def evaluate_sample(reducer, positions: int = 360) -> dict:
     except Exception as exc:  # noqa: BLE001 - a failed sample must not stop the study
         return {"status": "error", "error": f"{type(exc).__name__}: {exc}", "metrics": {},
                 "wall_s": time.perf_counter() - start, "detail": traceback.format_exc(limit=3)}
+
+
+def assembly_binds(reducer) -> str | None:
+    """Why a drawn reducer cannot be built (its worst overlap at the assembled pose: "crank 1
+    eccentric overlaps ... by 2.20 um"), or None when it assembles.  A value the model refuses
+    raises ParameterError first (invalid, even if it binds)."""
+    from ..geometry.assembly import CONTACT_TOLERANCE, assembly_overlaps
+    from ..parameters import validate
+
+    validate(reducer, assembly=False)
+    worst = max(assembly_overlaps(reducer), key=lambda o: o.approach)
+    if worst.approach > CONTACT_TOLERANCE:
+        return f"{worst.parts} by {worst.approach * 1e6:.2f} um"
+    return None
 
 
 def evaluate_run(reducer, *, positions: int = 360, **_) -> dict:
