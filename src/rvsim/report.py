@@ -195,8 +195,10 @@ def _read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
             ) as exc:
         raise InputFileError(f"{path}: cannot read ({str(exc).strip()})") from None
     columns = ["run", "status", "key"] + labels
+    # a robust study's rows hold the replicates' statistics (issue 33): its mean TE's mean
+    metric = "te_mean_arcmin_mean" if "noise" in definition else "te_mean_arcmin"
     if "status" in results.columns and (results["status"] == "ok").any():
-        columns.append("te_mean_arcmin")    # a study none of whose runs finished has no metric
+        columns.append(metric)    # a study none of whose runs finished has no metric
     absent = [c for c in columns if c not in results.columns]
     if absent:
         raise InputFileError(f"{path}: missing column(s) {', '.join(absent)} (truncated or "
@@ -210,8 +212,8 @@ def _read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
                              "(truncated?); run 'rvsim study' again")
     if (results["status"] == "ok").any():
         ok = results[results["status"] == "ok"]
-        if pd.to_numeric(ok["te_mean_arcmin"], errors="coerce").isna().any():
-            raise InputFileError(f"{path}: a finished run has no te_mean_arcmin (truncated?)")
+        if pd.to_numeric(ok[metric], errors="coerce").isna().any():
+            raise InputFileError(f"{path}: a finished run has no {metric} (truncated?)")
     return results, analysis, definition
 
 

@@ -45,8 +45,15 @@ def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
         if coded:
             notes.append(f"taken as factors by their level codes: {', '.join(coded)} (name "
                          "the factors with --factors if that is wrong)")
-    sn = sn_response_table(table, response, factors)
-    if sn is None:
+    from .range_analysis import larger_is_better
+
+    # the response is itself an S/N ratio (a robust study's): no S/N of it (issue 33)
+    sn = None if larger_is_better(response) else sn_response_table(table, response, factors)
+    if larger_is_better(response):
+        out["sn_response"] = None
+        notes.append(f"{response} is an S/N ratio: larger is better (the optimum maximises "
+                     "it); no S/N ratio of it is taken")
+    elif sn is None:
         notes.append(ZERO_RESPONSE_NOTE)
         out["sn_response"] = None
     else:

@@ -48,7 +48,25 @@ _INDICES = {
 
 def response_label(column: str) -> str:
     """The axis label of ``column`` (the column's own name when it is no known index)."""
+    robust = _robust(column)
+    if robust:
+        base, what = robust
+        return f"{what} of {_INDICES.get(base, (base, ''))[0]}"
     return _INDICES.get(column, (column, ""))[0]
+
+
+#: a robust study's column suffixes (rvsim.analysis.signal_noise) -> what they are
+_ROBUST = {"_sn_smaller": "S/N smaller-the-better [dB]", "_sn_nominal": "S/N nominal-the-best "
+           "[dB]", "_sn_larger": "S/N larger-the-better [dB]", "_sn": "S/N [dB]",
+           "_mean": "mean", "_std": "std", "_p5": "p5", "_p50": "p50", "_p95": "p95"}
+
+
+def _robust(column: str) -> tuple[str, str] | None:
+    """(metric, statistic) of a robust study's column of a known index, else None."""
+    for suffix, what in _ROBUST.items():
+        if column.endswith(suffix) and column[:-len(suffix)] in _INDICES:
+            return column[:-len(suffix)], what
+    return None
 
 
 def response_bench_note(column: str) -> str:
@@ -56,6 +74,11 @@ def response_bench_note(column: str) -> str:
     known = _INDICES.get(column)
     if known:
         return f"{column}: {known[1]}"
+    robust = _robust(column)
+    if robust:
+        base, what = robust
+        return (f"{column}: the {what} over a robust study's noise replicates of {base}, "
+                f"{_INDICES[base][1]}")
     return (f"{column}: a metric of the runs, not a transmission-error index of the paper or of "
             "GB/T 35089-2018 (docs/validation.md says which quantities a bench measures)")
 

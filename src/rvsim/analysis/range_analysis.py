@@ -8,12 +8,23 @@ import pandas as pd
 
 from ._table import UNBALANCED_NOTE, check_design_table, factor_columns, is_balanced
 
-__all__ = ["RangeAnalysis", "range_analysis"]
+__all__ = ["RangeAnalysis", "range_analysis", "larger_is_better"]
+
+#: a robust study's S/N columns (rvsim.analysis.signal_noise): larger is better
+_SN_SUFFIXES = ("_sn", "_sn_smaller", "_sn_nominal", "_sn_larger")
+
+
+def larger_is_better(response: str) -> bool:
+    """Whether a larger ``response`` is the better: a Taguchi S/N ratio column (a robust
+    study's ``..._sn``, ``..._sn_smaller``, ...); every other response is smaller-is-better
+    (the paper's TE)."""
+    return str(response).endswith(_SN_SUFFIXES)
 
 
 @dataclasses.dataclass(frozen=True)
 class RangeAnalysis:
-    """Level means k_i, range R, factor order and the smaller-is-better optimum.
+    """Level means k_i, range R, factor order and the smaller-is-better optimum (larger for
+    an S/N ratio column).
 
     ``levels[f]`` holds the level numbers that occur in column ``f`` (ascending) and
     ``level_means[f]`` the mean response at each of them, in the same order.
@@ -33,8 +44,10 @@ class RangeAnalysis:
 
     @property
     def optimum(self) -> dict[str, int]:
-        """The level number (as written in the table) with the smallest mean, per factor."""
-        return {f: self.levels[f][min(range(len(k)), key=k.__getitem__)]
+        """The level number (as written in the table) with the smallest mean, per factor (the
+        largest for an S/N ratio, :func:`larger_is_better`)."""
+        best = max if larger_is_better(self.response) else min
+        return {f: self.levels[f][best(range(len(k)), key=k.__getitem__)]
                 for f, k in self.level_means.items()}
 
     def mean_at(self, factor: str, level: int) -> float:

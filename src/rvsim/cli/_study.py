@@ -282,8 +282,17 @@ def _analyze(args: argparse.Namespace) -> int:
     if factors is None:
         factors = _study_factors(args.table, table)
     pool = tuple(_names("--pool", args.pool) or ())
-    response = _response_column(table, args.response, factors)
+    robust = args.response is None and _is_robust_folder(args.table)
+    if robust:             # a robust study's S/N of the ATE, then its mean (issue 33)
+        response = _response_column(table, "ate_arcmin_sn" if "ate_arcmin_sn" in table
+                                    else "te_mean_arcmin_sn", factors)
+    else:
+        response = _response_column(table, args.response, factors)
     result = analyze_table(table, response, factors, pool=pool, alpha=args.alpha)
+    if robust:
+        also = _companion(response)[0]
+        result["also"] = {also: analyze_table(table, _response_column(table, also, factors),
+                                              factors, pool=pool, alpha=args.alpha)}
     if failed:
         result.setdefault("notes", []).insert(0, f"{failed} run(s) whose status is not 'ok' "
                                               "left out")
@@ -307,7 +316,26 @@ def _analyze(args: argparse.Namespace) -> int:
     print(f"\nsignificant at alpha = {args.alpha}: {', '.join(result['significant']) or 'none'}")
     for note in result.get("notes", []):
         print(f"note: {note}")
+    for column, other in result.get("also", {}).items():
+        print(f"\n\nresponse {response_bench_note(column)}\n")
+        print(range_analysis(table, column, factors).to_df().round(4).to_string())
+        print(f"\norder: {other.get('order', 'none')}")
+        print("\nANOVA (main effects)")
+        print(anova(table, column, factors, pool=pool).to_df().round(4).to_string())
+        print(f"\nsignificant at alpha = {args.alpha}: "
+              f"{', '.join(other['significant']) or 'none'}")
     return 0
+
+
+def _is_robust_folder(path: str) -> bool:
+    """Whether the results.csv ``path`` is a robust study's (its study.json has noise)."""
+    import json
+
+    try:
+        stored = json.loads((Path(path).parent / "study.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return isinstance(stored, dict) and "noise" in stored
 
 
 def _report(args: argparse.Namespace) -> int:
