@@ -1,7 +1,7 @@
 """Taguchi's S/N ratios and a robust study row's replicate statistics against hand
 calculations (issue 33 item 2; docs/model.md "Robust design").
 
-The formulas (Minitab, "What is the signal-to-noise ratio?"; Phadke 1989, ch. 5):
+The formulas (Minitab, "What is the signal-to-noise ratio?"; Phadke 1989; docs/model.md section 20):
 smaller-the-better -10 log10(mean(y^2)), nominal-the-best 10 log10(ybar^2 / s^2) with the
 sample variance (n - 1), larger-the-better -10 log10(mean(1 / y^2)).
 """

@@ -14,7 +14,7 @@ stiffness, a rigidity, the rated torque and the pins in contact (load sharing),
 smaller-the-better for every other metric (TE,
 ATE, lost motion, forces, stresses).  Formulas: Minitab, "What is the signal-to-noise ratio?"
 (Taguchi designs, static S/N ratios); Phadke, *Quality Engineering Using Robust Design*
-(1989), ch. 5 (docs/model.md, "Robust design").  A ratio that is not finite (a response of
+(1989) (docs/model.md section 20).  A ratio that is not finite (a response of
 exactly 0, or no spread) is None.
 """
 

@@ -382,9 +382,12 @@ def register(sub) -> None:
                     ["rvsim study paper-l36 --out study",
                     "rvsim study my_study.toml --out tol --workers 2",
                     "rvsim study paper-l36 --out study --scheduler tcp://127.0.0.1:8786",
-                    "rvsim study paper-l36 --out reference --scheme explicit"])
-    p.add_argument("study", help="'paper-l36', a tolerance study ('rv40e-tolerances': runs "
-                   "as 'rvsim tolerance' does) or a study .toml file")
+                    "rvsim study paper-l36 --out reference --scheme explicit",
+                    "rvsim study paper-l36-robust --out rob --workers 2"])
+    p.add_argument("study", help="'paper-l36', 'paper-l36-robust' (its L36 with 20 noise "
+                   "replicates of per-part errors per run), a tolerance study "
+                   "('rv40e-tolerances': runs as 'rvsim tolerance' does) or a study .toml file "
+                   "(with a [noise] section: a robust study)")
     p.add_argument("--out", required=True, metavar="DIR", type=path_text, help="study folder")
     p.add_argument("--workers", type=positive_int,
                    help="local worker processes (default: one per core)")
