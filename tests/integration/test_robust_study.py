@@ -157,3 +157,37 @@ def test_noise_positions_with_the_dynamic_engine(tmp_path):
     res = run_cli("study", str(path), "--out", str(tmp_path / "out"))
     assert res.code == 2 and res.err.count("\n") == 1, res.err
     assert "noise.positions" in res.err and "dynamic" in res.err
+
+
+def test_a_dynamic_robust_study_loads_with_the_papers_index(tmp_path):
+    """The dynamic engine is accepted (each replicate a simulation): loaded, not run here."""
+    from rvsim.cli._study import _study_response
+    from rvsim.tolerance.robust import load_robust_study
+
+    path = _write(tmp_path, noise=NOISE.replace("positions = 96", ""),
+                  study=STUDY.replace('engine = "quasi-static"', ""))
+    study = load_robust_study(path)
+    assert study.engine == "dynamic" and study.noise.samples == 3
+    assert "te_mean_arcmin_sn" in study.noise.columns(study)
+    assert "steps_mean" not in study.noise.columns(study)        # bookkeeping: no statistics
+    assert _study_response(study, None) == "te_mean_arcmin_sn"
+
+
+def test_plain_loader_points_to_the_robust_one(tmp_path):
+    from rvsim.doe import load_study
+    from rvsim.errors import InputFileError
+
+    with pytest.raises(InputFileError, match="load_robust_study"):
+        load_study(_write(tmp_path))
+
+
+def test_paper_l36_robust_definition():
+    from rvsim.tolerance.robust import paper_l36_robust
+
+    study = paper_l36_robust()
+    assert study.engine == "quasi-static" and study.design == "L36" and len(study.table()) == 36
+    assert study.noise.samples == 20 and study.noise.spec.seed == 1
+    names = [t.name for t in study.noise.spec.tolerances]
+    assert "clearances.crank_arm_bushing" not in names         # factor K's parameter
+    assert names == ["pin_radius", "pin_radial", "pin_tangential", "disc_pitch", "profile_form",
+                     "eccentricity", "disc_holes", "carrier_holes"]

@@ -205,8 +205,9 @@ def _study_response(study, response: str | None) -> str:
 
     if study.noise is not None:
         columns = study.noise.columns(study)
-        if response is None:          # the bench's index's S/N, or the paper's
-            return "ate_arcmin_sn" if "ate_arcmin_sn" in columns else "te_mean_arcmin_sn"
+        if response is None:   # the bench's index's S/N; a dynamic run's window is usually
+            # a part of an output revolution: the paper's index's, as a plain dynamic study's
+            return "ate_arcmin_sn" if study.engine == "quasi-static" else "te_mean_arcmin_sn"
         if response not in columns:
             raise ParameterError("--response", f"'{response}' is not a column of the robust "
                                  f"study's rows (e.g. ate_arcmin_sn, ate_arcmin_mean, "
