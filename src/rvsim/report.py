@@ -222,6 +222,7 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
                 response: str = "te_mean_arcmin") -> str:
     from .analysis import range_analysis, sn_response_table
     from .analysis.anova import ZERO_RESPONSE_NOTE
+    from .analysis.range_analysis import larger_is_better
     from .analysis.indices import response_bench_note, response_label
     from .doe.store import ResultStore
     from .plots import main_effects_plot, spectrum_plot, speed_plot, te_plot
@@ -248,6 +249,13 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
     if definition.get("fixed"):
         body.append("<p class='note'>Fixed for every run: " + html.escape(", ".join(
             f"{k} = {v}" for k, v in definition["fixed"])) + "</p>")
+    if definition.get("noise"):          # a robust study (issue 33)
+        noise = definition["noise"]
+        body.append("<p class='note'>Noise factors: every run built " + html.escape(
+            f"{noise['samples']} times (seed {noise['seed']}) with drawn " + ", ".join(
+                f"{t['name']} ({t['distribution']}, {t['tolerance']:g})"
+                for t in noise["tolerances"])) + "; each row holds the replicates' mean, "
+            "std, percentiles and S/N ratios (docs/user_guide.md section 14)</p>")
     if definition.get("engine", "dynamic") == "dynamic" and definition.get("time_step"):
         # issue 14: every dynamic study names its scheme (study.json omits the explicit one)
         scheme = definition.get("scheme", "explicit")
@@ -294,7 +302,8 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
                  "<p>Factor order by range: <b>"
                  + html.escape(analysis["order"] or "none (the response is constant)")
                  + "</b>. "
-                 "Optimum (smaller is better): " + html.escape(" ".join(
+                 + ("Optimum (larger is better: an S/N ratio): " if larger_is_better(response)
+                    else "Optimum (smaller is better): ") + html.escape(" ".join(
                      f"{f}{lvl}" for f, lvl in analysis["optimum"].items())) + "</p>"]
         anova = pd.DataFrame(analysis["anova"]).T.astype(float)   # null -> NaN
         anova.index.name = "source"
@@ -322,9 +331,16 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
                  _png(main_effects_plot(range_analysis(ok, response, factors),
                                         ylabel=response_label(response))),
                  "<h2>Signal-to-noise ratios (smaller is better)</h2>"]
-        sn = sn_response_table(ok, response, factors)
+        sn = None if larger_is_better(response) else sn_response_table(ok, response, factors)
         body.append(_table(sn.round(4)) if sn is not None else
-                    f"<p class='note'>{html.escape(ZERO_RESPONSE_NOTE)}</p>")
+                    f"<p class='note'>{html.escape(ZERO_RESPONSE_NOTE)}</p>"
+                    if not larger_is_better(response) else
+                    f"<p class='note'>{html.escape(response)} is itself an S/N ratio over the "
+                    "noise replicates (see the range analysis above)</p>")
+        for column, other in analysis.get("also", {}).items():   # a robust study's mean
+            if other.get("order"):
+                body.append(f"<p>Factor order by range of {html.escape(column)}: <b>"
+                            f"{html.escape(other['order'])}</b>.</p>")
     failed = results[results["status"] != "ok"]
     if len(failed):
         body += ["<h2>Failed runs</h2>",

@@ -191,3 +191,13 @@ def test_paper_l36_robust_definition():
     assert "clearances.crank_arm_bushing" not in names         # factor K's parameter
     assert names == ["pin_radius", "pin_radial", "pin_tangential", "disc_pitch", "profile_form",
                      "eccentricity", "disc_holes", "carrier_holes"]
+
+
+def test_report_names_the_noise_and_maximises_the_sn(robust):
+    root, _, _ = robust
+    res = run_cli("report", str(root / "out"))
+    assert res.code == 0, res.err
+    page = (root / "out" / "report.html").read_text()
+    assert "Noise factors: every run built 3 times (seed 1)" in page
+    assert "Optimum (larger is better: an S/N ratio)" in page
+    assert "Factor order by range of ate_arcmin_mean" in page
