@@ -12,7 +12,8 @@ from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..physics import _layout as L
-from ._kernel import COUNT_ROW, integrate, new_state, nothing_carried
+from ._kernel import COUNT_ROW, integrate, new_state
+from ..physics._pins import nothing_carried
 from ._implicit_bearings import new_work
 from .model import EXPLICIT, IMPLICIT_BEARINGS, SCHEMES, build_model
 from .result import Result
