@@ -111,13 +111,14 @@ class _CompileWatch:
         self.seconds = 0.0
         self.said = False
         self.listener = None
+        self.packages = ("rvsim.",)     # whose functions' compilations are ours
 
     def start(self, dispatcher) -> None:
         self.depth += 1
         if self.depth > 1:
             return
         module = getattr(getattr(dispatcher, "py_func", None), "__module__", "") or ""
-        self.ours = module == "rvsim" or module.startswith("rvsim.")
+        self.ours = module.startswith(self.packages)
         if not self.ours:
             return
         if not self.said:
