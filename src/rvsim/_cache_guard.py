@@ -90,9 +90,11 @@ def invalidate_stale_cache(module: str | Path = _KERNEL) -> None:
 
 
 #: the line said once per process when an rvsim function starts compiling (first run after an
-#: install or an update; measured cold on 2 cores: simulate 44-90 s, ltca 27 s; issue 35)
+#: install or an update; measured cold on 2 cores: simulate 44 s quiet (issue 35), about 100 s
+#: of CPU for the dynamic kernel and 150 s for the quasi-static solver on a shared machine,
+#: 3-5 minutes of wall there; docs/benchmarks.md)
 COMPILING = ("rvsim: compiling the model's kernels with numba (first run after an install or "
-             "an update; up to about a minute, cached afterwards)")
+             "an update: one to a few minutes, cached afterwards)")
 #: the logger of the compile notice: a WARNING, so that without any logging set up Python's
 #: last-resort handler prints it on stderr; silence it with
 #: ``logging.getLogger("rvsim.compile").setLevel(logging.ERROR)``
