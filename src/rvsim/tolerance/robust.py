@@ -96,8 +96,10 @@ class Noise:
     def evaluator(self, study):
         """The study runner's evaluator of one row (picklable: a worker or a Dask cluster
         unpickles it by reference)."""
-        return functools.partial(evaluate_replicates, noise=self, engine=study.engine,
-                                 metrics=summarised_metrics(study))
+        evaluator = functools.partial(evaluate_replicates, noise=self, engine=study.engine,
+                                      metrics=summarised_metrics(study))
+        evaluator.kernel_engine = study.engine     # the runner's compile-first check
+        return evaluator
 
     def columns(self, study) -> tuple[str, ...]:
         """The numeric columns of the study's rows (``--response`` names one of them)."""
@@ -141,13 +143,12 @@ def evaluate_replicates(reducer, *, noise: Noise, engine: str, metrics: tuple, t
     checked for assembly and evaluated by the ``engine`` of the study; never raises.  The row
     is "ok" when at least 2 replicates assemble and none fails; a failed replicate fails the
     row with its status and reason (its statistics would hide it)."""
-    import time
-
+    from .._cache_guard import RunClock
     from ..doe.engines import EVALUATORS
     from ..errors import ParameterError as Invalid
     from .engine import BINDS, assembly_binds
 
-    start = time.perf_counter()
+    clock = RunClock()      # the row without numba compiling (a cold cache)
     values: dict[str, list] = {m: [] for m in metrics}
     binding, first_binding = 0, ""
     n = noise.samples
@@ -156,10 +157,10 @@ def evaluate_replicates(reducer, *, noise: Noise, engine: str, metrics: tuple, t
             drawn = noise.spec.realise(noise.unit(k), nominal=reducer)
             why = assembly_binds(drawn)
         except Invalid as exc:
-            return _failed("invalid", f"replicate {k}: {exc}", k, binding, start)
+            return _failed("invalid", f"replicate {k}: {exc}", k, binding, clock)
         except Exception as exc:  # noqa: BLE001 - a failed row must not stop the study
             return _failed("error", f"replicate {k}: {type(exc).__name__}: {exc}", k, binding,
-                           start)
+                           clock)
         if why:
             binding += 1
             first_binding = first_binding or f"replicate {k}: {why}"
@@ -168,13 +169,13 @@ def evaluate_replicates(reducer, *, noise: Noise, engine: str, metrics: tuple, t
                                  positions=noise.spec.positions, scheme=scheme)
         if out["status"] != "ok":
             return _failed(out["status"], f"replicate {k}: {out.get('error') or out['status']}",
-                           k, binding, start)
+                           k, binding, clock)
         for m in metrics:
             value = out["metrics"].get(m)
             values[m].append(np.nan if value is None else float(value))
     ok = n - binding
     counts = {"replicates": n, "replicates_ok": ok, "replicates_binding": binding}
-    wall = time.perf_counter() - start
+    wall = clock.split()[0]
     if ok < 2:
         return {"status": BINDS, "metrics": counts, "wall_s": wall,
                 "error": f"{binding} of {n} replicates bind on assembly, fewer than 2 remain "
@@ -182,10 +183,8 @@ def evaluate_replicates(reducer, *, noise: Noise, engine: str, metrics: tuple, t
     return {"status": "ok", "metrics": _row_metrics(values, counts), "wall_s": wall}
 
 
-def _failed(status: str, error: str, k: int, binding: int, start: float) -> dict:
-    import time
-
-    return {"status": status, "error": error, "wall_s": time.perf_counter() - start,
+def _failed(status: str, error: str, k: int, binding: int, clock) -> dict:
+    return {"status": status, "error": error, "wall_s": clock.split()[0],
             "metrics": {"replicates": k + 1, "replicates_binding": binding}}
 
 
