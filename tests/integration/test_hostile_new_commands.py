@@ -1,0 +1,52 @@
+"""Hostile inputs to the commands and options added on 2026-11-28 (life, hysteresis --budget,
+temperature and seals, units in --set and TOML, --response, profile --out .svg): each row is
+what a hostile user typed and the words the one-line error must hold.  After the command the
+working folder holds exactly what it held before (no partial file)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import run_cli
+
+# (command line, words the one error line must contain)
+BAD_ROWS = {
+    # Decimal's context overflowed converting 1e9999999 um to mm: a decimal.Overflow traceback
+    "--set H=1e9999999um": (["params", "--set", "H=1e9999999um"],
+                            "'errors.pin_circle_radius': '1e9999999um' is not a finite number"),
+    "TOML pin_circle_radius = '1e9999999um'": (
+        ["params", "--params", "{toml:[errors]\npin_circle_radius = \"1e9999999um\"\n}"],
+        "'errors.pin_circle_radius': '1e9999999um' is not a finite number"),
+}
+
+
+def _listing(folder: Path) -> list[str]:
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
+
+
+def _expand(args: list[str], folder: Path) -> list[str]:
+    out = []
+    for arg in args:
+        if arg.startswith("{toml:") and arg.endswith("}"):
+            path = folder / "in.toml"
+            path.write_text(arg[len("{toml:"):-1])
+            arg = str(path)
+        out.append(arg)
+    return out
+
+
+@pytest.mark.parametrize("key", list(BAD_ROWS))
+def test_bad_input_is_one_line_exit_2_no_file(key, tmp_path, monkeypatch):
+    args, words = BAD_ROWS[key]
+    monkeypatch.chdir(tmp_path)
+    args = _expand(args, tmp_path)
+    before = _listing(tmp_path)
+    res = run_cli(*args)
+    assert res.code == 2, (res.out, res.err)
+    assert res.err.count("\n") == 1 and res.err.startswith("rvsim: error: "), res.err
+    assert words in res.err, res.err
+    assert "Traceback" not in res.err and res.out == ""
+    assert _listing(tmp_path) == before
