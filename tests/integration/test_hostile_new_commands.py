@@ -20,6 +20,11 @@ BAD_ROWS = {
     "TOML pin_circle_radius = '1e9999999um'": (
         ["params", "--params", "{toml:[errors]\npin_circle_radius = \"1e9999999um\"\n}"],
         "'errors.pin_circle_radius': '1e9999999um' is not a finite number"),
+    # tapered_factors divided by tan(0): a ZeroDivisionError traceback after the LTCA run
+    "life support_contact_angle=0": (
+        ["life", "--params", "RV-40E-bearings", "--set", "bearings.support_contact_angle=0"],
+        "'bearings.support_contact_angle': 0 deg: ISO 281 rates tapered roller bearings with "
+        "a contact angle above 0 deg"),
 }
 
 
@@ -50,3 +55,18 @@ def test_bad_input_is_one_line_exit_2_no_file(key, tmp_path, monkeypatch):
     assert words in res.err, res.err
     assert "Traceback" not in res.err and res.out == ""
     assert _listing(tmp_path) == before
+
+
+def test_tapered_factors_refuse_a_zero_contact_angle():
+    """ISO 281 Table 8 gives X, Y of tapered roller bearings for alpha != 0 only (Y = 0.4
+    cot(alpha) is infinite at 0); the smallest positive angle still gives finite factors."""
+    import math
+
+    from rvsim.errors import ParameterError
+    from rvsim.physics.rating_life import tapered_factors
+
+    with pytest.raises(ParameterError, match="support_contact_angle"):
+        tapered_factors(0.0, "bearings.support_contact_angle")
+    e, x, y = tapered_factors(math.radians(15.0))
+    assert (e, x, y) == (1.5 * math.tan(math.radians(15.0)), 0.4,
+                         0.4 / math.tan(math.radians(15.0)))
