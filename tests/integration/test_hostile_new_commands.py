@@ -25,6 +25,16 @@ BAD_ROWS = {
         ["life", "--params", "RV-40E-bearings", "--set", "bearings.support_contact_angle=0"],
         "'bearings.support_contact_angle': 0 deg: ISO 281 rates tapered roller bearings with "
         "a contact angle above 0 deg"),
+    # Walther's 10^(10^z) overflowed far below 40 degC: an OverflowError traceback
+    "viscosity law overflows at -20 degC": (
+        ["params", "--params", "RV-40E-bearings", "--set", "friction.oil_viscosity=1e9",
+         "--set", "friction.oil_viscosity_100=2.1", "--set", "operating.temperature=-20"],
+        "'operating.temperature': -20 degC: the viscosity law gives more than 1e+21 mm^2/s"),
+    "viscosity law overflows at the cloud point": (
+        ["efficiency", "--params", "RV-40E-bearings", "--set", "friction.oil_viscosity=1e6",
+         "--set", "friction.oil_viscosity_100=2.1", "--set", "friction.oil_cloud_point=-270",
+         "--set", "operating.temperature=-270"],
+        "'operating.temperature': -270 degC: the viscosity law gives more than"),
 }
 
 
@@ -70,3 +80,19 @@ def test_tapered_factors_refuse_a_zero_contact_angle():
     e, x, y = tapered_factors(math.radians(15.0))
     assert (e, x, y) == (1.5 * math.tan(math.radians(15.0)), 0.4,
                          0.4 / math.tan(math.radians(15.0)))
+
+
+def test_viscosity_law_within_the_ceiling_is_unchanged():
+    """The ceiling only refuses what the law cannot give: the RV-40E-bearings oil (ISO VG 100
+    estimate) at 0 degC keeps its viscosity, the ASTM D341 line's own value."""
+    import dataclasses
+
+    from rvsim.friction import lubricant_viscosity
+    from rvsim.parameters import BUILT_IN_SETS
+    from rvsim.physics.losses import walther_viscosity
+
+    r = BUILT_IN_SETS["RV-40E-bearings"]
+    r = dataclasses.replace(r, operating=dataclasses.replace(r.operating, temperature=0.0))
+    f = r.friction
+    assert lubricant_viscosity(r) == walther_viscosity(0.0, f.oil_viscosity,
+                                                       f.oil_viscosity_100)
