@@ -96,3 +96,37 @@ def test_viscosity_law_within_the_ceiling_is_unchanged():
     f = r.friction
     assert lubricant_viscosity(r) == walther_viscosity(0.0, f.oil_viscosity,
                                                        f.oil_viscosity_100)
+
+
+def test_report_of_a_constant_response(tmp_path):
+    """``rvsim study --response te_window_revolutions`` (1.0 in every quasi-static run) wrote
+    analysis.json with "order": null (the analysis's "constant response") and then refused
+    its own folder ("'order' missing or malformed; run 'rvsim study' again", exit 2, after
+    every run had finished).  The page says the order is none."""
+    import json
+
+    import pandas as pd
+
+    from rvsim.doe.outputs import write_study_outputs
+
+    folder = tmp_path / "study"
+    folder.mkdir()
+    table = pd.DataFrame({"run": [1, 2, 3, 4], "H": [1, 1, 2, 2], "I": [1, 2, 1, 2],
+                          "te_mean_arcmin": [0.45, 2.23, 0.61, 1.9],
+                          "te_window_revolutions": [1.0] * 4,
+                          "status": ["ok"] * 4, "error": [""] * 4, "key": list("abcd")})
+    analysis = write_study_outputs(folder, table, ["H", "I"],
+                                   response="te_window_revolutions")
+    assert analysis["order"] is None and analysis["constant_response"] is True
+    definition = {"name": "qs", "design": "L4", "samples": None, "seed": 0,
+                  "time_step": 1e-5, "reducer": "RV-40E", "steady_start": 3.0,
+                  "factors": [{"label": f, "parameter": p, "levels": [0.0, 0.02],
+                               "low": None, "high": None}
+                              for f, p in (("H", "errors.pin_circle_radius"),
+                                           ("I", "errors.equidistant_modification"))],
+                  "fixed": []}
+    (folder / "study.json").write_text(json.dumps(definition))
+    res = run_cli("report", str(folder))
+    assert res.code == 0 and res.err == "", res.err
+    page = (folder / "report.html").read_text()
+    assert "none (the response is constant)" in page
