@@ -12,6 +12,8 @@ import pytest
 
 from tests.conftest import run_cli
 
+QS = 'name = "u"\ndesign = "L4"\nengine = "quasi-static"\n[factors.H]\nparameter = "H"\n'
+
 # (command line, words the one error line must contain)
 BAD_ROWS = {
     # Decimal's context overflowed converting 1e9999999 um to mm: a decimal.Overflow traceback
@@ -35,6 +37,13 @@ BAD_ROWS = {
          "--set", "friction.oil_viscosity_100=2.1", "--set", "friction.oil_cloud_point=-270",
          "--set", "operating.temperature=-270"],
         "'operating.temperature': -270 degC: the viscosity law gives more than"),
+    # the repeated-level rule compared the texts: "0um" and "0mm" ran as two levels of H
+    "levels ['0um', '0mm']": (
+        ["study", "{toml:" + QS + 'levels = ["0um", "0mm"]\n}', "--out", "o"],
+        "'factors.H.levels': level '0mm' is given twice (as '0um')"),
+    "levels [0.02, '20 um']": (
+        ["study", "{toml:" + QS + 'levels = [0.02, "20 um"]\n}', "--out", "o"],
+        "'factors.H.levels': level '20 um' is given twice (as 0.02)"),
 }
 
 
