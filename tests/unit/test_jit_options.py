@@ -24,12 +24,13 @@ def test_step_loop_counts_no_references_and_allocating_callees_do():
     # Numba's callees inherit the caller's reference counting: the step loop and the bearings
     # it calls every step go without, the functions that allocate set it back explicitly
     from rvsim.dynamics import _kernel, _stiff_nodes
-    from rvsim.physics import _fe_carrier
+    from rvsim.physics import _crank_bearings, _fe_carrier, _pins
 
-    for function in (_kernel._advance, _kernel.crank_bearings, _kernel.pin_loop):
+    for function in (_kernel._advance, _crank_bearings.crank_bearings, _pins.pin_loop):
         assert function.targetoptions["_nrt"] is False, function.__name__
-    for function in (_kernel.integrate, _kernel.ring_pins, _kernel.coupled_pins,
-                     _kernel.arm_pair, _fe_carrier.plate_supports, _stiff_nodes.node_omega_dt):
+    for function in (_kernel.integrate, _pins.ring_pins, _pins.coupled_pins,
+                     _crank_bearings.arm_pair, _fe_carrier.plate_supports,
+                     _stiff_nodes.node_omega_dt):
         assert function.targetoptions["_nrt"] is True, function.__name__
 
 

@@ -225,7 +225,7 @@ def test_shared_cosines_equal_the_direct_ones():
     # model.fill_turns against the per-element formulas, with per-part eccentric phases and a
     # rotation modification.  Measured 2.5e-14 (eccentric) and 8e-15 (frame): the round-off
     # of angles up to 150 rad
-    from rvsim.dynamics import _kernel as Kn
+    from rvsim.physics import _frames as Fr
     from rvsim.physics import _layout as L
     from rvsim.dynamics.model import fill_turns
     P = build_model(RV40E, 5e-6).P.copy()
@@ -237,12 +237,12 @@ def test_shared_cosines_equal_the_direct_ones():
     for _ in range(50):
         q = rng.uniform(-150.0, 150.0, L.N_DOF)
         crank_angles = np.array([0.0, math.pi])
-        trig = Kn.angle_trig(q, crank_angles)
+        trig = Fr.angle_trig(q, crank_angles)
         for j in range(2):
             line = q[L.CARRIER] + crank_angles[j]
             worst = max(worst, abs(trig[2 * j] - math.cos(line)),
                         abs(trig[2 * j + 1] - math.sin(line)))
-            ecc = Kn.eccentric_trig(P, q, j)
+            ecc = Fr.eccentric_trig(P, q, j)
             for disc in range(2):
                 phi = q[L.CRANK0 + L.CRANK_STRIDE * j + 4] + disc * math.pi + P[
                     L.ECC_PHASE0 + 2 * j + disc]
@@ -250,7 +250,7 @@ def test_shared_cosines_equal_the_direct_ones():
                             abs(ecc[2 * disc + 1] - math.sin(phi)))
         for disc in range(2):
             theta = q[L.DISC0 + L.DISC_STRIDE * disc + 2]
-            frame = Kn._disc_frame_at(P, q, np.zeros(L.N_DOF), disc, trig[4 + 2 * disc],
+            frame = Fr._disc_frame_at(P, q, np.zeros(L.N_DOF), disc, trig[4 + 2 * disc],
                                       trig[5 + 2 * disc])
             angle = theta - disc * math.pi / P[L.ZC] + P[L.PROFILE_ROT]
             worst = max(worst, abs(frame[1] - math.cos(angle)), abs(frame[2] - math.sin(angle)))

@@ -16,7 +16,7 @@ from tests.conftest import HAS_FE, NO_FE
 if not HAS_FE:
     pytest.skip(NO_FE, allow_module_level=True)
 
-from rvsim.dynamics import _kernel as Kn
+from rvsim.physics import _crank_bearings as Cb, _frames as Fr
 from rvsim.physics import _layout as L
 from rvsim.physics._bearings import conforming_approach
 from rvsim.physics._fe_crank import (coupled_arm_forces, compliance_torque, crank_compliance,
@@ -47,9 +47,9 @@ def _crank_state(model, q, crank):
     """Rigid relative positions r (2, 2) of crank ``crank``'s eccentrics and its A(phi)."""
     r = np.empty((2, 2))
     for disc in range(2):
-        wl, wu, hx, hy = Kn.arm_station(model.P, model.holes, crank, disc)
-        r[disc] = Kn.arm_geometry(model.P, q, np.zeros(L.N_DOF), crank, disc, hx, hy, wl,
-                                  wu, *Kn.arm_trig(model.P, q, crank, disc))[:2]
+        wl, wu, hx, hy = Fr.arm_station(model.P, model.holes, crank, disc)
+        r[disc] = Cb.arm_geometry(model.P, q, np.zeros(L.N_DOF), crank, disc, hx, hy, wl,
+                                  wu, *Fr.arm_trig(model.P, q, crank, disc))[:2]
     A = np.empty((4, 4))
     crank_compliance(model.P, q[L.CRANK0 + L.CRANK_STRIDE * crank + 4], A)
     return r, A

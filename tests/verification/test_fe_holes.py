@@ -182,7 +182,7 @@ def test_sweep_contraction_and_the_modes_refused():
     -0.34 (measured -0.336 on the default RV-40E at 300 N*m; the dynamic engine takes one
     sweep per step); the dynamic engine's disc modes (built with the holes held) are refused
     with the holes as load points."""
-    from rvsim.dynamics import _kernel as Kn
+    from rvsim.physics import _crank_bearings as Cb, _fe_holes as Fh, _frames as Fr, _pins as Pn
     from rvsim.dynamics import simulate
     from rvsim.dynamics.model import build_model
     from rvsim.quasistatic.transmission import solve_path
@@ -202,15 +202,15 @@ def test_sweep_contraction_and_the_modes_refused():
         Q, K = np.zeros(17), np.zeros((17, 17))
         ne[:, :] = 0
         for d in range(2):
-            Kn.pin_contacts(m.P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne, 1, pf, pe,
+            Pn.pin_contacts(m.P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne, 1, pf, pe,
                             m.fe, np.zeros((2, 0, 0)), arm)
-        Kn.begin_arms(m.P, arm)
+        Fh.begin_arms(m.P, arm)
         for j in range(2):
             for d in range(2):
-                wl, wu, hx, hy = Kn.hole_station(m.P, m.holes, j, d, arm)
-                Kn.arm_bushing(m.P, q, np.zeros(17), Q, K, j, d, hx, hy, wl, wu, arm,
-                               *Kn.arm_trig(m.P, q, j, d))
-        Kn.end_arms(m.P, arm)
+                wl, wu, hx, hy = Fr.hole_station(m.P, m.holes, j, d, arm)
+                Cb.arm_bushing(m.P, q, np.zeros(17), Q, K, j, d, hx, hy, wl, wu, arm,
+                               *Fr.arm_trig(m.P, q, j, d))
+        Fh.end_arms(m.P, arm)
         history.append(arm[:, col].copy())
     steps = np.diff(np.array(history), axis=0)
     rho = steps[3:, 0] / steps[2:-1, 0]
@@ -223,7 +223,7 @@ def test_no_pin_touching_leaves_the_stretch_of_the_holes_load_alone():
     """A disc no pin touches (the pins 0.2 mm thinner, the kinematic pose): its stretch is
     c_ss Q from the holes' own load, whatever it was before (found stale by review), with the
     strain energy c_ss Q^2 / 2."""
-    from rvsim.dynamics import _kernel as Kn
+    from rvsim.physics import _forces as Fo, _pins as Pn
     from rvsim.physics._fe_holes import Q_PINS, STRETCH
     from rvsim.dynamics.model import build_model
 
@@ -244,7 +244,7 @@ def test_no_pin_touching_leaves_the_stretch_of_the_holes_load_alone():
     energies = []
     for d in range(2):
         Q, K = np.zeros(17), np.zeros((0, 0))
-        energy, _, _, _ = Kn.pin_contacts(P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne,
+        energy, _, _, _ = Pn.pin_contacts(P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne,
                                           1, pf, pe, m.fe, np.zeros((2, 0, 0)), arm)
         energies.append(energy)
     assert not pf.any()                                # no pin touches
@@ -258,7 +258,7 @@ def test_no_pin_touching_leaves_the_stretch_of_the_holes_load_alone():
         arm[d, L.HOLE_SLOT0 + Q_PINS] = 40.0 * (d + 1)
         arm[d, L.HOLE_SLOT0 + STRETCH] = 1e-3
     ne[:, :] = 0
-    Kn.forces_at(P, q, np.zeros(17), 0.0, 0.0, 0.0, m.pins, angle, m.holes, m.crank_angles,
+    Fo.forces_at(P, q, np.zeros(17), 0.0, 0.0, 0.0, m.pins, angle, m.holes, m.crank_angles,
                  m.mesh_phase, u, ne, 1, pf, pe, arm, np.zeros(17), np.zeros((0, 0)),
                  np.zeros(L.N_CHANNELS), np.zeros((2, 2)), np.zeros((2, 2)), m.fe)
     assert not pf.any()

@@ -14,7 +14,7 @@ import pytest
 
 from rvsim.physics import _layout as L
 from rvsim.physics._contact_law import EXPONENT
-from rvsim.dynamics._kernel import nothing_carried, pin_contacts
+from rvsim.physics._pins import nothing_carried, pin_contacts
 from rvsim.dynamics.model import build_model
 from rvsim.geometry import nominal_disc_pose, pin_gaps
 from rvsim.parameters import RV40E, with_values

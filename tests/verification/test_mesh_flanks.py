@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from rvsim.physics import _layout as L
-from rvsim.dynamics._kernel import gear_mesh
+from rvsim.physics._gear_mesh import gear_mesh
 from rvsim.dynamics.model import build_model
 from rvsim.parameters import RV40E
 

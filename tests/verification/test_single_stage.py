@@ -31,7 +31,7 @@ import pytest
 from rvsim.cli import main
 from rvsim.physics import _layout as L
 from rvsim.dynamics import simulate
-from rvsim.dynamics._kernel import forces_at
+from rvsim.physics._forces import forces_at
 from rvsim.dynamics.model import build_model
 from rvsim.errors import ParameterError
 from rvsim.geometry.layout import output_pins

@@ -131,6 +131,22 @@ def print_json(payload: Any) -> None:
     sys.stdout.write("\n")
 
 
+def with_compile_time(summary: dict) -> dict:
+    """``summary`` with ``compile_s``: the seconds this process spent compiling the kernels
+    (0 with a warm cache); the summary's own ``wall_s`` is the run without them."""
+    from .._cache_guard import compile_seconds
+
+    return {**summary, "compile_s": compile_seconds()}
+
+
+def compile_time_text() -> str:
+    """", + 52 s compiling" after a run's wall time when this process compiled, else ""."""
+    from .._cache_guard import compile_seconds
+
+    seconds = compile_seconds()
+    return f", + {seconds:.0f} s compiling" if seconds > 0 else ""
+
+
 def number(text: str) -> float:
     """argparse type: a number as float() reads it, but not with digit groups ("1_0", which
     Python reads as 10; --set and parameter files refuse it too)."""

@@ -12,7 +12,8 @@ import sys
 
 from ..errors import ParameterError
 from ..parameters import plain_number
-from ._common import add_command, add_reducer_options, check_load, print_json, reducer_from_args
+from ._common import (add_command, add_reducer_options, check_load, compile_time_text, print_json,
+                      reducer_from_args, with_compile_time)
 from ._quasistatic import _output_path, _solve, _write
 
 __all__ = ["register", "parse_list", "MAX_POINTS"]
@@ -74,11 +75,12 @@ def _efficiency(args: argparse.Namespace) -> int:
         summary["note"] = note
         print(f"rvsim: note: {note}", file=sys.stderr)
     if args.json:
-        print_json(summary)
+        print_json(with_compile_time(summary))
         return 0
     frame = result.to_frame()
     print(f"{reducer.name}: efficiency at {len(result.input_speed)} speeds x "
-          f"{len(result.output_torque)} torques ({summary['wall_s']:.2f} s), status "
+          f"{len(result.output_torque)} torques ({summary['wall_s']:.2f} s"
+          f"{compile_time_text()}), status "
           f"{summary['status']}")
     table = frame.pivot(index="output_torque_nm", columns="input_speed_rpm", values="efficiency")
     print("output torque [N*m] \\ input speed [rpm]")

@@ -15,7 +15,7 @@ from ..errors import InputFileError, ParameterError
 from ..analysis.sampling import MAX_POSITIONS, check_positions
 from ..units import TO_SI
 from ._common import (number, add_command, add_reducer_options, check_load, check_output_file,
-                      print_json, reducer_from_args)
+                      compile_time_text, print_json, reducer_from_args, with_compile_time)
 
 __all__ = ["register", "MIN_POSITIONS", "MAX_POSITIONS"]
 
@@ -101,12 +101,13 @@ def _ltca(args: argparse.Namespace) -> int:
         from ..report import write_ltca_report
 
         _write("--report", report, lambda: write_ltca_report(result, reducer, report))
-    summary = result.summary()
+    summary = with_compile_time(result.summary())
     if args.json:
         print_json(summary)
     else:
         print(f"{reducer.name} at {result.torque:g} N*m, {summary['positions']} positions over "
-              f"one output revolution ({summary['wall_s']:.3f} s), status {summary['status']}")
+              f"one output revolution ({summary['wall_s']:.3f} s{compile_time_text()}), status "
+              f"{summary['status']}")
         print(f"TE mean {summary['te_mean_arcmin']:.4f} arcmin (from the nominal assembly), "
               f"peak-to-peak {summary['te_pp_arcmin']:.4f} arcmin (ATE "
               f"{summary['ate_arcmin']:.4f} arcmin); max pin force "
@@ -172,10 +173,10 @@ def _hysteresis(args: argparse.Namespace) -> int:
             _write("--report", report,
                    lambda: write_hysteresis_report(result, reducer, report_tmp, budget=budget))
     if args.json:
-        print_json(summary)
+        print_json(with_compile_time(summary))
     else:
         print(f"{reducer.name}: torque-reversal test to +-{summary['rated_torque_nm']:g} N*m "
-              f"({summary['wall_s']:.3f} s), status {summary['status']}")
+              f"({summary['wall_s']:.3f} s{compile_time_text()}), status {summary['status']}")
         print(f"torsional rigidity {summary['torsional_rigidity_nm_per_arcmin']:.2f} "
               f"N*m/arcmin (50-100 % of rated), lost motion {summary['lost_motion_arcmin']:.4f}"
               f" arcmin (+-3 %), backlash {summary['backlash_arcmin']:.4f} arcmin, hysteresis "

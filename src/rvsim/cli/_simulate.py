@@ -7,7 +7,8 @@ import sys
 
 from ..errors import ParameterError, SimulationError
 from ._common import (number, add_command, add_reducer_options, check_load, check_output_file,
-                      path_text, print_json, reducer_from_args)
+                      compile_time_text, path_text, print_json, reducer_from_args,
+                      with_compile_time)
 
 __all__ = ["register"]
 
@@ -44,12 +45,12 @@ def _simulate(args: argparse.Namespace) -> int:
             from ..report import write_run_report
 
             write_run_report(result, reducer, report)
-    summary = result.summary()
+    summary = with_compile_time(result.summary())
     if args.json:
         print_json(summary)
     else:
         print(f"{reducer.name}: {summary['sim_time_s']:.3f} s simulated in {summary['wall_s']:.2f}"
-              f" s ({summary['steps']} steps), status {summary['status']}")
+              f" s ({summary['steps']} steps{compile_time_text()}), status {summary['status']}")
         print(f"mean TE (t >= {reducer.operating.steady_start:g} s): "
               f"{summary['te_mean_arcmin']:.4f} arcmin, peak-to-peak "
               f"{summary['te_pp_arcmin']:.4f}, RMS {summary['te_rms_arcmin']:.4f}; speed ratio "

@@ -94,7 +94,7 @@ def _death(code: int | None) -> str:
 
 def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str, dict], None],
                 inherited_fds: list[int] = (), on_idle: Callable[[], None] | None = None,
-                *, task: Callable[..., tuple[str, dict]]) -> None:
+                *, task: Callable[..., tuple[str, dict]], first_alone: bool = False) -> None:
     """Evaluate ``tasks`` in ``workers`` processes: each worker calls ``task(key, *tasks[key])``,
     which returns ``(key, outcome)`` (:func:`rvsim.doe.runner.evaluate_task`; a module-level
     function, so that a spawned worker can unpickle it).
@@ -103,6 +103,10 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
     is called once, the first time a worker finds no run left while another still works: a
     core is then free for this process's own preparations (the study's analysis imports), and
     no worker waits on them.
+
+    ``first_alone``: start one worker and the others only once its first run has come back
+    (or the worker died): with a cold numba cache that worker compiles the kernel and caches
+    it, and the others load it instead of compiling the same kernel at once.
     """
     context = multiprocessing.get_context()
     fds = list(inherited_fds) if context.get_start_method() == "fork" else []
@@ -163,8 +167,16 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
             else:
                 give_up_if_stuck()
 
+    def grow() -> None:
+        """Start the workers held back by ``first_alone``, each with a run."""
+        for _ in range(min(workers - len(pool), len(queue))):
+            fresh = spawn()
+            if fresh is None:
+                break
+            dispatch(fresh)
+
     try:
-        for _ in range(min(workers, len(queue))):
+        for _ in range(min(1 if first_alone else workers, len(queue))):
             if spawn() is None:
                 break
         for worker in list(pool):
@@ -173,6 +185,11 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
         while busy := [w for w in pool if w.task is not None]:
             ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy]))
             check_stop()        # a stop signal whose exception was lost on its way
+            if first_alone and ready:       # the first run is back, or its worker died
+                first_alone = False
+                grow_now = True
+            else:
+                grow_now = False
             for worker in busy:
                 if worker.conn in ready:
                     try:
@@ -192,6 +209,8 @@ def run_workers(tasks: dict[str, tuple], workers: int, on_result: Callable[[str,
                             pass           # failed here fails again, reported, after the runs
                 elif worker.process.sentinel in ready:
                     replace(worker, worker.task)
+            if grow_now:
+                grow()
         give_up_if_stuck()
     finally:
         for worker in pool:

@@ -33,7 +33,7 @@ from .store import ResultStore, run_key
 from .study import Study
 
 __all__ = ["run", "evaluate", "evaluate_task", "compact_history", "run_local", "run_dask",
-           "check_scheduler", "StudyTerminated"]
+           "check_scheduler", "StudyTerminated", "kernel_ready"]
 
 
 def evaluate(reducer: Reducer, time_step: float, engine="dynamic",
@@ -168,10 +168,27 @@ def run_local(todo: dict, options: tuple, workers: int | None, store_result,
     one per core), calling ``store_result(key, outcome)`` as each finishes.  ``options``: the
     (time_step, engine, hysteresis, positions, scheme) of :func:`evaluate`; ``on_idle``: see
     :func:`rvsim.doe._workers.run_workers`."""
-    workers = workers or os.cpu_count() or 1
+    workers = min(workers or os.cpu_count() or 1, len(todo))
+    # a cold cache: one worker compiles (and caches) the kernel while the others wait, instead
+    # of each compiling the same kernel at once (issue 35 item 3)
+    first_alone = workers > 1 and not kernel_ready(options[1])
     run_workers({key: (reducer, *options) for key, reducer in todo.items()},
-                min(workers, len(todo)), store_result, held_lock_fds(), on_idle,
-                task=evaluate_task)
+                workers, store_result, held_lock_fds(), on_idle,
+                task=evaluate_task, first_alone=first_alone)
+
+
+def kernel_ready(engine) -> bool:
+    """Whether the compiled kernel of ``engine`` is ready without compiling (in this process or
+    in numba's disk cache; :func:`rvsim._cache_guard.compiled_or_cached`): the dynamic engine's
+    integrator, else the quasi-static solver that the quasi-static and tolerance evaluators
+    call.  Reads the cache's index only: nothing is loaded or compiled here."""
+    from .._cache_guard import compiled_or_cached
+
+    if engine == "dynamic":
+        from ..dynamics._kernel import integrate as entry
+    else:
+        from ..quasistatic._solver import sweep as entry
+    return compiled_or_cached(entry)
 
 
 def _scheduler_address(scheduler: str) -> tuple[str, int]:

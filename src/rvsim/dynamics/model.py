@@ -209,7 +209,7 @@ def fill_turns(P: np.ndarray) -> None:
     """The constant turns of the kernel's angles (P[FRAME_TURN0 ..], P[ECC_TURN0 ..]), so that
     a force evaluation takes one cosine and sine per angle (docs/model.md section 9), from
     P[ZC], P[PROFILE_ROT] and P[ECC_PHASE0 ..]."""
-    from ._kernel import eccentric_angle, profile_turn
+    from ..physics._frames import eccentric_angle, profile_turn
     for disc in range(2):
         turn = profile_turn(P, disc)
         P[L.FRAME_TURN0 + 2 * disc:L.FRAME_TURN0 + 2 * disc + 2] = math.cos(turn), math.sin(turn)

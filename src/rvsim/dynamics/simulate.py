@@ -4,15 +4,16 @@ from __future__ import annotations
 
 import math
 import numbers
-import time as _time
 
 import numpy as np
 
+from .._cache_guard import RunClock
 from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..physics import _layout as L
-from ._kernel import COUNT_ROW, integrate, new_state, nothing_carried
+from ._kernel import COUNT_ROW, integrate, new_state
+from ..physics._pins import nothing_carried
 from ._implicit_bearings import new_work
 from .model import EXPLICIT, IMPLICIT_BEARINGS, SCHEMES, build_model
 from .result import Result
@@ -138,6 +139,8 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     :data:`SPEED_RATIO_LIMIT` away from the design ratio) raises
     :class:`~rvsim.errors.SimulationError` (or, with ``raise_on_failure=False``, returns the
     result with its ``status``).  ``progress=True`` shows a progress bar on stderr.  The
+    result's ``wall_s`` is the run's wall time without numba compiling the kernel (a first run
+    after an install; :func:`rvsim._cache_guard.compile_seconds` has that time).  The
     compiled loop returns every :data:`CHUNK_STEPS` steps, so Ctrl-C (KeyboardInterrupt)
     stops a run within a fraction of a second.
     """
@@ -161,8 +164,8 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     state = new_state(reducer.cycloid.pin_count, L.N_CHANNELS, int(model.P[L.OUT_COUNT]))
     carried = nothing_carried(reducer.cycloid.pin_count)
     implicit = new_work(model.P)        # the scheme implicit-bearings' (empty: explicit)
-    bar = _progress_bar(duration) if progress else None
-    start = _time.perf_counter()
+    bar = None      # shown after the first chunk: a first run's compile notice stands alone
+    clock = RunClock()      # the wall time of the run, without numba compiling the kernel
     step = 0
     try:
         while True:
@@ -171,6 +174,8 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
                                      model.pins, model.holes, model.crank_angles,
                                      model.mesh_phase, *state, channels, pin_forces, energy,
                                      fe, modal, carried, *implicit)
+            if progress and bar is None:
+                bar = _progress_bar(duration)
             if bar is not None:
                 bar.update(min(step, n_steps) * time_step - bar.n)
             check_stop()        # a Ctrl-C or SIGTERM whose exception was swallowed on its way
@@ -179,7 +184,7 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
     finally:
         if bar is not None:
             bar.close()
-    wall = _time.perf_counter() - start
+    wall, _ = clock.split()
     steps = n_steps if status == L.STATUS_OK else step
     rows = int(state[-1][COUNT_ROW])          # samples the kernel stored
     result = Result(time=channels[:rows, L.CH_TIME].copy(), channels=channels[:rows],

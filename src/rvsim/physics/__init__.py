@@ -18,6 +18,14 @@ import of this package.
 * ``_fe_holes`` - the finite-element disc's crank holes as load points.
 * ``_fe_crank`` - the arm bushings of a finite-element crank, solved together.
 * ``_fe_carrier`` - the support bushings on the finite-element carrier and flange plates.
+* ``_frames`` - the one kinematic pose: crank stations, shared cosines and sines, disc frames,
+  eccentric directions, crank-hole stations.
+* ``_gear_mesh`` - the two-flank sun-planet gear mesh.
+* ``_pins`` - the pin contacts (pin loop, coupled FE pins, pin friction, ring as output) and
+  what each pin carries to its next evaluation.
+* ``_crank_bearings`` - arm and support bushings or rolling bearings, the FE crank's pair, their
+  stiffness matrices, and the one call of them per force evaluation.
+* ``_forces`` - ``forces_at`` / ``forces_with``: the one force evaluation of both engines.
 * ``compliance`` - Palmgren coefficient and tooth, pin and ring compliances (plain Python).
 * ``stiffening`` - one element's force laws made s times stiffer, for the compliance budget
   (plain Python).
@@ -25,6 +33,6 @@ import of this package.
 * ``losses`` - lubricant viscosity at a temperature (ASTM D341) and lip-seal drag
   (ISO/TR 14179-2) (plain Python).
 
-The gear mesh, pin contacts, crank bearings, the kinematic pose and the one force evaluation
-(``forces_at``/``forces``) are still in ``rvsim.dynamics._kernel`` (issue 31, a later step).
+The dynamic engine's step loop (``rvsim.dynamics._kernel``) calls ``_forces.forces_with`` at the
+input motion and load of its run's schedule; the quasi-static solver calls ``_forces.forces_at``.
 """

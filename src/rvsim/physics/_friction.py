@@ -1,7 +1,7 @@
 """Friction elements of the kernel that act on top of the normal forces of the other elements
 (numba; docs/model.md section 15): rolling-bearing friction torque after Palmgren and the
 sun-planet mesh friction after Ohlendorf.  The pin-disc friction is part of
-:func:`rvsim.dynamics._kernel.pin_contacts` (the tangential force needs its contact point).
+:func:`rvsim.physics._pins.pin_contacts` (the tangential force needs its contact point).
 
 Every law is regularised with tanh(v / v_s) (v_s = P[V_FRIC], ``contact.friction_velocity``),
 so the dynamic kernel integrates it with the explicit step and the dissipated power

@@ -1,6 +1,6 @@
 """Compiled static equilibrium of the 17 generalised coordinates (numba; no objects, no raises).
 
-The residual is the dynamic kernel's own force evaluation, :func:`rvsim.dynamics._kernel.
+The residual is the force evaluation both engines share, :func:`rvsim.physics._forces.
 forces_at`, at zero velocity (so every damping and friction term vanishes) with the input
 angle held and the output torque given; its stiffness matrix comes from the same force
 elements.  The equilibrium minimises the potential energy Pi(q) = U(q) + T_load theta_c, so
@@ -38,8 +38,9 @@ invalidate_stale_cache(__file__)
 
 from ..physics._fe_holes import (DF_DQ, DS_DQ, PREDICT, Q_PINS, Q_SUM, SETTLED,  # noqa: E402
                                  STRETCH, hole_css, hole_row, holes_on)
-from ..dynamics._kernel import (arm_bushing, arm_pair, arm_trig, forces_at,  # noqa: E402
-                               hole_station, profile_turn)
+from ..physics._crank_bearings import arm_bushing, arm_pair  # noqa: E402
+from ..physics._forces import forces_at  # noqa: E402
+from ..physics._frames import arm_trig, hole_station, profile_turn  # noqa: E402
 from ..physics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # noqa: E402
                                DISC_STRIDE, ECC, N_CHANNELS, N_DOF, OUT_COUNT, OUT_SLOT0,
                                FE_DISC, FE_HOLES, PEN_LIMIT, PIN_RADIUS, RING_OUTPUT, STAGES,
@@ -80,7 +81,7 @@ ROUNDOFF_FACTOR = 1e3
 # solve), the arm bushings at the stretches give Q_sum(s) and D = dQ_sum/ds (2 x 2, from the
 # elements' tangent stiffness, :func:`arm_response`).  :func:`_evaluate` runs Newton on
 # R(Q) = Q_sum(s(Q)) - Q, whose Jacobian is D B - I: each pass is the kernel's whole force
-# evaluation (:func:`rvsim.dynamics._kernel.forces_at`) with the current Q, repeated with the
+# evaluation (:func:`rvsim.physics._forces.forces_at`) with the current Q, repeated with the
 # Newton update until R passes :func:`settled` (tight, or loosely away from the equilibrium
 # with the forces corrected, :func:`correct_forces`); the evaluation that passes is the one
 # whose forces, energy and stiffness the solver takes.
@@ -533,7 +534,7 @@ def _solve_point(P, q, theta_in, torque, scale, tol, max_iter, pins, pin_angle, 
     pose (the rectangular-wave stiffness is discontinuous in q); where the equilibrium lies
     across a switch, solved again with the count found there.  Where it would flip back (the
     equilibrium sits on the switch, where none exists for either count), the second count is
-    kept.  Both flanks of a mesh are contacts of their own (:func:`rvsim.dynamics._kernel.
+    kept.  Both flanks of a mesh are contacts of their own (:func:`rvsim.physics._gear_mesh.
     gear_mesh`), continuous in q: no flank is held.  Returns (status, total iterations, input
     torque)."""
     hold = np.zeros((2, 2))          # zeros: taken from the starting pose by equilibrium()
@@ -593,7 +594,7 @@ def kinematic_pose(P, theta_in, holes, q):
 @numba.njit(cache=CACHE)
 def _carry_feet(u, shift):
     """Carry the pins' foot-point offsets (``u[disc, i]``, from the pin's nominal parameter,
-    :func:`rvsim.dynamics._kernel.pin_contacts`) to the next point of a path in input angle:
+    :func:`rvsim.physics._pins.pin_contacts`) to the next point of a path in input angle:
     the offsets follow the load pattern, which turns with the eccentric (and the discs) by
     ``shift`` [rad]; linear interpolation between the pins.  Only a start for the kernel's
     foot-point tracking (one Newton step from it, a robust search where that step is too large):
