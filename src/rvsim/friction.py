@@ -70,6 +70,7 @@ def lubricant_viscosity(reducer: Reducer) -> float:
     temperature without a law is refused).  Outside the law's range (below the cloud point,
     or hotter than where it gives 2 mm^2/s) raises :class:`ParameterError`."""
     from .errors import ParameterError
+    from .parameters._io import SI_CEILING
     from .physics.losses import (REFERENCE_TEMPERATURES, WALTHER_MIN_VISCOSITY,
                                  walther_viscosity)
 
@@ -93,7 +94,14 @@ def lubricant_viscosity(reducer: Reducer) -> float:
         raise ParameterError("operating.temperature", f"{temperature:g} degC is below the "
                              f"lubricant's cloud point friction.oil_cloud_point = "
                              f"{f.oil_cloud_point:g} degC (ASTM D341 holds from it up)")
-    nu = walther_viscosity(temperature, f.oil_viscosity, f.oil_viscosity_100)
+    try:
+        nu = walther_viscosity(temperature, f.oil_viscosity, f.oil_viscosity_100)
+    except OverflowError:      # 10^(10^z) beyond a double: the law far below 40 degC
+        nu = math.inf
+    if not nu <= SI_CEILING:   # the ceiling of every parameter, friction.oil_viscosity's too
+        raise ParameterError("operating.temperature", f"{temperature:g} degC: the viscosity "
+                             f"law gives more than {SI_CEILING * 1e6:g} mm^2/s, beyond any "
+                             "lubricant (check friction.oil_viscosity and oil_viscosity_100)")
     if not nu >= WALTHER_MIN_VISCOSITY:
         raise ParameterError("operating.temperature", f"{temperature:g} degC: the viscosity "
                              f"law gives {nu * 1e6:.3g} mm^2/s, below the "

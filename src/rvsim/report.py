@@ -181,7 +181,7 @@ def _read_study_folder(folder: Path) -> tuple[pd.DataFrame, dict, dict]:
         raise InputFileError(f"{folder / 'study.json'}: no factors")
     analysis = _load_json(folder / "analysis.json")
     if "error" not in analysis:
-        _require(analysis, folder / "analysis.json", {"range": dict, "order": str,
+        _require(analysis, folder / "analysis.json", {"range": dict, "order": (str, type(None)),
                                                       "optimum": dict, "anova": dict,
                                                       "prediction": dict})
         if set(analysis["range"]) != set(labels):

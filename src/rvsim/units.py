@@ -130,7 +130,10 @@ def si_from_text(text: str, unit: str) -> float | None:
         return float(number) * TO_SI[unit]
     # another unit: the decimal product, correctly rounded ("5um" is 5e-6 m, where
     # 5 * 1e-6 is one unit in the last place below and lists as 0.004999999999999999 mm)
-    return float(Decimal(number) * Decimal(repr(TO_SI[given])))
+    try:
+        return float(Decimal(number) * Decimal(repr(TO_SI[given])))
+    except ArithmeticError:            # "1e9999999um": beyond the decimal context's exponents
+        return math.inf                # (the caller refuses it as no finite number)
 
 
 def _a(noun: str) -> str:

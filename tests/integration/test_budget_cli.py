@@ -63,11 +63,13 @@ def test_report_has_the_budget_section(cli, tmp_path):
 
 BAD = [
     (("--budget-factor", "10"), "--budget-factor': needs --budget"),
-    (("--budget", "--budget-factor", "1"), "finite number > 1 (got 1)"),
-    (("--budget", "--budget-factor", "0.5"), "finite number > 1"),
-    (("--budget", "--budget-factor=-3"), "finite number > 1"),
-    (("--budget", "--budget-factor", "nan"), "finite number > 1"),
-    (("--budget", "--budget-factor", "inf"), "finite number > 1"),
+    (("--budget", "--budget-factor", "1"), "finite number >= 100 (got 1)"),
+    (("--budget", "--budget-factor", "1.0000001"), "finite number >= 100"),
+    (("--budget", "--budget-factor", "99"), "its share says nothing"),
+    (("--budget", "--budget-factor", "0.5"), "finite number >= 100"),
+    (("--budget", "--budget-factor=-3"), "finite number >= 100"),
+    (("--budget", "--budget-factor", "nan"), "finite number >= 100"),
+    (("--budget", "--budget-factor", "inf"), "finite number >= 100"),
     (("--budget", "--budget-factor", "abc"), "is not a number"),
     (("--budget", "--budget-factor", "1_0"), "is not a number"),
     (("--budget", "--rated-torque", "0"), "positive"),
@@ -96,3 +98,12 @@ def test_a_failed_budget_is_exit_1_with_its_status(cli, tmp_path):
     assert data["status"] == data["budget"]["status"] == "not_converged (gear_mesh stiffened)"
     assert data["budget"]["elements"][0]["share"] is None
     assert not page.exists()                              # no partial output
+
+
+def test_a_contradictory_budget_is_a_status_not_ok(cli):
+    # at a rated torque of 1e-6 N*m stiffening the mesh "softens" the reducer by 27.5 %: the
+    # secant says nothing there (hostile test 2026-11-28), so the budget fails with the reason
+    res = cli("hysteresis", "--params", "RV-40E-bearings", "--budget", "--rated-torque", "1e-6")
+    assert res.code == 1
+    assert res.err == ("rvsim: hysteresis --budget failed: status inconsistent (gear_mesh "
+                       "stiffened: the reducer came out softer, share -27.5 %)\n")

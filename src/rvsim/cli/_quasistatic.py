@@ -187,14 +187,17 @@ def _hysteresis(args: argparse.Namespace) -> int:
 
 
 def _check_budget_options(args: argparse.Namespace) -> None:
-    """--budget-factor only with --budget, and a finite number > 1 (1: nothing stiffened)."""
+    """--budget-factor only with --budget, and a finite number >= budget.MIN_FACTOR."""
     if args.budget_factor is None:
         return
     if not args.budget:
         raise ParameterError("--budget-factor", "needs --budget")
-    if not (math.isfinite(args.budget_factor) and args.budget_factor > 1.0):
-        raise ParameterError("--budget-factor", f"must be a finite number > 1 (got "
-                             f"{args.budget_factor:g})")
+    from ..quasistatic.budget import MIN_FACTOR
+
+    if not (math.isfinite(args.budget_factor) and args.budget_factor >= MIN_FACTOR):
+        raise ParameterError("--budget-factor", f"must be a finite number >= {MIN_FACTOR:g} "
+                             f"(got {args.budget_factor:g}): a less stiffened element keeps "
+                             "part of its compliance and its share says nothing")
 
 
 def _budget(reducer, result, args: argparse.Namespace, summary: dict):
@@ -329,7 +332,7 @@ def register(sub) -> None:
                         "torsional compliance (secant 50-100 %% of rated), each element "
                         "stiffened in turn (docs/model.md section 12)")
     p.add_argument("--budget-factor", type=number, metavar="S",
-                   help="stiffening factor of one element for --budget (> 1, default 1e4)")
+                   help="stiffening factor of one element for --budget (>= 100, default 1e4)")
     p.set_defaults(func=_hysteresis)
 
     p = add_command(sub, "life", "L10 rating life of the crank bearings (ISO 281)",

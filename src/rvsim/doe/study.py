@@ -306,6 +306,18 @@ def _string(data: dict, key: str, path: Path, default: str | None = None) -> str
     return value
 
 
+def _level_value(parameter: str, level):
+    """The level as the parameter's SI value (a text with a unit converted), to find a level
+    given twice in two spellings; the level itself where it is no valid value (refused later,
+    naming the run)."""
+    from ..parameters._io import SPECS, _coerce
+
+    try:
+        return _coerce(SPECS[parameter], level)
+    except (ParameterError, KeyError):
+        return level
+
+
 def _factor(label: str, spec, design: str, sampling: bool, path: Path) -> StudyFactor:
     if not isinstance(spec, dict):
         raise InputFileError(f"{path}: factors.{label} must be a table with 'parameter' and "
@@ -331,7 +343,11 @@ def _factor(label: str, spec, design: str, sampling: bool, path: Path) -> StudyF
         raise ParameterError(f"factors.{label}.levels", "needs a list of at least 2 levels")
     if any(isinstance(v, (dict, list)) for v in levels):
         raise ParameterError(f"factors.{label}.levels", "levels must be single values")
-    repeated = [v for i, v in enumerate(levels) if v in levels[:i]]
+    values = [_level_value(parameter, v) for v in levels]   # "0um" and "0mm" are one level
+    repeated = [(v, levels[values.index(values[i])]) for i, v in enumerate(levels)
+                if values[i] in values[:i]]
     if repeated:
-        raise ParameterError(f"factors.{label}.levels", f"level {repeated[0]!r} is given twice")
+        level, first = repeated[0]
+        same = "" if first == level else f" (as {first!r})"
+        raise ParameterError(f"factors.{label}.levels", f"level {level!r} is given twice{same}")
     return StudyFactor(label, parameter, tuple(levels))

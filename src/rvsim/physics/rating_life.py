@@ -115,10 +115,15 @@ def ball_dynamic_rating(count: int, diameter: float, pitch_diameter: float,
     return b_m * fc * (rows * cos_a) ** 0.7 * count ** (2.0 / 3.0) * size
 
 
-def tapered_factors(contact_angle: float) -> tuple[float, float, float]:
+def tapered_factors(contact_angle: float,
+                    field: str = "bearings") -> tuple[float, float, float]:
     """(e, X, Y) of a single-row tapered roller bearing (ISO 281 Table 8, alpha != 0):
     e = 1.5 tan(alpha); P = F_r for F_a / F_r <= e, else P = X F_r + Y F_a with X = 0.4,
-    Y = 0.4 cot(alpha)."""
+    Y = 0.4 cot(alpha).  alpha = 0 (Y infinite) is refused naming ``field``."""
+    if not 0.0 < contact_angle < 0.5 * math.pi:
+        raise ParameterError(field, f"{math.degrees(contact_angle):g} deg: ISO 281 rates "
+                             "tapered roller bearings with a contact angle above 0 deg "
+                             "(Table 8, alpha != 0)")
     t = math.tan(contact_angle)
     return 1.5 * t, 0.4, 0.4 / t
 
@@ -142,7 +147,7 @@ def _equivalent(radial, axial, e: float, x: float, y: float):
     return np.where(axial > e * radial, x * radial + y * axial, radial)
 
 
-def tapered_pair_loads(radial_a, radial_b, contact_angle: float):
+def tapered_pair_loads(radial_a, radial_b, contact_angle: float, field: str = "bearings"):
     """Equivalent dynamic loads (P_a, P_b) [N] of two single-row tapered roller bearings that
     locate a shaft in both directions (face to face or back to back), without external axial
     load, at the radial loads ``radial_a``, ``radial_b`` (arrays or numbers).
@@ -150,7 +155,7 @@ def tapered_pair_loads(radial_a, radial_b, contact_angle: float):
     Each bearing's radial load induces the axial force 0.5 F_r / Y (:func:`paired_axial_loads`):
     the bearing with the larger one carries its own, the other the same force.  P follows
     :func:`tapered_factors`."""
-    e, x, y = tapered_factors(contact_angle)
+    e, x, y = tapered_factors(contact_angle, field)
     fr_a = np.asarray(radial_a, dtype=float)
     fr_b = np.asarray(radial_b, dtype=float)
     # without external force both carry the larger induced force, whichever bearing's it is

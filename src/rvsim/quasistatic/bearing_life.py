@@ -143,6 +143,10 @@ def check_life_inputs(reducer: Reducer, torque: float, output_speed: float,
         if not math.isfinite(value) or value <= 0.0:
             raise ParameterError(name, f"must be a positive finite number (got {value:g} "
                                  f"{unit})")
+    if b.support_rollers:      # before the quasi-static run: ISO 281 needs alpha > 0
+        from ..physics.rating_life import tapered_factors
+
+        tapered_factors(b.support_contact_angle, "bearings.support_contact_angle")
     for name, value in external.items():
         if not math.isfinite(value) or value < 0.0:
             raise ParameterError(name, f"must be zero or a positive finite number (got "
@@ -258,7 +262,8 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
                 run.arm_forces[:, j, d], iso.ROLLER_EXPONENT,
                 "ok" if b.arm_needles else "bushing")
         lower, upper = run.support_forces[:, j, 0], run.support_forces[:, j, 1]
-        p_lower, p_upper = iso.tapered_pair_loads(lower, upper, b.support_contact_angle)
+        p_lower, p_upper = iso.tapered_pair_loads(lower, upper, b.support_contact_angle,
+                                                   "bearings.support_contact_angle")
         for where, p in (("lower", p_lower), ("upper", p_upper)):
             add(f"support rollers crank {j + 1} {where}", "tapered roller", c_support, p,
                 iso.ROLLER_EXPONENT, "ok" if b.support_rollers else "bushing")

@@ -36,6 +36,16 @@ __all__ = ["compliance_budget", "ComplianceBudget", "DEFAULT_FACTOR", "rigidity_
 #: residual, 100 x, issue 32's first budget, 1-3 %, mostly the compliance a bushing keeps)
 DEFAULT_FACTOR = 1e4
 
+#: the smallest stiffening factor: the share (C - C_i)/C is the element's own compliance only
+#: where the stiffened element keeps little of it (100 x: a Palmgren contact keeps 100^-0.9 =
+#: 1.6 %, a conforming bushing about 4 %, docs/model.md section 12); a smaller factor gives
+#: shares that say nothing (1.0000001 x: every share 0.0 %, hostile test 2026-11-28)
+MIN_FACTOR = 100.0
+
+#: a share below this is a contradiction (stiffening one element made the reducer softer by
+#: more than the solver's tolerance can explain): the budget's status says so, not "ok"
+NEGATIVE_SHARE = -0.01
+
 
 @dataclasses.dataclass
 class ComplianceBudget:
@@ -104,8 +114,10 @@ def _check(reducer: Reducer, factor, base, elements) -> tuple[float, dict, tuple
     from ..physics.stiffening import element_label, elements_in
 
     if isinstance(factor, bool) or not isinstance(factor, (int, float, np.number)) \
-            or not math.isfinite(factor) or factor <= 1.0:
-        raise ParameterError("factor", f"must be a finite number > 1 (got {factor!r})")
+            or not math.isfinite(factor) or factor < MIN_FACTOR:
+        raise ParameterError("factor", f"must be a finite number >= {MIN_FACTOR:g} (got "
+                             f"{factor!r}): a less stiffened element keeps part of its "
+                             "compliance and its share says nothing")
     P = build_model(reducer, 1e-5).P
     present = elements_in(P)
     base = dict(base or {})
@@ -185,6 +197,12 @@ def compliance_budget(reducer: Reducer, *, rated_torque: float | None = None,
             stiffened[i], run_status = _rigidity(reducer, rated, points_per_branch, factors)
             if run_status != "ok" and status == "ok":
                 status = f"{run_status} ({name} stiffened)"
+    if status == "ok":
+        shares = 1.0 - rigidity / stiffened
+        worst = int(np.argmin(shares))
+        if shares[worst] < NEGATIVE_SHARE:
+            status = (f"inconsistent ({present[worst]} stiffened: the reducer came out softer, "
+                      f"share {100 * shares[worst]:.1f} %)")
     return ComplianceBudget(rated_torque=float(rated), factor=factor, rigidity=float(rigidity),
                             elements=present, labels=labels, stiffened_rigidity=stiffened,
                             status=status, wall_s=_time.perf_counter() - start, base=base)

@@ -1,0 +1,141 @@
+"""Hostile inputs to the commands and options added on 2026-11-28 (life, hysteresis --budget,
+temperature and seals, units in --set and TOML, --response, profile --out .svg): each row is
+what a hostile user typed and the words the one-line error must hold.  After the command the
+working folder holds exactly what it held before (no partial file)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import run_cli
+
+QS = 'name = "u"\ndesign = "L4"\nengine = "quasi-static"\n[factors.H]\nparameter = "H"\n'
+
+# (command line, words the one error line must contain)
+BAD_ROWS = {
+    # Decimal's context overflowed converting 1e9999999 um to mm: a decimal.Overflow traceback
+    "--set H=1e9999999um": (["params", "--set", "H=1e9999999um"],
+                            "'errors.pin_circle_radius': '1e9999999um' is not a finite number"),
+    "TOML pin_circle_radius = '1e9999999um'": (
+        ["params", "--params", "{toml:[errors]\npin_circle_radius = \"1e9999999um\"\n}"],
+        "'errors.pin_circle_radius': '1e9999999um' is not a finite number"),
+    # tapered_factors divided by tan(0): a ZeroDivisionError traceback after the LTCA run
+    "life support_contact_angle=0": (
+        ["life", "--params", "RV-40E-bearings", "--set", "bearings.support_contact_angle=0"],
+        "'bearings.support_contact_angle': 0 deg: ISO 281 rates tapered roller bearings with "
+        "a contact angle above 0 deg"),
+    # Walther's 10^(10^z) overflowed far below 40 degC: an OverflowError traceback
+    "viscosity law overflows at -20 degC": (
+        ["params", "--params", "RV-40E-bearings", "--set", "friction.oil_viscosity=1e9",
+         "--set", "friction.oil_viscosity_100=2.1", "--set", "operating.temperature=-20"],
+        "'operating.temperature': -20 degC: the viscosity law gives more than 1e+21 mm^2/s"),
+    "viscosity law overflows at the cloud point": (
+        ["efficiency", "--params", "RV-40E-bearings", "--set", "friction.oil_viscosity=1e6",
+         "--set", "friction.oil_viscosity_100=2.1", "--set", "friction.oil_cloud_point=-270",
+         "--set", "operating.temperature=-270"],
+        "'operating.temperature': -270 degC: the viscosity law gives more than"),
+    # the repeated-level rule compared the texts: "0um" and "0mm" ran as two levels of H
+    "levels ['0um', '0mm']": (
+        ["study", "{toml:" + QS + 'levels = ["0um", "0mm"]\n}', "--out", "o"],
+        "'factors.H.levels': level '0mm' is given twice (as '0um')"),
+    "levels [0.02, '20 um']": (
+        ["study", "{toml:" + QS + 'levels = [0.02, "20 um"]\n}', "--out", "o"],
+        "'factors.H.levels': level '20 um' is given twice (as 0.02)"),
+}
+
+
+def _listing(folder: Path) -> list[str]:
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
+
+
+def _expand(args: list[str], folder: Path) -> list[str]:
+    out = []
+    for arg in args:
+        if arg.startswith("{toml:") and arg.endswith("}"):
+            path = folder / "in.toml"
+            path.write_text(arg[len("{toml:"):-1])
+            arg = str(path)
+        out.append(arg)
+    return out
+
+
+@pytest.mark.parametrize("key", list(BAD_ROWS))
+def test_bad_input_is_one_line_exit_2_no_file(key, tmp_path, monkeypatch):
+    args, words = BAD_ROWS[key]
+    monkeypatch.chdir(tmp_path)
+    args = _expand(args, tmp_path)
+    before = _listing(tmp_path)
+    res = run_cli(*args)
+    assert res.code == 2, (res.out, res.err)
+    assert res.err.count("\n") == 1 and res.err.startswith("rvsim: error: "), res.err
+    assert words in res.err, res.err
+    assert "Traceback" not in res.err and res.out == ""
+    assert _listing(tmp_path) == before
+
+
+def test_tapered_factors_refuse_a_zero_contact_angle():
+    """ISO 281 Table 8 gives X, Y of tapered roller bearings for alpha != 0 only (Y = 0.4
+    cot(alpha) is infinite at 0); the smallest positive angle still gives finite factors."""
+    import math
+
+    from rvsim.errors import ParameterError
+    from rvsim.physics.rating_life import tapered_factors
+
+    with pytest.raises(ParameterError, match="support_contact_angle"):
+        tapered_factors(0.0, "bearings.support_contact_angle")
+    e, x, y = tapered_factors(math.radians(15.0))
+    assert (e, x, y) == (1.5 * math.tan(math.radians(15.0)), 0.4,
+                         0.4 / math.tan(math.radians(15.0)))
+
+
+def test_viscosity_law_within_the_ceiling_is_unchanged():
+    """The ceiling only refuses what the law cannot give: the RV-40E-bearings oil (ISO VG 100
+    estimate) at 0 degC keeps its viscosity, the ASTM D341 line's own value."""
+    import dataclasses
+
+    from rvsim.friction import lubricant_viscosity
+    from rvsim.parameters import BUILT_IN_SETS
+    from rvsim.physics.losses import walther_viscosity
+
+    r = BUILT_IN_SETS["RV-40E-bearings"]
+    r = dataclasses.replace(r, operating=dataclasses.replace(r.operating, temperature=0.0))
+    f = r.friction
+    assert lubricant_viscosity(r) == walther_viscosity(0.0, f.oil_viscosity,
+                                                       f.oil_viscosity_100)
+
+
+def test_report_of_a_constant_response(tmp_path):
+    """``rvsim study --response te_window_revolutions`` (1.0 in every quasi-static run) wrote
+    analysis.json with "order": null (the analysis's "constant response") and then refused
+    its own folder ("'order' missing or malformed; run 'rvsim study' again", exit 2, after
+    every run had finished).  The page says the order is none."""
+    import json
+
+    import pandas as pd
+
+    from rvsim.doe.outputs import write_study_outputs
+
+    folder = tmp_path / "study"
+    folder.mkdir()
+    table = pd.DataFrame({"run": [1, 2, 3, 4], "H": [1, 1, 2, 2], "I": [1, 2, 1, 2],
+                          "te_mean_arcmin": [0.45, 2.23, 0.61, 1.9],
+                          "te_window_revolutions": [1.0] * 4,
+                          "status": ["ok"] * 4, "error": [""] * 4, "key": list("abcd")})
+    analysis = write_study_outputs(folder, table, ["H", "I"],
+                                   response="te_window_revolutions")
+    assert analysis["order"] is None and analysis["constant_response"] is True
+    definition = {"name": "qs", "design": "L4", "samples": None, "seed": 0,
+                  "time_step": 1e-5, "reducer": "RV-40E", "steady_start": 3.0,
+                  "factors": [{"label": f, "parameter": p, "levels": [0.0, 0.02],
+                               "low": None, "high": None}
+                              for f, p in (("H", "errors.pin_circle_radius"),
+                                           ("I", "errors.equidistant_modification"))],
+                  "fixed": []}
+    (folder / "study.json").write_text(json.dumps(definition))
+    res = run_cli("report", str(folder))
+    assert res.code == 0 and res.err == "", res.err
+    page = (folder / "report.html").read_text()
+    assert "none (the response is constant)" in page
