@@ -163,10 +163,11 @@ def test_the_quasi_static_evaluator_forwards_hysteresis(monkeypatch):
 
     seen = []
     monkeypatch.setattr(engines, "evaluate_quasi_static",
-                        lambda r, *, hysteresis=False: seen.append(hysteresis) or {})
+                        lambda r, *, hysteresis=False, positions=360:
+                        seen.append((hysteresis, positions)) or {})
     engines.EVALUATORS["quasi-static"](RV40E, time_step=1.0, hysteresis=True, positions=7,
                                        scheme="explicit")
-    assert seen == [True]
+    assert seen == [(True, 7)]
 
 
 def test_tolerance_evaluator_is_picklable_by_reference():
