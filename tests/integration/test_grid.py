@@ -100,3 +100,17 @@ def test_above_the_momentary_torque_is_refused_with_the_figure(tmp_path):
     assert res.code == 2
     assert "2100 N*m is above the momentary maximum torque of RV-40E, 2058 N*m" in res.err
     assert not (tmp_path / "out").exists()
+
+
+def test_a_point_above_the_rated_torque_warns_once(capsys):
+    from rvsim.cli._common import flush_warnings
+    from rvsim.cli._grid import _check_loads
+    from rvsim.doe.grid import grid_points
+    from rvsim.parameters import RV40E
+
+    flush_warnings(show=False)
+    _check_loads(grid_points(RV40E, [1000.0, 1500.0], [100.0, 500.0]))
+    flush_warnings()
+    assert capsys.readouterr().err == (
+        "rvsim: warning: --torques: 500 N*m is above the rated torque of RV-40E, 412 N*m "
+        "(within the allowable start/stop torque; rating.*)\n")
