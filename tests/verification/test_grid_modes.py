@@ -22,7 +22,7 @@ def test_natural_frequency_of_an_inertia_on_a_spring():
 
 def test_the_rv40e_output_mode_at_200_nm_by_hand():
     """The RV-40E at 200 N*m: the output inertia is the 0.3 kg*m^2 load, the carrier's 0.0151520
-    and the two discs' 0.0066246 each (docs/model.md section 16); the stiffness is the ltca's
+    and the two discs' 0.0066246 each (docs/model.md section 21); the stiffness is the ltca's
     mean local stiffness with the input held, 832.08 N*m/arcmin (2026-11-28)."""
     mode = torsional_mode(RV40E, 200.0)
     inertia = 0.3 + 0.0151520270319697 + 2 * 0.0066245958558432605

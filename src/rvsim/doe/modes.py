@@ -1,5 +1,5 @@
 """The reducer's torsional natural frequency at a load: :func:`torsional_mode` (issue 33
-item 4; docs/model.md section 16).  In ``doe`` beside the speed-torque grid that marks it,
+item 4; docs/model.md section 21).  In ``doe`` beside the speed-torque grid that marks it,
 outside the model fingerprint (:mod:`rvsim._fingerprint`): the grid's rows are keyed by this
 file's source and the grid's own, so no other study's stored rows are keyed anew by it.
 
@@ -12,7 +12,7 @@ equilibrium) at the load; it varies over the output revolution with the pins in 
 the frequency is given at the revolution's mean stiffness with the band of its least and
 largest.  One degree of freedom, f = sqrt(K / J) / (2 pi) (the undamped torsional system,
 e.g. Rao, Mechanical Vibrations, chapter 2): the cranks' rotation and the discs' translation in the mode are left out
-(docs/model.md section 16 says how much that is).
+(docs/model.md section 21 says how much that is).
 """
 
 from __future__ import annotations
