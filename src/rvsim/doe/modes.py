@@ -11,8 +11,9 @@ torsional stiffness with the input held.  That stiffness is the quasi-static eng
 equilibrium) at the load; it varies over the output revolution with the pins in contact, so
 the frequency is given at the revolution's mean stiffness with the band of its least and
 largest.  One degree of freedom, f = sqrt(K / J) / (2 pi) (the undamped torsional system,
-e.g. Rao, Mechanical Vibrations, chapter 2): the cranks' rotation and the discs' translation in the mode are left out
-(docs/model.md section 21 says how much that is).
+e.g. Rao, Mechanical Vibrations, chapter 2): the cranks' rotation and the discs' translation
+in the mode are left out (docs/model.md section 21: the frequency checked against the dynamic
+engine's own ringing).
 """
 
 from __future__ import annotations
