@@ -37,9 +37,10 @@ def grid_curves_plot(table: pd.DataFrame):
 
 def campbell_plot(table: pd.DataFrame, orders: dict):
     """Each named order's frequency against input speed (lines), the natural frequency's band
-    at each torque (shaded) and the grid points at their orders' frequencies (dots)."""
+    at each torque (shaded) and, at each point, the frequency of the run's largest TE order
+    (dots)."""
     plt = pyplot()
-    fig, ax = plt.subplots(figsize=(8, 4.2))
+    fig, ax = plt.subplots(figsize=(9, 4.2))
     speed = np.linspace(0.0, 1.1 * float(table["input_speed_rpm"].max()), 50)
     first = table.iloc[0]
     per_rpm = first["output_speed_rpm"] / first["input_speed_rpm"] / 60.0   # output Hz / rpm
@@ -56,17 +57,21 @@ def campbell_plot(table: pd.DataFrame, orders: dict):
             ax.axhspan(row["natural_frequency_min_hz"], row["natural_frequency_max_hz"],
                        color="C3", alpha=0.25)
             ax.axhline(row["natural_frequency_hz"], color="C3", lw=0.8, ls="--")
-            ax.text(speed[1], row["natural_frequency_hz"], f" f_n at {torque:g} N*m",
-                    color="C3", fontsize=7, va="bottom")
-    finite = modes["natural_frequency_max_hz"].dropna()
-    ceiling = max(top, 1.2 * float(finite.max())) if len(finite) else top
-    ax.set_ylim(0.0, ceiling)
-    ax.set_xlim(0.0, speed[-1])
+            ax.text(speed[-1], row["natural_frequency_max_hz"], f"f_n at {torque:g} N*m ",
+                    color="C3", fontsize=7, va="bottom", ha="right")
+    measured = table["order1"] * table["output_speed_rpm"] / 60.0
+    ax.plot(table["input_speed_rpm"], measured, "ko", ms=4, label="largest TE order, run")
+    top = max(top, float(np.nanmax(measured, initial=0.0)))
     for speed_rpm in table["input_speed_rpm"].unique():
         ax.axvline(speed_rpm, color="0.7", lw=0.6)
+    finite = modes["natural_frequency_max_hz"].dropna()
+    ceiling = max(1.05 * top, 1.2 * float(finite.max())) if len(finite) else 1.05 * top
+    ax.set_ylim(0.0, ceiling or 1.0)
+    ax.set_xlim(0.0, speed[-1])
     ax.set_xlabel("input speed [rpm]")
     ax.set_ylabel("frequency [Hz]")
-    ax.legend(fontsize=7, ncol=2, loc="upper left")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), title="orders",
+              title_fontsize=7)
     ax.grid(alpha=0.3)
     fig.tight_layout()
     return fig
