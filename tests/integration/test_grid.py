@@ -114,3 +114,15 @@ def test_a_point_above_the_rated_torque_warns_once(capsys):
     assert capsys.readouterr().err == (
         "rvsim: warning: --torques: 500 N*m is above the rated torque of RV-40E, 412 N*m "
         "(within the allowable start/stop torque; rating.*)\n")
+
+
+def test_a_grid_whose_points_all_fail_says_so_and_exits_1(tmp_path):
+    res = run_cli("grid", "--params", "cycloid-drive", "--speeds", "8000", "--torques", "50",
+                  "--time-step", "2e-4", "--workers", "1", "--no-progress",
+                  "--out", str(tmp_path / "out"))
+    assert res.code == 1
+    assert res.err == ("rvsim: error: grid: all 1 points failed (first: runaway_penetration: "
+                       "simulation runaway penetration at step 5); their rows are in "
+                       f"{tmp_path / 'out'}/grid.csv\n")
+    table = pd.read_csv(tmp_path / "out" / "grid.csv")
+    assert table["status"].tolist() == ["runaway_penetration"]

@@ -112,12 +112,18 @@ def _grid(args: argparse.Namespace) -> int:
         from ..doe.grid_report import write_grid_report
 
         write_grid_report(report, base, table, summary)
-    failed = int((table["status"] != "ok").sum())
     if args.json:
-        print_json({k: v for k, v in summary.items()} | {"folder": str(folder)})
+        print_json({**summary, "folder": str(folder)})
     else:
         _print(table, summary, folder, report)
-    return 1 if failed == len(table) else 0
+    if summary["failed"] == len(table):     # nothing measured: a failure, said in one line
+        first = table.iloc[0]
+        reason = f"{first['status']}" + (f": {first['error']}" if first["error"] else "")
+        print(f"rvsim: error: grid: all {len(table)} points failed (first: "
+              f"{reason.splitlines()[0][:300]}); their rows are in {folder}/grid.csv",
+              file=sys.stderr)
+        return 1
+    return 0
 
 
 def _summary(base, points, table, time_step: float, scheme: str) -> dict:
@@ -140,7 +146,7 @@ def _summary(base, points, table, time_step: float, scheme: str) -> dict:
 
 
 def _print(table, summary: dict, folder: Path, report) -> None:
-    print(f"{summary['reducer']}: {summary['points']} grid points, {summary['failed']} failed "
+    print(f"{summary['reducer']}: grid of {summary['points']} points, {summary['failed']} failed "
           f"-> {folder}/grid.csv, grid.json" + (f", {report}" if report else ""))
     shown = table[["input_speed_rpm", "output_torque_nm", "temperature_c", "status",
                    "ate_arcmin", "te_mean_arcmin", "order1", "natural_frequency_hz",
