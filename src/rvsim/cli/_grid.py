@@ -88,6 +88,7 @@ def _grid(args: argparse.Namespace) -> int:
     if report is not None and report.suffix.lower() != ".html":
         raise ParameterError("--report", f"{report}: the report is an .html file")
     base = reducer_from_args(args)
+    from ..doe._workers import WorkerStartError
     from ..doe.grid import grid_points, progress_to_stderr, run_grid, write_outputs
     from ..dynamics.simulate import default_time_step
 
@@ -106,6 +107,9 @@ def _grid(args: argparse.Namespace) -> int:
         line, code = stopped_line(exc, folder, "points")
         print(line, file=sys.stderr)
         return code
+    except WorkerStartError as exc:             # as rvsim study says it
+        print(f"rvsim: error: {exc}; finished points are kept in {folder}", file=sys.stderr)
+        return 1
     summary = _summary(base, points, table, time_step, scheme)
     write_outputs(folder, table, summary)
     if report is not None:
