@@ -83,6 +83,9 @@ def test_a_second_call_reuses_the_stored_points(grid):
     (["--speeds", "1000", "--torques", ","], "--torques"),
     (["--speeds", "1000", "--torques", "3000"], "--torques"),
     (["--speeds", "1000", "--torques", "100", "--temperatures", "-300"], "--temperatures"),
+    (["--speeds", "1000", "--torques", "100", "--temperatures", "20,abc"], "--temperatures"),
+    # the RV-40E's lubricant has no viscosity law: 40 degC only
+    (["--speeds", "1000", "--torques", "100", "--temperatures", "20"], "--temperatures"),
     (["--speeds", "1000", "--torques", "100", "--report", "grid.txt"], "--report"),
 ])
 def test_bad_inputs_say_one_line_and_leave_nothing(tmp_path, monkeypatch, args, field):
@@ -126,3 +129,18 @@ def test_a_grid_whose_points_all_fail_says_so_and_exits_1(tmp_path):
                        f"{tmp_path / 'out'}/grid.csv\n")
     table = pd.read_csv(tmp_path / "out" / "grid.csv")
     assert table["status"].tolist() == ["runaway_penetration"]
+
+
+def test_points_run_for_one_output_revolution_after_the_start():
+    from rvsim.doe.grid import grid_points
+    from rvsim.parameters import BUILT_IN_SETS, RV40E
+
+    # 1.5 s start + 1.01 x 60 * 121 / 500 s
+    points = grid_points(RV40E, [500.0, 1500.0], [100.0], [40.0])
+    assert points[0]["reducer"].operating.duration == pytest.approx(1.5 + 1.01 * 14.52,
+                                                                    rel=1e-12)
+    bearings = BUILT_IN_SETS["RV-40E-bearings"]       # with a viscosity-temperature law
+    points = grid_points(bearings, [500.0, 1500.0], [100.0], [20.0, 60.0])
+    assert [(p["input_speed_rpm"], p["temperature_c"]) for p in points] == [
+        (500.0, 20.0), (500.0, 60.0), (1500.0, 20.0), (1500.0, 60.0)]
+    assert points[3]["reducer"].operating.temperature == 60.0

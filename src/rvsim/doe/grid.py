@@ -85,8 +85,12 @@ _OPTIONS = {"operating.input_speed": "--speeds", "operating.load_torque": "--tor
 
 
 def _point_reducer(base: Reducer, values: dict) -> Reducer:
+    """``base`` with the point's ``values``, validated, the lubricant's viscosity law at its
+    temperature included (:func:`rvsim.friction.check_losses`, as every command checks it)."""
+    from ..friction import check_losses
+
     try:
-        return with_values(base, values)
+        return check_losses(with_values(base, values))
     except ParameterError as exc:       # the option's value, not the parameter file's
         option = _OPTIONS.get(exc.field)
         if option is None:
