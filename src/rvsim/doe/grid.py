@@ -132,8 +132,10 @@ def main_orders(result, count: int = MAIN_ORDERS) -> dict:
 
 
 def evaluate_point(reducer: Reducer, *, time_step: float, scheme: str = "explicit", **_) -> dict:
-    """One grid point: the dynamic run (:func:`rvsim.doe.engines.evaluate_dynamic`'s outcome,
-    never raises) with its main orders and the torsional mode at its torque added."""
+    """One grid point: the dynamic run's outcome ``{status, metrics, error, wall_s}`` as a
+    study's row has it (:func:`rvsim.doe.engines.evaluate_dynamic`; never raises), its
+    metrics with the main orders and the torsional mode at its torque; status
+    ``no_revolution`` if the window holds no whole output revolution."""
     from ..dynamics import simulate
     from .modes import torsional_mode
 
