@@ -33,6 +33,7 @@ td.l,th.l{text-align:left}.sig{font-weight:bold;background:#fff3cd}img{max-width
 .note{color:#555;font-size:.9em}.summary td{text-align:left}
 #summary{border:2px solid #2b6cb0;border-radius:6px;padding:.3em 1em .8em;margin:1em 0;
 background:#f7fbff}#summary h2{margin-top:.4em;border:0}#summary table{font-size:.95em}
+#summary th{text-align:left}
 .trust{font-size:.85em;color:#333}.trust summary{cursor:pointer}
 .ok{color:#1a7f37}.miss{color:#b42318}
 """
@@ -120,10 +121,10 @@ def trust_box() -> str:
 
     rows = trust_rows()
     lead = {r["key"]: r for r in rows}
-    line = (f"model vs paper: mean TE {lead['paper_te_mean']['ratio']} times the paper's, "
-            f"factor order {lead['paper_factor_order']['ratio'].split(';')[0]}; model vs "
-            f"catalogue class: rigidity {lead['rigidity']['ratio']} times, lost motion "
-            f"{lead['lost_motion']['ratio']}, L10 life {lead['life_l10']['ratio']} times")
+    line = (f"model vs paper: mean TE model/paper {lead['paper_te_mean']['ratio']}, factor "
+            f"order: {lead['paper_factor_order']['ratio'].split(';')[0]}; model vs catalogue "
+            f"class: rigidity model/class {lead['rigidity']['ratio']}, lost motion "
+            f"{lead['lost_motion']['ratio']}, L10 life model/class {lead['life_l10']['ratio']}")
     frame = pd.DataFrame([{"against": r["against"], "quantity": r["quantity"],
                            "published": r["published"], "model": r["box_model"],
                            "model / published": r["ratio"]} for r in rows])
