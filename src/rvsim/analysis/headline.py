@@ -140,8 +140,9 @@ def tolerance_rows(summary: dict) -> list[tuple]:
         c = catalogue_figure("rigidity")
         rows.append(("torsional rigidity p5", _num(value, 4, "N*m/arcmin"), c["published"],
                      f"{value / c['low']:.2f} x the class" if _finite(value) else "-"))
-    rows.append(("reducers that bind on assembly", _num(100.0 * summary.get(
-        "binding_share", math.nan), 3, "%"), "-", "-"))
+    share = summary.get("binding_share")
+    rows.append(("reducers that bind on assembly",
+                 _num(100.0 * share, 3, "%") if _finite(share) else NA, "-", "-"))
     return rows
 
 
