@@ -221,6 +221,7 @@ def study_rows(definition: dict, analysis: dict, significant: list[str], units: 
     rows = [("factor order by range", analysis.get("order") or "none (constant response)",
              "-", "-"),
             ("significant factors", ", ".join(significant) or "none", "-",
+             "-" if definition.get("noise") else
              "a deterministic model's error term is its interactions, not noise")]
     for f in definition["factors"]:
         level = analysis.get("optimum", {}).get(f["label"])
