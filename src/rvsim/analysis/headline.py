@@ -146,14 +146,13 @@ def tolerance_rows(summary: dict) -> list[tuple]:
     return rows
 
 
-def allocation_rows(result: dict) -> list[tuple]:
-    """``rvsim allocate``: each target against what the found tolerances achieve."""
+def allocation_rows(result: dict, met: list[bool]) -> list[tuple]:
+    """``rvsim allocate``: each target against what the found tolerances achieve (``met``:
+    whether each target is met, by the allocation's own test)."""
     rows = []
-    for t in result.get("targets", []):
-        achieved, limit = t.get("achieved"), t.get("limit")
-        met = (_finite(achieved) and _finite(limit) and achieved <= limit * (1 + 1e-9))
-        rows.append((f"target {t['target']}", _num(achieved, 4), _num(limit, 4),
-                     "met" if met else "not met"))
+    for t, ok in zip(result.get("targets", []), met):
+        rows.append((f"target {t['target']}", _num(t.get("achieved"), 4),
+                     _num(t.get("limit"), 4), "met" if ok else "not met"))
     rows.append(("relative cost (1 = the tolerances as given)",
                  _num(result["cost"] / result["cost_start"], 3)
                  if result.get("cost_start") else NA, "-", "-"))

@@ -109,9 +109,14 @@ def write_tolerance_report(folder: Path, summary: dict, values: dict, status) ->
 def write_allocation_report(folder: Path, result: dict) -> Path:
     from ..analysis.headline import allocation_rows
     from ..html import page as _page, summary_block, table as _table
+    from .allocation import Target
+
+    met = [t.get("achieved") is not None and Target(
+        t["metric"], t.get("percentile"), t["limit"], t["target"]).margin(t["achieved"]) >= 0.0
+        for t in result["targets"]]
 
     body = [f"<h1>Tolerance allocation: {html.escape(result['study'])}</h1>",
-            summary_block("Answer", allocation_rows(result)),
+            summary_block("Answer", allocation_rows(result, met)),
             f"<p>status: <b>{html.escape(result['status'])}</b>; relative cost "
             f"{result['cost']:.4g} (all tolerances as given: {result['cost_start']:.4g}); "
             f"{result['evaluations']} Monte Carlo evaluations of {result['samples']} reducers "
