@@ -9,6 +9,7 @@ import pandas as pd
 import pytest
 
 from tests.conftest import run_cli
+from tests.integration.answer_block import answer
 
 SHORT = ["--params", "cycloid-drive", "--set", "operating.speed_ramp_time=0.02",
          "--set", "operating.load_start=0.02", "--set", "operating.load_ramp_end=0.04",
@@ -48,6 +49,11 @@ def test_grid_table_holds_every_point_with_units_in_its_columns(grid):
     assert summary["points"] == 4 and summary["failed"] == 0
     assert len(summary["natural_frequencies"]) == 2
     assert (root / "grid.html").read_text().startswith("<!DOCTYPE html>")
+    rows = answer((root / "grid.html").read_text())   # the answer first (issue 34 item 2)
+    assert rows["largest ATE over the grid"] == [
+        f"{max(PINNED_ATE):.4g} arcmin", rows["largest ATE over the grid"][1],
+        "at 12000 rpm, 50 N*m"]
+    assert rows["points finished"][0] == "4 of 4"
     assert "grid: 4 points, 0 stored, 4 to run" in err
     assert err.count("grid point ") == 4
 

@@ -79,7 +79,8 @@ def campbell_plot(table: pd.DataFrame, orders: dict):
 
 def write_grid_report(path: str | Path, reducer, table: pd.DataFrame, summary: dict) -> Path:
     """A self-contained HTML page of the grid (figures inline), written atomically."""
-    from ..html import page, parameters_table, png
+    from ..analysis.headline import grid_rows
+    from ..html import page, parameters_table, png, summary_block
     from ..html import table as html_table
 
     path = Path(path)
@@ -87,6 +88,7 @@ def write_grid_report(path: str | Path, reducer, table: pd.DataFrame, summary: d
                "te_mean_arcmin", "order1", "order1_arcmin", "order2", "order2_arcmin",
                "natural_frequency_hz", "nearest_order", "nearest_order_ratio", "resonance"]
     body = [f"<h1>Speed-torque grid: {summary['reducer']}</h1>",
+            summary_block("Answer", grid_rows(table, summary)),
             f"<p class='note'>{summary['points']} points on the dynamic engine ("
             f"{summary['scheme']}, step {summary['time_step_s']:g} s), each run for "
             f"{summary['duration_rule']}; ATE: the peak-to-peak TE over one output revolution "
