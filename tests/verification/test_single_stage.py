@@ -163,8 +163,8 @@ def test_toml_base_and_set_name_on_the_command_line(tmp_path, capsys):
     assert main(["hysteresis", "--params", "cycloid-drive", "--json"]) == 0
     assert '"status": "ok"' in capsys.readouterr().out
     short = tmp_path / "short.toml"
-    short.write_text('base = "cycloid-drive"\n[operating]\nduration = 0.6\nsteady_start = 0.4\n'
-                     'speed_ramp_time = 0.1\nload_start = 0.1\nload_ramp_end = 0.3\n')
+    short.write_text('base = "cycloid-drive"\n[operating]\nduration = 0.2\nsteady_start = 0.15\n'
+                     'speed_ramp_time = 0.05\nload_start = 0.05\nload_ramp_end = 0.1\n')
     assert main(["simulate", "--params", str(short), "--json"]) == 0
     out = capsys.readouterr().out
     assert '"status": "ok"' in out and '"reducer": "cycloid-drive"' in out

@@ -100,14 +100,16 @@ def test_one_toleranced_error_matches_the_analytical_model(tmp_path):
     """Only the pin-circle radius error H toleranced (uniform +-10 um about 20 um): the
     mean-TE percentiles follow Table 1's term sqrt(1 - K1^2) * 2 / (a zc) * H halved: Eq. (11)
     counts the backlash of both flanks, the loaded reducer closes one (docs/validation.md: the
-    model's 1-4 % more at load is the wind-up of fewer loaded pins; measured 1.3 %)."""
+    model's 1-4 % more at load is the wind-up of fewer loaded pins; measured 0.79 % with 8
+    samples, 0.95 % with the 24 drawn until 2026-11-28: both sides are percentiles of the same
+    draws, so a few suffice)."""
     from rvsim.analytical import sensitivity_table
     from rvsim.parameters import with_values
     from rvsim.tolerance.analysis import tolerance_analysis
     from rvsim.units import ARCMIN
 
     study = ToleranceStudy("h", (Tolerance("errors.pin_circle_radius", 0.01),), base=RV40E,
-                           fixed=(("errors.pin_circle_radius", 0.02),), samples=24, seed=4,
+                           fixed=(("errors.pin_circle_radius", 0.02),), samples=8, seed=4,
                            positions=81)
     summary = tolerance_analysis(study, tmp_path / "h", workers=1, report=False)
     got = summary["metrics"]["te_mean_arcmin"]
@@ -116,7 +118,7 @@ def test_one_toleranced_error_matches_the_analytical_model(tmp_path):
     per_metre = coefficient.coefficient * 1.0 / (RV40E.cycloid.eccentricity
                                                  * RV40E.cycloid.disc_teeth) / ARCMIN
     h = np.array([study.realise(study.unit_sample(i)).errors.pin_circle_radius
-                  for i in range(24)])
+                  for i in range(8)])
     width = per_metre * (np.percentile(h, 95) - np.percentile(h, 5))
     assert got["p95"] - got["p5"] == pytest.approx(width, rel=0.04)
 
