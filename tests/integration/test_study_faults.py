@@ -111,12 +111,8 @@ def test_signal_stops_the_study_keeps_rows_and_leaves_no_worker(tmp_path, cli, s
     assert not _gone(workers)
     kept = _rows(out)
     assert 1 <= len(kept) < 4 and set(before) <= set(kept)
-    if signum == signal.SIGINT and not group:   # a re-run completes the study (lock free)
-        results = run(load_study(path), out, workers=2, progress=False)
-        assert (results["status"] == "ok").all() and len(_rows(out)) == 4
-    else:
-        with lock_folder(out):
-            pass
+    with lock_folder(out):     # the folder is free (a re-run: the SIGKILL test below)
+        pass
 
 
 @pytest.fixture(scope="module")
@@ -391,7 +387,10 @@ def dask_cluster(tmp_path_factory):
     # dying worker just before it died was lost with it: measured)
     with pytest.MonkeyPatch.context() as patch, dask.config.set(
             {"distributed.scheduler.allowed-failures": 1,
-             "distributed.scheduler.worker-saturation": 1.0}):
+             "distributed.scheduler.worker-saturation": 1.0,
+             # worker processes forked from this one, which has imported rvsim: a spawned
+             # worker imported it again (2-3 s of CPU for each of the four workers)
+             "distributed.worker.multiprocessing-method": "fork"}):
         patch.setenv(TEST_KILL_ENV, doomed)     # inherited by the worker processes
         with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                       host="127.0.0.1", dashboard_address=None) as cluster:
