@@ -96,8 +96,10 @@ def test_local_tolerance_and_allocation_end_without_teardown(tmp_path):
             (["tolerance", str(path), "--out", "t", "--workers", "2", "--samples", "2"],
              ["report.html", "results.csv", "results.sqlite", "study.json", "study.lock",
               "summary.json"]),
+            # one worker: evaluated in the command's process (a pool of two was started for
+            # each of the evaluations, 2 s of CPU; the pool's end: the tolerance run above)
             (["allocate", str(path), "--target", "ate_p95=0.5", "--out", "a", "--samples", "2",
-              "--workers", "2", "--max-evaluations", "5"],       # the least COBYLA takes
+              "--workers", "1", "--max-evaluations", "5"],       # the least COBYLA takes
              ["allocation.json", "report.html", "results.sqlite", "study.json", "study.lock"])):
         res = subprocess.run([sys.executable, "-c", _TEARDOWN_WITNESS, *args],
                              capture_output=True, cwd=tmp_path, env=ENV,
