@@ -319,8 +319,9 @@ def test_names_and_numbers_a_hostile_review_found(tmp_path, cli, monkeypatch):
     assert res.code == 0, res.err
     assert (tmp_path / ".dxf").read_text().startswith("  0\nSECTION")
     # upper-case .NPZ was refused by the save, naming its temporary file
-    res = cli("simulate", "--duration", "1.6", "--scheme", "implicit-bearings", "--save",
-              "RUN.NPZ")
+    from .test_simulate_cli import SHORT_ARGS
+
+    res = cli("simulate", *SHORT_ARGS, "--scheme", "implicit-bearings", "--save", "RUN.NPZ")
     assert res.code == 0, res.err
     assert sorted(p.name for p in tmp_path.iterdir()) == [".dxf", "RUN.NPZ"]
 

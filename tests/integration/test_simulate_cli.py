@@ -38,8 +38,7 @@ def test_default_run_and_saved_histories(tmp_path, cli):
 def test_text_output_names_the_largest_pin_force(tmp_path, cli):
     # the text lines carry what the JSON does, the largest pin force (every step's) included
     path = tmp_path / "run.npz"
-    args = ("simulate", "--paper-run", "3", "--set", "operating.duration=1.7", "--save",
-            str(path))
+    args = ("simulate", "--paper-run", "3", *SHORT_ARGS, "--save", str(path))
     text = cli(*args)
     assert text.code == 0, text.err
     data = json.loads(str(np.load(path)["summary"]))
@@ -83,10 +82,10 @@ def test_failed_simulation_reports_status(cli):
 
 def test_implicit_bearings_scheme(cli):
     """Issue 14: the scheme that takes the bearings implicitly, at its own 2e-5 s step."""
-    res = cli("simulate", "--duration", "1.6", "--scheme", "implicit-bearings", "--json")
+    res = cli("simulate", *SHORT_ARGS, "--scheme", "implicit-bearings", "--json")
     assert res.code == 0, res.err
     data = json.loads(res.out)
-    assert data["status"] == "ok" and data["steps"] == 80_000
+    assert data["status"] == "ok" and data["steps"] == 20_000          # 0.4 s / 2e-5 s
     assert data["implicit_fallbacks"] == 0 and data["implicit_factorisations"] > 0
 
 
