@@ -10,7 +10,7 @@ import pandas as pd
 
 from ._files import atomic_write_text
 from .html import page as _page, parameters_table as _parameters_table, png as _png, \
-    table as _table, target as _target
+    summary_block as _summary_block, table as _table, target as _target
 
 __all__ = ["efficiency_plot", "write_efficiency_report"]
 
@@ -48,7 +48,11 @@ def write_efficiency_report(result, reducer, path: str | Path) -> Path:
     note = "" if result.friction else (
         "<p class='note'>This parameter set has no friction: efficiency 1, no running or "
         "starting torque (set contact.friction_coefficient and friction.*).</p>")
-    body = [f"<h1>Efficiency: {html.escape(reducer.name)}</h1>", note,
+    from .analysis.headline import efficiency_rows
+
+    answer = _summary_block("Answer", efficiency_rows(result.to_frame(), summary,
+                                                      reducer.rating.rated_torque))
+    body = [f"<h1>Efficiency: {html.escape(reducer.name)}</h1>", answer, note,
             "<p class='note'>Quasi-static: each point is the mean over "
             f"{result.positions} equilibria over one crank revolution, friction following the "
             "input turning forwards at the point's speed (docs/model.md section 15). "

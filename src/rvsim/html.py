@@ -19,7 +19,8 @@ import pandas as pd
 
 from .errors import InputFileError
 
-__all__ = ["page", "table", "png", "png_bytes", "parameters_table", "target", "CSS"]
+__all__ = ["page", "table", "png", "png_bytes", "parameters_table", "target", "CSS",
+           "summary_block", "trust_box"]
 
 #: the style sheet of every report page
 CSS = """
@@ -30,6 +31,11 @@ margin-top:2em}table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
 th,td{border:1px solid #ccc;padding:.2em .5em;text-align:right}th{background:#f3f3f3}
 td.l,th.l{text-align:left}.sig{font-weight:bold;background:#fff3cd}img{max-width:100%}
 .note{color:#555;font-size:.9em}.summary td{text-align:left}
+#summary{border:2px solid #2b6cb0;border-radius:6px;padding:.3em 1em .8em;margin:1em 0;
+background:#f7fbff}#summary h2{margin-top:.4em;border:0}#summary table{font-size:.95em}
+#summary th{text-align:left}
+.trust{font-size:.85em;color:#333}.trust summary{cursor:pointer}
+.ok{color:#1a7f37}.miss{color:#b42318}
 """
 
 
@@ -90,3 +96,41 @@ def target(path: str | Path) -> Path:
     if not path.parent.exists():
         raise InputFileError(f"{path}: folder {path.parent} does not exist")
     return path
+
+
+def summary_block(title: str, rows: list[tuple], notes: list[str] | None = None,
+                  trust: bool = True) -> str:
+    """The block every report opens with (issue 34 item 2): ``rows`` of (quantity, this run's
+    figure, the class / target / reference, verdict) as text, ``notes`` below (HTML), then the
+    "how far to trust this" box (:func:`trust_box`)."""
+    frame = pd.DataFrame([[str(c) for c in r] for r in rows],
+                         columns=["quantity", "this run", "class / target", "verdict"])
+    parts = [f"<section id='summary'><h2>{html.escape(title)}</h2>",
+             table(frame.set_index("quantity"))]
+    parts += [f"<p>{n}</p>" for n in notes or []]
+    if trust:
+        parts.append(trust_box())
+    return "".join(parts) + "</section>"
+
+
+def trust_box() -> str:
+    """"How far to trust this": the model against the paper and the catalogue of its class,
+    as measured, from src/rvsim/data/trust.csv (:mod:`rvsim.analysis.trust`), one line open
+    and the table folded."""
+    from .analysis.trust import MEASURED, trust_rows
+
+    rows = trust_rows()
+    lead = {r["key"]: r for r in rows}
+    line = (f"model vs paper: mean TE model/paper {lead['paper_te_mean']['ratio']}, factor "
+            f"order: {lead['paper_factor_order']['ratio'].split(';')[0]}; model vs catalogue "
+            f"class: rigidity model/class {lead['rigidity']['ratio']}, lost motion "
+            f"{lead['lost_motion']['ratio']}, L10 life model/class {lead['life_l10']['ratio']}")
+    frame = pd.DataFrame([{"against": r["against"], "quantity": r["quantity"],
+                           "published": r["published"], "model": r["box_model"],
+                           "model / published": r["ratio"]} for r in rows])
+    return (f"<details class='trust' id='trust'><summary><b>How far to trust this</b> "
+            f"(measured {MEASURED}): {html.escape(line)}</summary>"
+            + table(frame, index=False)
+            + "<p class='note'>Sources, conditions and where the model misses: "
+            "docs/validation.md (its first tables come from src/rvsim/data/trust.csv).</p>"
+            "</details>")

@@ -18,7 +18,8 @@ import pandas as pd
 from ._files import atomic_write_text
 from .errors import InputFileError
 from .html import page as _page, parameters_table as _parameters_table, png as _png, \
-    png_bytes as _png_bytes, table as _table, target as _target
+    png_bytes as _png_bytes, summary_block as _summary_block, table as _table, \
+    target as _target
 
 __all__ = ["write_study_report", "write_run_report", "write_ltca_report",
            "write_hysteresis_report"]
@@ -345,7 +346,32 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
     if len(failed):
         body += ["<h2>Failed runs</h2>",
                  _table(failed.set_index("run")[["status", "error"]])]
+    body.insert(1, _study_summary(results, analysis, definition, alpha, response))
     return _page(f"rvsim study {definition['name']}", body)
+
+
+def _study_summary(results: pd.DataFrame, analysis: dict, definition: dict, alpha: float,
+                   response: str) -> str:
+    """The block the study report opens with (issue 34 item 2): ranking, significant
+    factors, optimum in real values, predicted response, a confirmation run."""
+    from .analysis.headline import confirmation_command, study_rows
+    from .parameters import SPECS
+
+    finished = f"{int((results['status'] == 'ok').sum())} of {len(results)} runs finished"
+    if "error" in analysis:
+        return _summary_block("Answer", [("runs", finished, "-", analysis["error"])])
+    significant = [s for s, row in analysis["anova"].items() if s not in ("Error", "Total")
+                   and row.get("p") is not None and row["p"] < alpha]
+    units = {name: spec.unit for name, spec in SPECS.items()}
+    rows = study_rows(definition, analysis, significant, units,
+                      _value(analysis["prediction"].get("predicted"), response))
+    rows.insert(0, ("analysed response", response, "-", finished))
+    command = confirmation_command({**definition,
+                                    "reducer": definition["reducer"].split(" (")[0]},
+                                   analysis.get("optimum", {}))
+    return _summary_block("Answer", rows, notes=[
+        f"Significant at alpha = {alpha:g}. Confirmation run (every factor at its optimum "
+        f"level): <code>{html.escape(command)}</code>"])
 
 
 def _speed_note(result, reducer) -> str:
@@ -443,7 +469,10 @@ def write_run_report(result, reducer, path: str | Path) -> Path:
     kind = "Single-stage cycloid drive" if single else "RV reducer"
     if single and reducer.layout.ring_output:
         kind += " (pin ring output)"
+    from .analysis.headline import run_rows
+
     body = [f"<h1>{kind} simulation: {html.escape(reducer.name)}</h1>",
+            _summary_block("Answer", run_rows(result.summary())),
             "<h2>Summary</h2>", _table(summary),
             "<h2>Input and output speed (Fig. 4)</h2>", _speed_note(result, reducer),
             _png(speed_plot(result)),
@@ -469,6 +498,7 @@ def write_ltca_report(result, reducer, path: str | Path) -> Path:
     """Write an HTML page for one quasi-static LTCA ``result`` (TE over one output
     revolution) of ``reducer``: pin loads, TE, its order spectrum."""
     from .analysis.catalogue import order_spectrum, reducer_orders
+    from .analysis.headline import ltca_rows
     from .plots import order_spectrum_plot, pin_load_map, te_revolution_plot
     from .units import ARCMIN
 
@@ -484,6 +514,7 @@ def write_ltca_report(result, reducer, path: str | Path) -> Path:
         names.setdefault(order, []).append(name)
     lines["marked as"] = [", ".join(names.get(float(o), [])) for o in lines.index]
     body = [f"<h1>Quasi-static LTCA: {html.escape(reducer.name)} at {result.torque:g} N*m</h1>",
+            _summary_block("Answer", ltca_rows(result.summary(), reducer.rating.rated_torque)),
             "<p class='note'>Static equilibrium of the whole reducer at equally spaced input "
             "angles over one output revolution, one direction, constant output torque. "
             "TE = theta_in/i - theta_out. The mean TE is measured from the nominal assembly "
@@ -532,12 +563,14 @@ def _budget_section(budget) -> list[str]:
 def write_hysteresis_report(result, reducer, path: str | Path, *, budget=None) -> Path:
     """Write an HTML page for one torque-reversal (hysteresis) ``result`` of ``reducer``, with
     its compliance ``budget`` (rvsim.quasistatic.budget) when given."""
+    from .analysis.headline import hysteresis_rows
     from .plots import hysteresis_plot
 
     path = _target(path)
     summary = result.summary()
     rated = result.rated_torque
     body = [f"<h1>Torque-reversal test: {html.escape(reducer.name)}</h1>",
+            _summary_block("Answer", hysteresis_rows(summary)),
             "<p class='note'>Input shaft locked; output torque 0 &rarr; -rated &rarr; 0 &rarr; "
             f"+rated &rarr; 0 &rarr; -rated, rated = {rated:g} N*m. Definitions of GB/T "
             "35089-2018: torsional rigidity = b/a, the secant between 50 % and 100 % of rated "

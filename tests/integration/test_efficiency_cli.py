@@ -4,6 +4,8 @@ import json
 
 import pytest
 
+from tests.integration.answer_block import answer
+
 FRICTION = ("--set", "friction.mesh_coefficient=0.05", "--set",
             "contact.friction_coefficient=0.05", "--set", "friction.arm_bearing_f0=3")
 KEYS = {"efficiency", "no_load_running_torque_nm", "starting_torque_nm", "wall_s", "status"}
@@ -22,6 +24,11 @@ def test_json_contract_and_report(cli, tmp_path):
         assert 0.8 < point["efficiency"] < 1.0
     assert data["no_load_running_torque_nm"] > 0 and data["starting_torque_nm"] > 0
     assert "Efficiency map" in page.read_text()
+    rows = answer(page.read_text())       # the answer first (issue 34 item 2)
+    for point in data["efficiency"][1::2]:        # at 412 N*m, the rated torque
+        assert rows[f"efficiency at 412 N*m, {point['input_speed_rpm']:g} rpm input"] == [
+            f"{100 * point['efficiency']:.4g} %", "NF", "no catalogue figure to compare"]
+    assert rows["starting torque at the input"][0] == f"{data['starting_torque_nm']:.3g} N*m"
 
 
 def test_zero_friction_says_so(cli):

@@ -12,6 +12,7 @@ from rvsim.joint_model import JOINT_MODEL_SCHEMA, load_joint_model
 from rvsim.parameters import RV40E, paper_run_values, with_values
 from rvsim.quasistatic.torque_reversal import hysteresis as real_hysteresis
 from rvsim.quasistatic.transmission import ltca as real_ltca
+from tests.integration.answer_block import answer
 
 
 @pytest.fixture
@@ -61,6 +62,15 @@ def test_reports_and_export(cli, tmp_path):
             "https://json", "")
     model = load_joint_model(joint)
     summary = json.loads(res.out)
+    # each page opens with its answer (issue 34 item 2)
+    rows = answer(loop_page.read_text())
+    rigidity = summary["torsional_rigidity_nm_per_arcmin"]
+    assert rows["torsional rigidity"] == [f"{rigidity:.4g} N*m/arcmin", "113 N*m/arcmin (P*)",
+                                          f"{rigidity / 113:.2f} x the class (stiffer)"]
+    assert rows["lost motion"][0] == f"{summary['lost_motion_arcmin']:.3g} arcmin"
+    rows = answer(ltca_page.read_text())
+    assert rows["output torque"] == ["300 N*m", "412 N*m rated", "73 % of rated"]
+    assert rows["largest pin-disc contact stress (Hertz)"][0].endswith(" MPa")
     arcmin = math.pi / 10800
     assert model["backlash_rad"] == pytest.approx(summary["backlash_arcmin"] * arcmin, rel=1e-12)
     jsonschema = pytest.importorskip("jsonschema")

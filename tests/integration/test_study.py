@@ -13,6 +13,7 @@ import pytest
 
 from rvsim.doe import load_study, run
 from rvsim.errors import ParameterError
+from tests.integration.answer_block import answer
 from tests.integration.conftest import factors, write_study
 
 
@@ -42,6 +43,17 @@ def test_study_cli_writes_outputs_and_rerun_skips(tmp_path, small_study, cli):
         table.columns)
     # the report names the scheme of every dynamic study, the default one too
     assert "Integration scheme: explicit, step 5e-06 s" in (out / "report.html").read_text()
+    # the report opens with its answer (issue 34 item 2)
+    analysis = json.loads((out / "analysis.json").read_text())
+    rows = answer((out / "report.html").read_text())
+    assert rows["factor order by range"][0] == analysis["order"]
+    predicted = analysis["prediction"]["predicted"]
+    assert rows["predicted response at the optimum"][0] == f"{predicted:.4f} arcmin"
+    definition = json.loads((out / "study.json").read_text())
+    for f in definition["factors"]:
+        level = analysis["optimum"][f["label"]]
+        assert rows[f"optimum {f['label']} ({f['parameter']})"][1] == f"level {level}"
+    assert "Confirmation run" in rows["text"] and "rvsim simulate --params" in rows["text"]
     first = _stored(out)
     res = cli("study", str(small_study), "--out", str(out), "--no-report")
     assert res.code == 0

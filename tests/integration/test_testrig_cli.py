@@ -7,6 +7,7 @@ import pandas as pd
 import pytest
 
 from rvsim.cli import main
+from tests.integration.answer_block import answer
 
 EXAMPLE = "docs/examples/testrig"
 
@@ -30,6 +31,11 @@ def test_example_folder_json_lines_and_report(tmp_path, capsys):
     loop = next(p for p in lines if p["ate_pp_arcmin"] is None)
     assert loop["lost_motion_arcmin"] > 0 and loop["torsional_rigidity_nm_per_arcmin"] > 0
     assert report.read_text().count("data:image/png;base64") >= 3
+    rows = answer(report.read_text())     # the answer first (issue 34 item 2)
+    row = next(v for k, v in rows.items() if k.startswith("lost motion ("))
+    assert row[0] == f"{loop['lost_motion_arcmin']:.4g} arcmin measured"
+    model = loop["simulated"]["lost_motion_arcmin"]
+    assert row[1] == f"model {model:.4g} arcmin"
 
 
 def test_semicolon_headerless_counts_and_parquet(tmp_path, capsys):

@@ -5,6 +5,8 @@ import shutil
 
 import pytest
 
+from tests.integration.answer_block import answer
+
 SMALL = """name = "small"
 samples = 6
 seed = 3
@@ -59,6 +61,13 @@ def test_tolerance_writes_summary_results_and_report(tmp_path, small, cli, small
         summary["sobol"]["ate_arcmin"]["pin_radius"])
     page = (out / "report.html").read_text()
     assert page.count("<img") >= 4
+    rows = answer(page)                   # the answer first (issue 34 item 2)
+    assert rows["ATE p95"][0] == f"{summary['metrics']['ate_arcmin']['p95']:.4g} arcmin"
+    lost = summary["metrics"]["lost_motion_arcmin"]["p95"]
+    assert rows["lost motion p95"][0] == f"{lost:.3g} arcmin"
+    assert rows["lost motion p95"][2] == ("within the class" if 0.3 <= lost <= 1.0 else
+                                          "above the class's 1 arcmin" if lost > 1 else
+                                          "within; below the typical 0.3-0.6 arcmin")
     assert len((out / "results.csv").read_text().splitlines()) == 7
     # `rvsim report` rebuilds the same page from the folder (it said "not a study folder")
     (out / "report.html").unlink()
@@ -112,6 +121,9 @@ def test_allocate_loosens_tolerances_within_the_target(tmp_path, small, cli):
     assert share["metric"] == "binding_share" and "(as given)" in share["target"]
     assert result["binding_share"] <= share["limit"]
     assert (out / "allocation.json").exists() and (out / "report.html").exists()
+    rows = answer((out / "report.html").read_text())
+    target = result["targets"][0]
+    assert rows["target ate_p95=0.5"] == [f"{target['achieved']:.4g}", "0.5", "met"]
     # `rvsim report` of that folder says what writes its page: it said "not a study folder
     # (missing results.csv, analysis.json; run 'rvsim study' first)"
     res = cli("report", str(out))

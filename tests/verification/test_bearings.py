@@ -176,6 +176,27 @@ def test_needles_must_fit_the_space_and_preload_is_not_an_interference():
     assert path.status == "ok" and abs(path.q[0, L.CARRIER] - 0.3 / BEARINGS.ratio) < 1e-12
 
 
+def test_needle_internal_clearance_is_room_for_a_misplaced_hole():
+    """The needles fit while the eccentric is off its disc hole's centre by less than their
+    radial play, half the bearing's radial internal clearance (rvsim.bearings.arm_play): a
+    hole 4 um off fits 10 um of internal clearance, 6 um off does not (it bound at any
+    offset before issue 33's test prototypes)."""
+    import dataclasses
+
+    from rvsim.geometry.assembly import assembly_overlaps
+    from rvsim.parameters import PartErrors
+
+    def needle_overlap(dx, clearance):
+        r = with_values(BEARINGS, {"bearings.needle_clearance": clearance})
+        holes = ((dx, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0))      # crank 1's hole in disc 1
+        r = dataclasses.replace(r, parts=PartErrors(disc_holes=holes))
+        return max(o.approach for o in assembly_overlaps(r) if "needle" in o.parts)
+
+    assert needle_overlap(4e-6, 0.010) == pytest.approx(-1e-6, abs=1e-12)
+    assert needle_overlap(6e-6, 0.010) == pytest.approx(1e-6, abs=1e-12)
+    assert needle_overlap(4e-6, -0.002) == pytest.approx(4e-6, abs=1e-12)   # preload: no room
+
+
 @pytest.mark.parametrize("values, field", [
     ({"bearings.needle_clearance": 7.0}, "bearings.needle_clearance"),       # > tooth height
     ({"bearings.support_clearance": -0.5}, "bearings.support_clearance"),    # absurd preload

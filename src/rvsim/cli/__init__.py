@@ -14,7 +14,7 @@ import sys
 from .. import __version__
 from .._stopping import check_stop, stop_signals
 from ..errors import RvsimError, Terminated
-from . import _efficiency, _geometry, _quasistatic, _simulate, _study, _testrig, _tolerance
+from . import _efficiency, _geometry, _grid, _quasistatic, _simulate, _study, _testrig, _tolerance
 from ._common import EXAMPLES, Parser, flush_warnings
 
 __all__ = ["main", "run", "build_parser"]
@@ -34,6 +34,7 @@ def build_parser() -> argparse.ArgumentParser:
     _simulate.register(sub)
     _quasistatic.register(sub)
     _efficiency.register(sub)
+    _grid.register(sub)
     _study.register(sub)
     _testrig.register(sub)
     _tolerance.register(sub)
@@ -173,7 +174,7 @@ _NO_TEARDOWN = frozenset({"simulate", "ltca", "hysteresis", "efficiency", "sensi
 
 # Commands that run on a worker pool: on the local one (no --scheduler) its workers are
 # stopped and reaped, its store closed and its files written atomically before they return.
-_LOCAL_POOL = frozenset({"study", "tolerance", "allocate"})
+_LOCAL_POOL = frozenset({"study", "tolerance", "allocate", "grid"})
 
 
 def _ends_at_once(command: str | None, args: argparse.Namespace) -> bool:

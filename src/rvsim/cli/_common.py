@@ -77,7 +77,7 @@ def reducer_from_args(args: argparse.Namespace) -> Reducer:
 
     run = getattr(args, "paper_run", None)
     preset = paper_run_values(run) if run is not None else None
-    reducer = _reducer_of(args.params)
+    reducer = reducer_of(args.params)
     if preset and reducer.layout.single_stage:
         raise ParameterError("paper-run", f"the paper's runs are runs of the RV-40E; "
                              f"'{reducer.name}' is a single-stage drive")
@@ -88,7 +88,9 @@ def reducer_from_args(args: argparse.Namespace) -> Reducer:
     return check_losses(with_values(reducer, values))
 
 
-def _reducer_of(params: str | None) -> Reducer:
+def reducer_of(params: str | None) -> Reducer:
+    """The reducer of a --params value: a TOML file, or a built-in set's name when no such
+    file exists; the built-in RV-40E for None."""
     if params is None:
         return RV40E
     if params in BUILT_IN_SETS and not Path(params).exists():

@@ -8,13 +8,17 @@ from pathlib import Path
 
 from ..errors import InputFileError
 from ._common import (add_command, check_load, check_output_folder, path_text, positive_int,
-                      print_json, scheduler_address, stopped_line, whole)
+                      print_json, reducer_of, scheduler_address, stopped_line, whole)
 
 __all__ = ["register", "load_any_tolerance_study"]
 
 
-def load_any_tolerance_study(name: str):
-    """A built-in tolerance study's name or a tolerance study .toml file."""
+def load_any_tolerance_study(name: str, params: str | None = None):
+    """A built-in tolerance study's name or a tolerance study .toml file; ``params`` (a reducer
+    TOML file or a built-in set's name, --params) replaces the study's own reducer, the
+    study's [set] values and tolerances applied to it."""
+    import dataclasses
+
     from ..tolerance.spec import BUILT_IN_TOLERANCE_STUDIES, load_tolerance_study
 
     if name in BUILT_IN_TOLERANCE_STUDIES and not Path(name).exists():
@@ -24,6 +28,9 @@ def load_any_tolerance_study(name: str):
     else:
         raise InputFileError(f"unknown tolerance study '{name}' (built in: "
                          f"{', '.join(BUILT_IN_TOLERANCE_STUDIES)}; or a .toml file)")
+    if params is not None:
+        study = dataclasses.replace(study, base=reducer_of(params), params=params)
+        study.nominal     # the nominal reducer must be valid
     check_load(study.nominal, *study.largest_load())    # the largest load drawn
     return study
 
@@ -77,7 +84,7 @@ def run_tolerance_command(study, args) -> int:
 
 
 def _tolerance(args: argparse.Namespace) -> int:
-    study = load_any_tolerance_study(args.study)
+    study = load_any_tolerance_study(args.study, args.params)
     return run_tolerance_command(study, args)
 
 
@@ -86,7 +93,7 @@ def _allocate(args: argparse.Namespace) -> int:
     from ..tolerance.montecarlo import write_json
     from ..tolerance.report import write_allocation_report
 
-    study = load_any_tolerance_study(args.study)
+    study = load_any_tolerance_study(args.study, args.params)
     targets = parse_targets(args.target)
     check_output_folder(args.out, "--out")
     folder = Path(args.out)
@@ -116,6 +123,9 @@ def _common(p) -> None:
     p.add_argument("study", help="'rv40e-tolerances', 'cycloid-drive-tolerances' or a "
                    "tolerance study .toml file")
     p.add_argument("--out", required=True, metavar="DIR", type=path_text, help="output folder")
+    p.add_argument("--params", metavar="FILE", type=path_text,
+                   help="the reducer: a TOML file or a built-in set's name, in place of the "
+                        "study's 'params' (its [set] values and tolerances apply to it)")
     p.add_argument("--samples", type=whole, metavar="N",
                    help="Monte Carlo reducers (2 .. 1000000; default: the study's)")
     p.add_argument("--workers", type=positive_int,
@@ -137,6 +147,8 @@ def register(sub) -> None:
                     "Sobol indices), results.csv and report.html.",
                     ["rvsim tolerance rv40e-tolerances --out tol --samples 200",
                      "rvsim tolerance rv40e-tolerances --out tol --samples 200 --sobol 32",
+                     "rvsim tolerance docs/examples/table1_errors.toml --params "
+                     "docs/examples/prototype_1.toml --out tp1",
                      "rvsim tolerance my_tolerances.toml --out tol --scheduler "
                      "tcp://127.0.0.1:8786"])
     _common(p)

@@ -106,12 +106,15 @@ def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
             bore = np.array([x + cos_t * hx - sin_t * hy, y + sin_t * hx + cos_t * hy])
             offset = float(np.linalg.norm(pin - bore))
             if reducer.bearings.arm_needles:
-                # needles between eccentric and hole: they must fit the radial space (a
-                # bearing preload, negative needle_clearance, is intended, not an overlap)
+                # needles between eccentric and hole: they must fit the radial space, which
+                # the bearing's radial internal clearance widens by half of it (its radial
+                # play, as rvsim.bearings.arm_play; a preload, negative needle_clearance, is
+                # intended, not an overlap)
                 excess = reducer.bearings.needle_diameter - reducer.crank.arm_bushing_thickness
+                room = arm_clearance + 0.5 * max(reducer.bearings.needle_clearance, 0.0)
                 result.append(Overlap(f"crank {crank + 1} needle rollers do not fit between "
                                       f"the eccentric and the hole of disc {disc + 1}",
-                                      offset + excess - arm_clearance))
+                                      offset + excess - room))
                 continue
             result.append(Overlap(f"crank {crank + 1} eccentric overlaps the arm bushing of "
                                   f"disc {disc + 1}", offset - arm_clearance))

@@ -133,8 +133,12 @@ def write_testrig_report(results, reducer, path: str | Path) -> Path:
     """``results``: [(summary dict, measured PointResult, simulated PointResult or None)]."""
     from ..analysis.catalogue import reducer_orders
 
+    from ..analysis.headline import testrig_rows
+    from ..html import summary_block
+
     marks = reducer_orders(reducer)
     body = ["<h1>Test-bench data: " + html.escape(reducer.name) + "</h1>",
+            summary_block("Answer", testrig_rows([s for s, _, _ in results])),
             "<p class='note'>TE = theta_in/i - theta_out over each complete output revolution "
             "of each direction, its mean removed (an encoder zero makes it arbitrary); the "
             "curves are revolution-synchronous averages; lost motion, backlash, hysteresis "

@@ -61,9 +61,11 @@ def sobol_figure(metric: str, indices: dict):
 
 
 def write_tolerance_report(folder: Path, summary: dict, values: dict, status) -> Path:
-    from ..html import page as _page, png as _png, table as _table
+    from ..analysis.headline import tolerance_rows
+    from ..html import page as _page, png as _png, summary_block, table as _table
 
     body = [f"<h1>Tolerance study: {html.escape(summary['study'])}</h1>",
+            summary_block("Answer", tolerance_rows(summary)),
             f"<p>{summary['samples']} reducers ({html.escape(summary['reducer'])}) drawn from "
             f"the tolerances (seed {summary['seed']}); {summary['ok']} analysed, "
             f"{summary['binds']} bind on assembly (binding share "
@@ -105,9 +107,16 @@ def write_tolerance_report(folder: Path, summary: dict, values: dict, status) ->
 
 
 def write_allocation_report(folder: Path, result: dict) -> Path:
-    from ..html import page as _page, table as _table
+    from ..analysis.headline import allocation_rows
+    from ..html import page as _page, summary_block, table as _table
+    from .allocation import Target
+
+    met = [t.get("achieved") is not None and Target(
+        t["metric"], t.get("percentile"), t["limit"], t["target"]).margin(t["achieved"]) >= 0.0
+        for t in result["targets"]]
 
     body = [f"<h1>Tolerance allocation: {html.escape(result['study'])}</h1>",
+            summary_block("Answer", allocation_rows(result, met)),
             f"<p>status: <b>{html.escape(result['status'])}</b>; relative cost "
             f"{result['cost']:.4g} (all tolerances as given: {result['cost_start']:.4g}); "
             f"{result['evaluations']} Monte Carlo evaluations of {result['samples']} reducers "
