@@ -207,7 +207,10 @@ def make_study_folder(folder: Path, failed_runs=()) -> Path:
     write_study_outputs(folder, table, list("ABCDEFGHIJKLMNO"))
     definition = {"name": "paper", "design": "L36", "samples": None, "seed": 0,
                   "time_step": 1e-5, "reducer": "RV-40E", "steady_start": 3.0,
-                  "factors": [{"label": f, "parameter": f"p.{f}", "levels": [1, 2],
+                  # each factor's levels as the table has them (L36: 2 or 3; the study's
+                  # answer block reads the optimum's level from them)
+                  "factors": [{"label": f, "parameter": f"p.{f}",
+                               "levels": sorted(int(v) for v in table[f].unique()),
                                "low": None, "high": None} for f in "ABCDEFGHIJKLMNO"],
                   "fixed": []}
     (folder / "study.json").write_text(json.dumps(definition))
