@@ -20,7 +20,7 @@ from rvsim.physics._bearings import conforming_force
 from rvsim.physics._fe_carrier import COLUMNS, plate_supports, support_law
 from rvsim.physics._fe_crank import coupled_pair_forces
 from rvsim.dynamics.model import build_model
-from rvsim.parameters import RV40E, with_values
+from rvsim.parameters import RV40E, paper_run_values, with_values
 from rvsim.quasistatic import ltca
 from rvsim.quasistatic.transmission import solve_path
 
@@ -122,16 +122,21 @@ def test_very_stiff_plate_gives_the_rigid_result(monkeypatch):
 
 def test_quasi_static_te_equals_dynamic_mean_with_the_fe_carrier():
     """As tests/verification/test_quasistatic.py for paper run 1, here with the FE disc and
-    the FE carrier (coarse meshes)."""
-    from tests.verification.test_quasistatic import _low_speed, engines_mean_te
+    the FE carrier (coarse meshes), on the shorter schedule of tests/verification/_fe_runs.py
+    (the full low_speed schedule measured -3.1e-6 and -2.4e-6 for the two cases below)."""
+    from tests.verification._fe_runs import quick_low_speed
+    from tests.verification.test_quasistatic import engines_mean_te
 
-    static, dynamic = engines_mean_te(with_values(_low_speed(1), {**COARSE, "A": True}))
-    # measured 7.3e-7 (2.4e-6 for the FE carrier alone, A off; default meshes -5.4e-7)
+    static, dynamic = engines_mean_te(quick_low_speed(with_values(
+        RV40E, {**paper_run_values(1), **COARSE, "A": True})))
+    # measured -3.5e-6
     assert static == pytest.approx(dynamic, rel=1e-5)
-    # all three finite-element bodies: disc, crank (6 mm) and carrier: measured 1.0e-6
-    static, dynamic = engines_mean_te(with_values(_low_speed(1), {
-        **COARSE, "A": True, "flexibility.fe_crank": True,
-        "flexibility.fe_crank_element_size": 6.0}))
+    # all three finite-element bodies: disc, crank (6 mm) and carrier, the load ramped over
+    # 0.2 s (over 0.1 s the run with the crank has not settled by 0.4 s: its energy balance
+    # over the window is off by 1 %, by 12 % at 0.3 s): measured -9.4e-7
+    static, dynamic = engines_mean_te(quick_low_speed(with_values(RV40E, {
+        **paper_run_values(1), **COARSE, "A": True, "flexibility.fe_crank": True,
+        "flexibility.fe_crank_element_size": 6.0}), ramp=0.2, steady=0.6))
     assert static == pytest.approx(dynamic, rel=1e-5)
 
 
