@@ -1,16 +1,19 @@
-"""Compile rvsim's numba kernels once, before the tests run (``python -m tests._warmup``).
+"""Compile rvsim's numba kernels once, while the tests start (``python -m tests._warmup CHAIN``).
 
 The kernels are cached on disk (numba's ``cache=True``, guarded by
 ``rvsim._cache_guard``), so what one process compiles every later process loads.
 Without this, the first test of each kernel in each pytest-xdist worker compiled it, both
-workers the same kernels at once (a unit test took 68 s).  ``tests/conftest.py`` runs this
-module once; it runs the two :data:`CHAINS` of tasks in two processes, one per core: the
-quasi-static solver's (the longest, about 60 % of the compile time) and the dynamic engine's.
-Both compile the force elements they share (neither can wait for the other without leaving a
-core idle).  Each task is the smallest run that reaches one engine's scheme; with a warm cache
-the whole takes a few seconds.  ``python -m tests._warmup CHAIN`` runs one chain.
+workers the same kernels at once (a unit test took 68 s).  ``tests/conftest.py`` starts the
+two :data:`CHAINS` of tasks in two background processes, one per core: the quasi-static
+solver's (the longest, about 60 % of the compile time) and the dynamic engine's.  Each holds
+an exclusive lock on a file of its own until it ends; a test waits (a shared lock) for the
+chains its file needs (:func:`chains_for`) before it starts, so the tests that need no kernel
+run during the compile and those that need only the dynamic engine start when its chain ends,
+on the core the quasi-static chain leaves free (docs/decisions.md, issue 30, third session).
+Both chains compile the force elements they share (neither can wait for the other without
+leaving a core idle).  Each task is the smallest run that reaches one engine's scheme; with a
+warm cache a chain takes a few seconds.  ``python -m tests._warmup`` runs both side by side.
 """
-
 from __future__ import annotations
 
 import sys
@@ -86,6 +89,36 @@ def _others() -> None:
 #: ltca compiles the one sweep that efficiency and hysteresis reuse) and the dynamic engine's
 CHAINS = {"quasistatic": (_ltca, _efficiency, _hysteresis, _others),
           "dynamic": (_simulate, _implicit, _simulate_others)}
+
+
+#: test files that call only kernels the dynamic chain compiles (traced: the compiled functions
+#: each file calls from Python, its child processes included): they start as soon as that chain
+#: is cached.  Any file not listed waits for both chains.  A file listed wrongly costs time (it
+#: compiles what a chain is compiling), never a wrong result.
+DYNAMIC_ONLY = frozenset({
+    "test_api_inputs.py", "test_assembly.py", "test_cli_foundation.py", "test_dynamics.py",
+    "test_joint_model.py", "test_layer_moves.py", "test_lost_motion.py", "test_model.py",
+    "test_modification_signs.py", "test_parameters.py", "test_part_validity.py",
+    "test_run_report.py", "test_simulate_cli.py", "test_study_store.py",
+    "test_table1_sensitivity.py", "test_unit_strings.py",
+})
+#: test files that call no compiled kernel of the shared cache (the compile-notice and cache
+#: guard tests compile in private caches of their own): they run while the chains compile
+NO_KERNELS = frozenset({
+    "test_analysis.py", "test_cache_guard.py", "test_catalogue.py", "test_compile_watch.py",
+    "test_declared_ranges.py", "test_designs.py", "test_files.py", "test_import_layers.py",
+    "test_interactions.py", "test_jit_options.py", "test_lazy_imports.py", "test_result.py",
+    "test_stopping.py", "test_table3_range_analysis.py", "test_testrig_import.py",
+})
+
+
+def chains_for(filename: str) -> tuple[str, ...]:
+    """The chains a test file waits for (by its file name)."""
+    if filename in NO_KERNELS:
+        return ()
+    if filename in DYNAMIC_ONLY:
+        return ("dynamic",)
+    return tuple(CHAINS)
 
 
 def run_chain(name: str) -> list[tuple[str, float]]:
