@@ -207,7 +207,10 @@ def make_study_folder(folder: Path, failed_runs=()) -> Path:
     write_study_outputs(folder, table, list("ABCDEFGHIJKLMNO"))
     definition = {"name": "paper", "design": "L36", "samples": None, "seed": 0,
                   "time_step": 1e-5, "reducer": "RV-40E", "steady_start": 3.0,
-                  "factors": [{"label": f, "parameter": f"p.{f}", "levels": [1, 2],
+                  # each factor's levels as the table has them (L36: 2 or 3; the study's
+                  # answer block reads the optimum's level from them)
+                  "factors": [{"label": f, "parameter": f"p.{f}",
+                               "levels": sorted(int(v) for v in table[f].unique()),
                                "low": None, "high": None} for f in "ABCDEFGHIJKLMNO"],
                   "fixed": []}
     (folder / "study.json").write_text(json.dumps(definition))
@@ -319,8 +322,9 @@ def test_names_and_numbers_a_hostile_review_found(tmp_path, cli, monkeypatch):
     assert res.code == 0, res.err
     assert (tmp_path / ".dxf").read_text().startswith("  0\nSECTION")
     # upper-case .NPZ was refused by the save, naming its temporary file
-    res = cli("simulate", "--duration", "1.6", "--scheme", "implicit-bearings", "--save",
-              "RUN.NPZ")
+    from .test_simulate_cli import SHORT_ARGS
+
+    res = cli("simulate", *SHORT_ARGS, "--scheme", "implicit-bearings", "--save", "RUN.NPZ")
     assert res.code == 0, res.err
     assert sorted(p.name for p in tmp_path.iterdir()) == [".dxf", "RUN.NPZ"]
 

@@ -170,7 +170,8 @@ def test_files_with_a_byte_order_mark_are_read(empty_workdir, cli):
     study = empty_workdir / "tol.toml"
     study.write_bytes(BOM + (SMALL_TOLERANCES + '[tolerances."clearances.crank_arm_bushing"]'
                              '\ntolerance = 0.003\n').encode())
-    res = cli("study", str(study), "--out", "s", "--workers", "1", "--no-progress")
+    res = cli("study", str(study), "--out", "s", "--workers", "1", "--no-progress",
+              "--no-report")
     assert res.code == 0, res.err
     assert json.loads((empty_workdir / "s" / "summary.json").read_text())["samples"] == 2
 

@@ -59,7 +59,9 @@ def test_ltca_json_names_its_peak_to_peak_the_ate(cli):
 
 
 def test_simulate_json_says_why_a_short_run_has_no_ate(cli):
-    res = cli("simulate", "--duration", "1.6", "--json")
+    from .test_simulate_cli import SHORT_ARGS
+
+    res = cli("simulate", *SHORT_ARGS, "--json")      # 0.4 s, steady from 0.3 s
     assert res.code == 0, res.err
     s = json.loads(res.out)
     # 0.1 s of steady window at 7000 deg/s, ratio 121, in 201 samples at 2 kHz, each standing

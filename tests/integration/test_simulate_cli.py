@@ -6,6 +6,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from .test_run_report import SHORT
+
+#: the short schedule (0.4 s, same physics) as --set options
+SHORT_ARGS = tuple(a for name, value in SHORT.items() for a in ("--set", f"{name}={value}"))
 KEYS = {"te_mean_arcmin", "te_pp_arcmin", "te_rms_arcmin", "speed_ratio", "sim_time_s", "steps",
         "wall_s", "status"}
 
@@ -22,20 +26,19 @@ def test_paper_run_2_json(cli):
 
 def test_default_run_and_saved_histories(tmp_path, cli):
     path = tmp_path / "run.npz"
-    res = cli("simulate", "--duration", "1.6", "--save", str(path), "--json")
+    res = cli("simulate", *SHORT_ARGS, "--save", str(path), "--json")
     assert res.code == 0, res.err
     data = np.load(path)
     assert {"time", "theta_in", "theta_out", "te_rad", "pin_forces"} <= set(data.files)
     frame = pd.DataFrame({k: data[k] for k in ("time", "te_rad")})
-    assert frame["time"].iloc[-1] == pytest.approx(1.6)
+    assert frame["time"].iloc[-1] == pytest.approx(0.4)
     assert json.loads(str(data["summary"]))["status"] == "ok"
 
 
 def test_text_output_names_the_largest_pin_force(tmp_path, cli):
     # the text lines carry what the JSON does, the largest pin force (every step's) included
     path = tmp_path / "run.npz"
-    args = ("simulate", "--paper-run", "3", "--set", "operating.duration=1.7", "--save",
-            str(path))
+    args = ("simulate", "--paper-run", "3", *SHORT_ARGS, "--save", str(path))
     text = cli(*args)
     assert text.code == 0, text.err
     data = json.loads(str(np.load(path)["summary"]))
@@ -79,10 +82,10 @@ def test_failed_simulation_reports_status(cli):
 
 def test_implicit_bearings_scheme(cli):
     """Issue 14: the scheme that takes the bearings implicitly, at its own 2e-5 s step."""
-    res = cli("simulate", "--duration", "1.6", "--scheme", "implicit-bearings", "--json")
+    res = cli("simulate", *SHORT_ARGS, "--scheme", "implicit-bearings", "--json")
     assert res.code == 0, res.err
     data = json.loads(res.out)
-    assert data["status"] == "ok" and data["steps"] == 80_000
+    assert data["status"] == "ok" and data["steps"] == 20_000          # 0.4 s / 2e-5 s
     assert data["implicit_fallbacks"] == 0 and data["implicit_factorisations"] > 0
 
 
@@ -106,7 +109,7 @@ def test_an_interrupted_report_leaves_neither_file(tmp_path, cli, monkeypatch):
         raise KeyboardInterrupt
 
     monkeypatch.setattr(rvsim.report, "write_run_report", interrupted)
-    res = cli("simulate", "--duration", "1.6", "--save", str(tmp_path / "r.npz"),
+    res = cli("simulate", *SHORT_ARGS, "--save", str(tmp_path / "r.npz"),
               "--report", str(tmp_path / "r.html"))
     assert res.code == 130 and res.err == "rvsim: interrupted\n"
     assert list(tmp_path.iterdir()) == []

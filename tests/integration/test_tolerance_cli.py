@@ -1,6 +1,7 @@
 """rvsim tolerance / rvsim allocate as a user runs them, and their bad input (issue 11)."""
 
 import json
+import shutil
 
 import pytest
 
@@ -31,10 +32,23 @@ def small(tmp_path):
     return path
 
 
-def test_tolerance_writes_summary_results_and_report(tmp_path, small, cli):
-    out = tmp_path / "o"
-    res = cli("tolerance", str(small), "--out", str(out), "--workers", "1", "--sobol", "2")
+@pytest.fixture(scope="module")
+def small_run(tmp_path_factory):
+    """One tolerance study of SMALL with Sobol indices and its report, run once for the module:
+    (the command's result, its folder); tests work on a copy of the folder."""
+    from tests.conftest import run_cli
+
+    root = tmp_path_factory.mktemp("small-run")
+    (root / "small.toml").write_text(SMALL)
+    res = run_cli("tolerance", str(root / "small.toml"), "--out", str(root / "o"),
+                  "--workers", "1", "--sobol", "2")
+    return res, root / "o"
+
+
+def test_tolerance_writes_summary_results_and_report(tmp_path, small, cli, small_run):
+    res, folder = small_run
     assert res.code == 0, res.err
+    out = shutil.copytree(folder, tmp_path / "o")
     summary = json.loads((out / "summary.json").read_text())
     assert summary["samples"] == 6 and summary["ok"] + summary["binds"] == 6
     for metric in ("ate_arcmin", "te_mean_arcmin", "lost_motion_arcmin",
@@ -65,9 +79,10 @@ def test_tolerance_writes_summary_results_and_report(tmp_path, small, cli):
     assert damaged.code == 2 and damaged.err == (
         f"rvsim: error: {out}: damaged tolerance study files (KeyError: 'study'); run "
         "'rvsim tolerance' on it again\n")
-    # re-running resumes: nothing is evaluated again, the same numbers come out
+    # re-running resumes: nothing is evaluated again, the same numbers come out (without a
+    # second report: the page is checked above)
     again = cli("tolerance", str(small), "--out", str(out), "--workers", "1", "--sobol", "2",
-                "--json")
+                "--json", "--no-report")
     assert again.code == 0 and json.loads(again.out)["metrics"] == summary["metrics"]
 
 
@@ -77,7 +92,9 @@ def test_identical_seeds_identical_results_locally_and_on_dask(tmp_path, small):
 
     study = load_tolerance_study(small)
     local = tolerance_analysis(study, tmp_path / "local", samples=4, workers=1, report=False)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+    # one worker process: the reducers are drawn here, a worker only evaluates them; the
+    # sharing of a run among several Dask workers is tested on a study (test_study.py)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
                                   host="127.0.0.1", dashboard_address=None) as cluster:
         remote = tolerance_analysis(study, tmp_path / "dask", samples=4, report=False,
                                     scheduler=cluster.scheduler_address)
@@ -85,7 +102,8 @@ def test_identical_seeds_identical_results_locally_and_on_dask(tmp_path, small):
 
 
 def test_study_command_runs_a_tolerance_study(tmp_path, small, cli):
-    res = cli("study", str(small), "--out", str(tmp_path / "s"), "--workers", "1")
+    res = cli("study", str(small), "--out", str(tmp_path / "s"), "--workers", "1",
+              "--no-report")
     assert res.code == 0, res.err
     assert (tmp_path / "s" / "summary.json").exists()
 
@@ -106,6 +124,11 @@ def test_allocate_loosens_tolerances_within_the_target(tmp_path, small, cli):
     rows = answer((out / "report.html").read_text())
     target = result["targets"][0]
     assert rows["target ate_p95=0.5"] == [f"{target['achieved']:.4g}", "0.5", "met"]
+    # `rvsim report` of that folder says what writes its page: it said "not a study folder
+    # (missing results.csv, analysis.json; run 'rvsim study' first)"
+    res = cli("report", str(out))
+    assert res.code == 2 and "a tolerance allocation's folder: its report.html is written by " \
+        "'rvsim allocate'" in res.err
 
 
 def _bad(tmp_path, body):
@@ -216,7 +239,7 @@ def test_every_reducer_failing_is_an_error_naming_the_reason(tmp_path, cli):
     assert summary["binding_share"] is None
     assert summary["failures"]["invalid"]["count"] == 3
     assert "n/a" in (out / "report.html").read_text()
-    again = cli("tolerance", path, "--out", str(out), "--workers", "1", "--json")
+    again = cli("tolerance", path, "--out", str(out), "--workers", "1", "--json", "--no-report")
     assert again.code == 1 and again.err == res.err
     payload = json.loads(again.out)
     assert payload["status"] == "all_failed" and payload["failures"]["invalid"]["count"] == 3
@@ -225,7 +248,7 @@ def test_every_reducer_failing_is_an_error_naming_the_reason(tmp_path, cli):
 def test_some_reducers_failing_are_counted_with_a_note(tmp_path, cli):
     path = _bad(tmp_path, INVALID)
     res = cli("tolerance", path, "--out", str(tmp_path / "o"), "--workers", "1",
-              "--samples", "8")
+              "--samples", "8", "--no-report")
     assert res.code == 0, res.err
     assert "8 reducers, 3 analysed, 0 bind on assembly (0.00 %), 5 failed" in res.out
     assert res.err.startswith("rvsim: note: failed reducers: 5 invalid (sample 0, ")
@@ -272,7 +295,7 @@ def test_imputed_sobol_outcomes_are_said(tmp_path, cli):
     path = _bad(tmp_path, SMALL_POISSON.replace("tolerance = 0.1", "tolerance = 5").replace(
         "seed = 3", "seed = 1"))
     res = cli("tolerance", path, "--out", str(tmp_path / "o"), "--workers", "1", "--samples",
-              "6", "--sobol", "2")
+              "6", "--sobol", "2", "--no-report")
     assert res.code == 0, res.err
     assert ("rvsim: note: Sobol indices: 6 of the 12 reducers of the design bind or fail and "
             "were given the mean of the others") in res.err
@@ -368,7 +391,7 @@ def test_sobol_of_a_single_toleranced_error_is_refused(tmp_path, cli):
     assert not (tmp_path / "o").exists()
 
 
-def test_tolerance_files_checked_alike_and_folders_not_mixed(tmp_path, small, cli):
+def test_tolerance_files_checked_alike_and_folders_not_mixed(tmp_path, small, cli, small_run):
     # found by a hostile review: `tolerance` ran a file whose [cost] table `allocate` refuses
     bad = tmp_path / "bad.toml"
     bad.write_text(SMALL + "[cost.nosuch]\nweight = -1\n")
@@ -391,8 +414,7 @@ def test_tolerance_files_checked_alike_and_folders_not_mixed(tmp_path, small, cl
     assert sorted(p.name for p in kept.iterdir()) == ["keep.txt"]
     # a tolerance study and an allocation do not share a folder (each would replace the
     # other's report.html)
-    out = tmp_path / "o"
-    assert cli("tolerance", str(small), "--out", str(out), "--workers", "1").code == 0
+    out = shutil.copytree(small_run[1], tmp_path / "o")         # a tolerance study's folder
     page = (out / "report.html").read_text()
     res = cli("allocate", str(small), "--out", str(out), "--workers", "1", "--samples", "4",
               "--max-evaluations", "5", "--target", "ate_p95=0.5")
@@ -403,14 +425,3 @@ def test_tolerance_files_checked_alike_and_folders_not_mixed(tmp_path, small, cl
     res = cli("tolerance", str(small), "--out", str(out), "--workers", "1")
     assert res.code == 2 and "holds a tolerance allocation (allocation.json)" in res.err
 
-
-def test_report_of_an_allocation_folder_says_what_writes_it(tmp_path, small, cli):
-    # it said "not a study folder (missing results.csv, analysis.json; run 'rvsim study'
-    # first)" of a folder 'rvsim allocate' had written
-    out = tmp_path / "alloc"
-    res = cli("allocate", str(small), "--out", str(out), "--workers", "1", "--samples", "4",
-              "--max-evaluations", "5", "--target", "ate_p95=0.5")
-    assert res.code == 0, res.err
-    res = cli("report", str(out))
-    assert res.code == 2 and "a tolerance allocation's folder: its report.html is written by " \
-        "'rvsim allocate'" in res.err

@@ -296,7 +296,8 @@ def test_a_label_with_dollars_is_drawn_as_written(table3, tmp_path):
     from rvsim.analysis.interactions import interaction_plots
     from rvsim.plots import figure_to_png, main_effects_plot
 
-    table = table3.rename(columns={"H": "x$_$", "te_arcmin": "te $y$"})
+    # two factors (two panels to draw; the labels are what is checked)
+    table = table3[["H", "I", "te_arcmin"]].rename(columns={"H": "x$_$", "te_arcmin": "te $y$"})
     figure = main_effects_plot(range_analysis(table, "te $y$"))
     figure_to_png(figure, tmp_path / "effects.png")
     figure = interaction_plots(table, "te $y$", [("x$_$", "I")])

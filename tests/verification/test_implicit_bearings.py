@@ -42,6 +42,9 @@ _SIM = sys.modules["rvsim.dynamics.simulate"]
 QUICK = {"operating.speed_ramp_time": 0.2, "operating.load_start": 0.2,
          "operating.load_ramp_end": 0.4, "operating.steady_start": 0.6,
          "operating.duration": 1.0}
+SHORT = {"operating.speed_ramp_time": 0.1, "operating.load_start": 0.1,
+         "operating.load_ramp_end": 0.2, "operating.steady_start": 0.3,
+         "operating.duration": 0.4}
 #: the shortened paper run 3, five roundings each (the step changed by k 1e-12, 2026-11-26):
 #: mean TE 12.968365-12.968418 arcmin (implicit-bearings, 2e-5 s) and 12.968539-12.968562
 #: (explicit, 5e-6 s): 9.3e-6 to 1.52e-5 apart; peak-to-peak TE 0.653-0.673 and 0.647-0.657
@@ -205,17 +208,21 @@ def test_damping_ratio_of_the_review():
 
 
 def test_rolling_bearings():
-    reducer = with_values(BUILT_IN_SETS["RV-40E-bearings"], QUICK)
+    reducer = with_values(BUILT_IN_SETS["RV-40E-bearings"], SHORT)
     implicit = simulate(reducer, scheme="implicit-bearings")
     explicit = simulate(reducer)
-    # measured: mean TE 3.8e-6 apart, residual -5.3e-5
+    # measured: mean TE 6.4e-6 apart, residual -5.5e-5 on this 0.4 s schedule (3.8e-6 and
+    # -5.3e-5 on the 1 s one until 2026-11-28)
     assert implicit.metrics["te_mean_arcmin"] == pytest.approx(
-        explicit.metrics["te_mean_arcmin"], rel=6e-6)
+        explicit.metrics["te_mean_arcmin"], rel=1.2e-5)
     assert abs(implicit.energy["relative_residual"]) <= RESIDUAL
 
 
 @pytest.mark.parametrize("reducer", [
-    with_values(RV40E, {"flexibility.model": "fe", "flexibility.cycloid_disc": True}),
+    # built unchecked (a check at collection calls compiled functions while the warm-up
+    # compiles them); simulate checks it
+    with_values(RV40E, {"flexibility.model": "fe", "flexibility.cycloid_disc": True},
+                check=False),
     BUILT_IN_SETS["cycloid-drive"],
 ], ids=["finite-element", "single-stage"])
 def test_refused_where_not_made_for(reducer):

@@ -35,9 +35,11 @@ def _kernel_gaps(model, q, disc, step, u, next_eval):
     pin_angle = 2.0 * np.pi * np.arange(n) / n
     forces = np.zeros((2, n))
     elastic = np.zeros((2, n))
+    # the engine's own argument types (no arm state: None; nothing carried, as omitted), so
+    # the compiled loop loads from numba's cache instead of compiling a signature of its own
     pin_contacts(P, q, np.zeros(L.N_DOF), np.zeros(L.N_DOF), np.zeros((0, 0)), disc,
                  model.pins, pin_angle, u, next_eval, step, forces, elastic, model.fe,
-                 np.zeros((2, 0, 0)))
+                 np.zeros((2, 0, 0)), None, nothing_carried(n))
     assert np.all(forces[disc] > 0.0)           # every pin was evaluated and in contact
     return PUSH - P[L.PIN_C] * forces[disc] ** EXPONENT
 
@@ -104,7 +106,7 @@ def _skipped_gaps(disc, step_factor=1.0, steps=3000, dt=2e-5):
         skip = step < next_eval[disc]
         pin_contacts(P, q, v, np.zeros(L.N_DOF), np.zeros((0, 0)), disc, model.pins,
                      pin_angle, u, next_eval, step, forces, elastic, model.fe,
-                     np.zeros((2, 0, 0)), carried=carried)
+                     np.zeros((2, 0, 0)), None, carried)
         gaps = pin_gaps(REDUCER, phi, disc=disc, extra_rotation=dth, offset=(dx, dy))
         assert np.all(forces[disc][skip] == 0.0)
         skipped.append(gaps[skip])

@@ -9,8 +9,8 @@ Measured (2026-11-22) and the tolerance of each test:
   distribution within 0.18 % of the largest (tolerance 0.3 %), both discs carry the same torque
   within 4.1e-5 (tolerance 2e-4);
 * the dynamic model's steady mean TE at a quarter of the paper's input speed, constant load,
-  over two whole crank periods, equals the quasi-static mean over the same input angles within
-  9.6e-6 relative for paper runs 1-3 (tolerance 1e-4; the issue asks 1 %);
+  over one whole crank period, equals the quasi-static mean over the same input angles within
+  6.4e-6 relative for paper runs 1-3 (tolerance 3e-5; the issue asks 1 %);
 * torque reversal: the output angle at 0 N*m on each branch equals the geometric one-sided disc
   backlash x 117/121 within 3.5e-5 relative for I, J and F + H (tolerance 1e-4);
 * the local torsional stiffness from the condensed stiffness matrix equals the finite-difference
@@ -68,16 +68,18 @@ def test_rigid_bearings_follow_textbook_pin_loads():
 
 def low_speed(reducer):
     """``reducer`` at a quarter of the paper's input speed, constant load (D off), no load
-    inertia, two crank periods of steady window from 0.8 s: the dynamic run whose mean TE the
-    quasi-static engine must give (:func:`engines_mean_te`)."""
+    inertia, one crank period of steady window from 0.4 s: the dynamic run whose mean TE the
+    quasi-static engine must give (:func:`engines_mean_te`).  (Two periods from 0.8 s until
+    2026-11-28, measured 2.3e-6, 7.9e-6, 9.6e-6 for paper runs 1-3: the engines are compared
+    at the same input angles, so the window's length is not what they agree by.)"""
     speed = 1750.0                                          # deg/s: a quarter of the paper's
     crank_period = 360.0 * reducer.ratio / (speed * reducer.cycloid.pin_count)
-    steady = 0.8
+    steady = 0.4
     return with_values(reducer, {
         "D": False, "operating.input_speed": math.radians(speed),
-        "operating.speed_ramp_time": 0.2, "operating.load_start": 0.2,
-        "operating.load_ramp_end": 0.4, "operating.steady_start": steady,
-        "operating.duration": steady + 2.0 * crank_period, "operating.load_inertia": 0.0})
+        "operating.speed_ramp_time": 0.1, "operating.load_start": 0.1,
+        "operating.load_ramp_end": 0.2, "operating.steady_start": steady,
+        "operating.duration": steady + crank_period, "operating.load_inertia": 0.0})
 
 
 def _low_speed(run):
@@ -100,8 +102,8 @@ def engines_mean_te(reducer):
 @pytest.mark.parametrize("run", [1, 2, 3])
 def test_quasi_static_te_equals_dynamic_mean_at_low_speed(run):
     static, dynamic = engines_mean_te(_low_speed(run))
-    # measured 2.3e-6, 7.9e-6, 9.6e-6
-    assert static == pytest.approx(dynamic, rel=1e-4)
+    # measured 6.4e-6, 4.6e-6, 2.6e-6
+    assert static == pytest.approx(dynamic, rel=3e-5)
 
 
 @pytest.mark.parametrize("values", [{"I": 0.016}, {"J": 0.026}, {"F": 0.01, "H": 0.01}])

@@ -6,14 +6,16 @@ Measured (2026-11-22) and the tolerance of each test:
 * zero errors, no load: |TE| = 0 over a revolution (quasi-static; tolerance 1e-14 rad); under
   rated torque the TE after one output revolution equals the TE at its start to 1.8e-11 rad
   (tolerance 1e-10 rad; the ratio is exact, i = -zc); the dynamic model's steady speed ratio is
-  -zc within 5.8e-11 relative (tolerance 1e-9) and its TE without load stays below 6.8e-13 rad
-  (tolerance 1e-11 rad);
+  -zc within 3.1e-12 relative (tolerance 2e-11) and its TE without load stays below 2.1e-14 rad
+  (tolerance 1e-13 rad; measured 2026-11-28 on a 0.5 s schedule, the one below measures
+  8.4e-13 and 1.75e-14);
 * rigid bearings (bushing stiffness x 1e5), zero clearance: ring pin loads follow the textbook
   distribution within 0.51 % of the largest (tolerance 0.8 %; the largest deviation at the pin
   leaving contact), output pin loads within 0.081 % (tolerance 0.15 %);
 * the dynamic model's steady mean TE at a quarter of the input speed, constant load, over two
-  eccentric turns, equals the quasi-static mean over the same input angles within 1.1e-6
-  relative (tolerance 1e-5; the issue asks 1 %);
+  eccentric turns, equals the quasi-static mean over the same input angles within 1.0e-6
+  relative (tolerance 5e-6; the issue asks 1 %; shorter schedules leave more of the load
+  ramp's ringing in the window: 3.7e-6 over one turn, 1.0e-5 over one turn from 0.3 s);
 * torque reversal with an output pin clearance c_w: backlash = 2 c_w / R_w within 3.1e-7
   (tolerance 1e-6);
 * torque balance: the moment of the output pin forces about the housing axis equals the output
@@ -66,13 +68,20 @@ def _low_speed(load):
         "operating.duration": steady + 2.0 * eccentric_period, "operating.load_inertia": 0.0})
 
 
+#: the unloaded run needs no long window (nothing rings without load): one eccentric turn
+#: from 0.3 s
+UNLOADED = {"operating.speed_ramp_time": 0.1, "operating.load_start": 0.1,
+            "operating.load_ramp_end": 0.2, "operating.steady_start": 0.3,
+            "operating.duration": 0.3 + 360.0 / 1750.0}
+
+
 def test_dynamic_ratio_and_unloaded_te():
-    result = simulate(_low_speed(0.0))
+    result = simulate(with_values(_low_speed(0.0), UNLOADED))
     assert result.status == "ok"
     ratio = result.metrics["speed_ratio"]
-    assert ratio == pytest.approx(DRIVE.ratio, rel=1e-9)   # measured 5.8e-11
-    window = result.time >= 0.8
-    assert np.max(np.abs(result.te[window])) < 1e-11       # measured 6.8e-13 rad
+    assert ratio == pytest.approx(DRIVE.ratio, rel=2e-11)   # measured 3.1e-12
+    window = result.time >= 0.3
+    assert np.max(np.abs(result.te[window])) < 1e-13       # measured 2.1e-14 rad
 
 
 def test_quasi_static_te_equals_dynamic_mean_at_low_speed():
@@ -83,7 +92,7 @@ def test_quasi_static_te_equals_dynamic_mean_at_low_speed():
     path = solve_path(reducer, theta_in, np.full(len(theta_in), 150.0))
     assert path.status == "ok"
     te = theta_in / reducer.ratio - path.q[:, L.CARRIER]
-    assert te.mean() == pytest.approx(dynamic.te[window].mean(), rel=1e-5)  # measured 1.1e-6
+    assert te.mean() == pytest.approx(dynamic.te[window].mean(), rel=5e-6)  # measured 1.0e-6
     # the spectrum's orders are the drive's own 30 pins' (a review found them the RV-40E's 40
     # whatever the reducer)
     assert dynamic.spectrum().equals(dynamic.spectrum(pin_count=30))
@@ -154,8 +163,8 @@ def test_toml_base_and_set_name_on_the_command_line(tmp_path, capsys):
     assert main(["hysteresis", "--params", "cycloid-drive", "--json"]) == 0
     assert '"status": "ok"' in capsys.readouterr().out
     short = tmp_path / "short.toml"
-    short.write_text('base = "cycloid-drive"\n[operating]\nduration = 0.6\nsteady_start = 0.4\n'
-                     'speed_ramp_time = 0.1\nload_start = 0.1\nload_ramp_end = 0.3\n')
+    short.write_text('base = "cycloid-drive"\n[operating]\nduration = 0.2\nsteady_start = 0.15\n'
+                     'speed_ramp_time = 0.05\nload_start = 0.05\nload_ramp_end = 0.1\n')
     assert main(["simulate", "--params", str(short), "--json"]) == 0
     out = capsys.readouterr().out
     assert '"status": "ok"' in out and '"reducer": "cycloid-drive"' in out

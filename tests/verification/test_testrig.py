@@ -19,9 +19,11 @@ def reducer():
 
 def test_te_recording_analysed_back_to_the_simulated_peak_to_peak(reducer, tmp_path):
     # quantised encoders (2^20 and 2^23 counts), 0.1 arcsec noise, arbitrary encoder zeros
+    # the model's TE at 2048 points a revolution (4096 by default): the bench reading's
+    # peak-to-peak measured 0.65 % and 0.46 % off the model's (0.20 % and 0.17 % at 4096)
     frame, runs = synthetic.te_recording(reducer, torque=300.0, backward=True,
                                          samples_per_revolution=100_000, revolutions=1.1,
-                                         zero_in=1.234, zero_out=-0.567)
+                                         zero_in=1.234, zero_out=-0.567, model_points=2048)
     frame.to_parquet(tmp_path / "run_300Nm.parquet")        # CSV is covered elsewhere
     (point,) = analyse_path(tmp_path / "run_300Nm.parquet", reducer)
     s = point_summary(point, reducer)
@@ -63,14 +65,17 @@ def test_calibration_recovers_known_parameters_within_their_intervals(reducer, t
     points = analyse_path(tmp_path, start)
     names = ["errors.disc_runout", "clearances.crank_arm_bushing",
              "contact.bushing_stiffness_factor"]
-    fit = calibrate(points, start, names, positions=256)
+    fit = calibrate(points, start, names, positions=128)
     assert fit.status == "ok"
     for name, low, high, estimate in zip(names, fit.ci_low, fit.ci_high, fit.estimate):
         assert low <= TRUE[name] <= high, (name, estimate, low, high)
-        assert high - low < 0.05 * TRUE[name]          # and the interval is informative
-    # two clearances in series act alike: the fit says it cannot tell them apart
+        # and the interval is informative: measured 0.53 %, 0.69 %, 0.94 % of the true value
+        # at 128 positions (0.14 %, 0.26 %, 0.36 % at 256, the count until 2026-11-28)
+        assert high - low < 0.02 * TRUE[name]
+    # two clearances in series act alike: the fit says it cannot tell them apart (at the 81
+    # positions that resolve the pin order, as at 128: correlation -1.0000)
     pair = calibrate(points, start, ["clearances.crank_arm_bushing",
-                                     "clearances.disc_arm_bushing"], positions=128)
+                                     "clearances.disc_arm_bushing"], positions=81)
     assert any("cannot tell" in note for note in pair.notes), pair.notes
 
 

@@ -12,6 +12,7 @@ the paper's L36(2^4 x 3^11) assignment.
 
 from __future__ import annotations
 
+import functools
 import itertools
 
 import numpy as np
@@ -22,6 +23,7 @@ __all__ = ["ORTHOGONAL_ARRAYS", "orthogonal_array", "assign_columns", "is_streng
            "full_factorial", "latin_hypercube", "sobol"]
 
 
+@functools.cache
 def _catalogue() -> dict[str, str]:
     import pyDOE3
 
@@ -33,18 +35,25 @@ def _catalogue() -> dict[str, str]:
     return {**short, **{n: n for n in names}}
 
 
-#: orthogonal arrays by short name (L4, L8, L9, L12, L16, L18, L27, L36, ...) and full name
-ORTHOGONAL_ARRAYS: dict[str, str] = _catalogue()
+def __getattr__(name: str):
+    """``ORTHOGONAL_ARRAYS``: the orthogonal arrays by short name (L4, L8, L9, L12, L16, L18,
+    L27, L36, ...) and full name, read from pyDOE3 on first use (importing pyDOE3 imports
+    scipy.stats, about a second that a study, tolerance or allocation process not using an
+    array should not pay)."""
+    if name == "ORTHOGONAL_ARRAYS":
+        return _catalogue()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def orthogonal_array(name: str) -> np.ndarray:
     """The named orthogonal array with 1-based levels, shape (runs, columns)."""
     import pyDOE3
 
-    if name not in ORTHOGONAL_ARRAYS:
+    arrays = _catalogue()
+    if name not in arrays:
         raise ParameterError("design", f"unknown orthogonal array '{name}' (available: "
-                             f"{', '.join(sorted(set(k.split('(')[0] for k in ORTHOGONAL_ARRAYS)))})")
-    array = np.asarray(pyDOE3.get_orthogonal_array(ORTHOGONAL_ARRAYS[name]), dtype=int)
+                             f"{', '.join(sorted(set(k.split('(')[0] for k in arrays)))})")
+    array = np.asarray(pyDOE3.get_orthogonal_array(arrays[name]), dtype=int)
     return array - array.min() + 1
 
 
