@@ -149,14 +149,25 @@ def test_modes_at_their_static_deflection_give_the_condensed_contacts():
             assert np.max(np.abs(force / exact - 1)) > 0.05
 
 
-def _run(modes, **extra):
+@pytest.fixture(scope="module")
+def runs():
+    """The short run with 0, 4 or 12 modes at the default 2 kHz samples (``runs(n)``) or
+    sampled at every step (``runs(n, every=True)``), each simulated once for the module."""
     from rvsim.dynamics import simulate
 
-    r = with_values(RV40E, {**COARSE, **SHORT, "flexibility.fe_modes": modes, **extra})
-    return simulate(r, raise_on_failure=False)
+    done = {}
+
+    def run(modes, every=False):
+        if (modes, every) not in done:
+            r = with_values(RV40E, {**COARSE, **SHORT, "flexibility.fe_modes": modes})
+            rate = {"sample_rate": 1.0 / 5e-6} if every else {}
+            done[modes, every] = simulate(r, raise_on_failure=False, **rate)
+        return done[modes, every]
+
+    return run
 
 
-def test_modes_converge_to_the_condensed_disc_under_slow_loading():
+def test_modes_converge_to_the_condensed_disc_under_slow_loading(runs):
     """The load rises over 0.1 s, the modes ring at >= 10 kHz: the runs are quasi-static and
     the modal disc must give the condensed one's TE (one code path: 0 modes is the condensed
     run itself, measured bit-for-bit against the kernel before the modes; pinned below).
@@ -165,7 +176,7 @@ def test_modes_converge_to_the_condensed_disc_under_slow_loading():
     largest pin force 331.29 / 331.42 / 331.41 N (3.7e-4; of the 2 kHz samples; at every step,
     since 2026-11-26: 333.15 / 333.18 / 333.14 N, 1.1e-4), energy residuals -2.4e-5 / -2.5e-5
     / -2.5e-5 of the input work (the modal energies included)."""
-    runs = {n: _run(n) for n in (0, 4, 12)}
+    runs = {n: runs(n) for n in (0, 4, 12)}
     base = runs[0].metrics
     assert runs[0].status == "ok"
     for n in (4, 12):
@@ -207,15 +218,11 @@ def test_the_quasi_static_engine_does_not_read_the_modes(cli):
 
 
 @pytest.mark.parametrize("modes", [0, 4])
-def test_largest_pin_force_is_every_steps_with_coupled_pins(modes):
+def test_largest_pin_force_is_every_steps_with_coupled_pins(runs, modes):
     """The coupled solve's pin forces (and the modal disc's) feed the window's largest pin force
     at every step: sampled at every step the histories give the same number to the bit, and
-    the default 2 kHz samples do not exceed it."""
-    from rvsim.dynamics import simulate
-
-    r = with_values(RV40E, {**COARSE, **SHORT, "flexibility.fe_modes": modes})
-    every = simulate(r, sample_rate=1.0 / 5e-6)
-    default = simulate(r)
+    the default 2 kHz samples do not exceed it (the default runs are the test above's)."""
+    every, default = runs(modes, every=True), runs(modes)
     assert every.status == default.status == "ok"
     peak = every.metrics["max_pin_force_n"]
     assert peak == every.pin_forces[every.time >= 0.2 - 1e-12].max()

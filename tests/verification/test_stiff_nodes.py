@@ -89,9 +89,24 @@ def run_2_quick():
     return with_values(RV40E, {**paper_run_values(2), **QUICK})
 
 
-def test_guard_idle_at_default_step(run_2_quick, monkeypatch):
+@pytest.fixture(scope="module")
+def quick_runs(run_2_quick):
+    """``_run(run_2_quick, ., time_step, limit)`` simulated once per (time_step, limit) for the
+    module: the plain 5e-6 s run is the reference of three tests, the 1e-5 s run of two."""
+    done = {}
+
+    def run(time_step, limit=None):
+        if (time_step, limit) not in done:
+            with pytest.MonkeyPatch.context() as patch:
+                done[time_step, limit] = _run(run_2_quick, patch, time_step, limit)
+        return done[time_step, limit]
+
+    return run
+
+
+def test_guard_idle_at_default_step(run_2_quick, monkeypatch, quick_runs):
     from rvsim.dynamics.model import GUARD_FROM_STEP, OMEGA_DT_LIMIT
-    plain, P = _run(run_2_quick, monkeypatch, 5e-6)
+    plain, P = quick_runs(5e-6)
     assert GUARD_FROM_STEP > 5e-6 and P[L.NODE_OMEGA_DT] == 0.0     # off at the default step
     guarded, P = _run(run_2_quick, monkeypatch, 5e-6, limit=OMEGA_DT_LIMIT)
     # the largest omega dt of the node modes at 5e-6 s: measured 1.07 here, 0.97 on the full
@@ -103,7 +118,7 @@ def test_guard_idle_at_default_step(run_2_quick, monkeypatch):
     assert guarded.energy == plain.energy
 
 
-def test_guard_stabilises_1e_5(run_2_quick, monkeypatch):
+def test_guard_stabilises_1e_5(run_2_quick, monkeypatch, quick_runs):
     # the plain scheme at 1e-5 s is beyond its stability limit in the start and the load step
     # (node omega dt up to 2.15 > 2, NODE_PEAK below) and usually diverges, but whether a run
     # of it does depends on the rounding (step changed by k 1e-12, k = 0, 1, 2, 2026-11-26:
@@ -112,8 +127,8 @@ def test_guard_stabilises_1e_5(run_2_quick, monkeypatch):
     # guard found the scheme's limit exceeded, and that every rounding then ends `ok`
     for h in (1e-5 * (1.0 + 1e-12), 1e-5 * (1.0 + 2e-12)):
         assert _run(run_2_quick, monkeypatch, h)[0].status == "ok"
-    guarded, P = _run(run_2_quick, monkeypatch, 1e-5)
-    reference, _ = _run(run_2_quick, monkeypatch, 5e-6)
+    guarded, P = quick_runs(1e-5)
+    reference, _ = quick_runs(5e-6)
     assert guarded.status == "ok" and P[L.NODE_OMEGA_DT] == 1.6
     # measured: the guard sub-stepped after 745 checks (4 in the steady window), peak omega
     # dt 2.15; residual -9.1e-6 (5e-6 s: -2.4e-6); against 5e-6 s the mean TE -4.8e-7, the
@@ -139,7 +154,7 @@ def test_guard_stabilises_1e_5(run_2_quick, monkeypatch):
     assert a["max_pin_force_n"] == pytest.approx(b["max_pin_force_n"], rel=0.005)
 
 
-def test_balance_exact_with_guard_acting_in_window(run_2_quick, monkeypatch):
+def test_balance_exact_with_guard_acting_in_window(run_2_quick, monkeypatch, quick_runs):
     # a limit below the steady omega dt: the run sub-steps through the whole window
     result, P = _run(run_2_quick, monkeypatch, 5e-6, limit=0.4)
     assert result.status == "ok"
@@ -147,13 +162,13 @@ def test_balance_exact_with_guard_acting_in_window(run_2_quick, monkeypatch):
     # a check every 8 steps), 0.4 s / 5e-6 s / 8 = 10000
     assert abs(P[L.NODE_CHECKS_STEADY] - 10000) <= 1
     assert abs(result.energy["relative_residual"]) < RESIDUAL_SUBSTEPPED
-    plain, _ = _run(run_2_quick, monkeypatch, 5e-6)
+    plain, _ = quick_runs(5e-6)
     a, b = result.metrics, plain.metrics
     assert a["te_mean_arcmin"] == pytest.approx(b["te_mean_arcmin"], rel=MEAN_SUBSTEPPED)
 
 
-def test_substepped_run_resumes_across_chunks(run_2_quick, monkeypatch):
-    whole, P = _run(run_2_quick, monkeypatch, 1e-5)
+def test_substepped_run_resumes_across_chunks(run_2_quick, monkeypatch, quick_runs):
+    whole, P = quick_runs(1e-5)
     assert P[L.NODE_CHECKS] > 0                    # it sub-stepped
     monkeypatch.setattr(_SIM, "CHUNK_STEPS", 997)  # not a multiple of the 8 steps of a check
     chunked, _ = _run(run_2_quick, monkeypatch, 1e-5)
@@ -183,9 +198,11 @@ def test_guard_off_with_coupled_fe_bodies(bodies):
     assert plain.P[L.NODE_OMEGA_DT] == 1.6
     # coarse meshes (the guard asks whether coupled bodies exist, not how fine they are; the
     # default 3 mm crank mesh took 115 s of this test): those of the FE test files, shared in
-    # the run's FE cache
+    # the run's FE cache; the pins rigid (B off), so that each body is alone in turning the
+    # guard off (and paper run 3's pins, 0.03 mm thinner, need no FE pin table of their own:
+    # 5 s CPU that no other test shared)
     coarse = {"flexibility.fe_element_size": 4.0, "flexibility.fe_segments_per_tooth": 2,
-              "flexibility.fe_crank_element_size": 6.0}
+              "flexibility.fe_crank_element_size": 6.0, "B": False}
     fe = build_model(with_values(RV40E, {**paper_run_values(3), "flexibility.model": "fe",
                                          **coarse, **bodies}), 1e-5)
     assert fe.P[L.NODE_OMEGA_DT] == 0.0
