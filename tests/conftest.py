@@ -18,7 +18,7 @@ import pytest
 
 from rvsim.cli import main
 from rvsim.parameters import RV40E
-from tests._warmup import CHAINS, chains_for
+from tests._warmup import CHAINS, SECONDS, chains_for
 
 try:
     import fcntl
@@ -60,15 +60,29 @@ def pytest_unconfigure(config):
 
 
 def pytest_collection_modifyitems(config, items):
-    # the files that need no kernel first, then those that need only the dynamic chain's: they
-    # run while the rest still compiles (a stable sort: each group keeps its files' order)
-    items.sort(key=lambda item: len(chains_for(item.path.name)))
+    _order_files(items)
     if HAS_FE:
         return
     skip = pytest.mark.skip(reason=NO_FE)
     for item in items:
         if item.get_closest_marker("fe") is not None:
             item.add_marker(skip)
+
+
+def _order_files(items) -> None:
+    """The order pytest-xdist hands the files out in (``--no-loadscope-reorder``, pyproject):
+    the files that need no kernel first, then those that need only the dynamic chain's (they
+    run while the rest still compiles), then the others; within each group the longest files
+    first (:data:`tests._warmup.SECONDS`, else the number of tests), so that the last files
+    handed out are short and both workers finish together.  A file's tests stay together."""
+    counts: dict[str, int] = {}
+    for item in items:
+        counts[item.path.name] = counts.get(item.path.name, 0) + 1
+
+    def key(item):
+        name = item.path.name
+        return len(chains_for(name)), -SECONDS.get(name, 0.05 * counts[name]), str(item.path)
+    items.sort(key=key)     # stable: a file keeps its tests' order
 
 
 def _one_fe_cache(config) -> None:
