@@ -115,7 +115,17 @@ NO_KERNELS = frozenset({
 #: the test files that take longest (summed test seconds, one worker, warm cache; measured
 #: 2026-11-28): handed out first within their group so that no long file is left for last
 #: (tests/conftest.py); a file not listed counts 0.05 s a test
-SECONDS: dict[str, float] = {}
+SECONDS: dict[str, float] = {
+    "test_study_faults.py": 40, "test_cli_process.py": 39, "test_fe.py": 31,
+    "test_tolerance_cli.py": 20, "test_report_browser.py": 17, "test_fe_pin.py": 17,
+    "test_dynamics.py": 15, "test_environment_faults.py": 14, "test_single_stage.py": 14,
+    "test_stiff_nodes.py": 14, "test_fe_modes.py": 12, "test_fe_holes.py": 11,
+    "test_study.py": 11, "test_cache_guard.py": 9, "test_fe_carrier.py": 8,
+    "test_analysis.py": 8, "test_hostile_calibrate_and_files.py": 7, "test_bad_inputs.py": 7,
+    "test_testrig_cli.py": 7, "test_testrig.py": 6, "test_implicit_bearings.py": 6,
+    "test_ring_output.py": 5, "test_fe_engines.py": 5, "test_compile_message.py": 5,
+    "test_simulate_cli.py": 5, "test_friction.py": 5,
+}
 
 
 def chains_for(filename: str) -> tuple[str, ...]:
