@@ -34,6 +34,14 @@ def _ltca() -> None:
     ltca(RV40E, positions=16, raise_on_failure=False)
 
 
+def _geometry() -> None:
+    from rvsim.geometry.cycloid import pin_gaps, profile_of
+    from rvsim.parameters import RV40E
+
+    pin_gaps(RV40E, 0.0)                     # the geometry's compiled curve functions
+    profile_of(RV40E).points(64)             # the profile's points (rvsim profile, FE meshes)
+
+
 def _simulate() -> None:
     from rvsim.dynamics import simulate
     from rvsim.parameters import RV40E, with_values
@@ -88,7 +96,7 @@ def _others() -> None:
 #: two chains of tasks, one per core (tests/conftest.py): the quasi-static solver's (the longest:
 #: ltca compiles the one sweep that efficiency and hysteresis reuse) and the dynamic engine's
 CHAINS = {"quasistatic": (_ltca, _efficiency, _hysteresis, _others),
-          "dynamic": (_simulate, _implicit, _simulate_others)}
+          "dynamic": (_geometry, _simulate, _implicit, _simulate_others)}
 
 
 #: test files that call only kernels the dynamic chain compiles (traced: the compiled functions
@@ -96,10 +104,12 @@ CHAINS = {"quasistatic": (_ltca, _efficiency, _hysteresis, _others),
 #: is cached.  Any file not listed waits for both chains.  A file listed wrongly costs time (it
 #: compiles what a chain is compiling), never a wrong result.
 DYNAMIC_ONLY = frozenset({
-    "test_api_inputs.py", "test_assembly.py", "test_cli_foundation.py", "test_dynamics.py",
-    "test_joint_model.py", "test_layer_moves.py", "test_lost_motion.py", "test_model.py",
-    "test_modification_signs.py", "test_parameters.py", "test_part_validity.py",
-    "test_run_report.py", "test_simulate_cli.py", "test_study_store.py",
+    "test_api_inputs.py", "test_assembly.py", "test_carried_values.py", "test_cli_foundation.py",
+    "test_cycloid_geometry.py", "test_dynamics.py", "test_implicit_bearings.py",
+    "test_joint_model.py", "test_kernel_gaps.py", "test_layer_moves.py", "test_lost_motion.py",
+    "test_mesh_flanks.py", "test_model.py", "test_modification_signs.py", "test_parameters.py",
+    "test_part_validity.py", "test_profile_export.py", "test_robust_sn.py", "test_run_report.py",
+    "test_run_status.py", "test_simulate_cli.py", "test_stiff_nodes.py", "test_study_store.py",
     "test_table1_sensitivity.py", "test_unit_strings.py",
 })
 #: test files that call no compiled kernel of the shared cache (the compile-notice and cache

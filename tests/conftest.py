@@ -102,6 +102,9 @@ def _one_fe_cache(config) -> None:
 #: environment variable naming each warm-up chain's lock file, ``chain=path`` joined by
 #: os.pathsep (set by the first process, inherited by pytest-xdist's workers)
 _WARMUP_LOCKS = "RVSIM_TEST_WARMUP_LOCKS"
+#: the tests' scheduling priority below the warm-up's (os.nice; CFS gives a nice-10 process
+#: about a tenth of a core beside a nice-0 one)
+_TEST_NICENESS = 10
 
 
 def _compile_kernels_once(config) -> None:
@@ -148,6 +151,13 @@ def _compile_kernels_once(config) -> None:
         locks.append(f"{chain}={lock}")
     os.environ[_WARMUP_LOCKS] = os.pathsep.join(locks)
     config._rvsim_warmup = (folder, chains)
+    # the quasi-static chain is the longest task of the run: the tests (this process, its
+    # pytest-xdist workers and their children inherit it) yield the cores to both chains while
+    # they compile, so the tests that need no kernel fill the idle time, not the critical path
+    try:
+        os.nice(_TEST_NICENESS)
+    except OSError:
+        pass
 
 
 #: the chains this process has seen end (a test waits for each at most once)
