@@ -1,16 +1,19 @@
-"""Compile rvsim's numba kernels once, before the tests run (``python -m tests._warmup``).
+"""Compile rvsim's numba kernels once, while the tests start (``python -m tests._warmup CHAIN``).
 
 The kernels are cached on disk (numba's ``cache=True``, guarded by
 ``rvsim._cache_guard``), so what one process compiles every later process loads.
 Without this, the first test of each kernel in each pytest-xdist worker compiled it, both
-workers the same kernels at once (a unit test took 68 s).  ``tests/conftest.py`` runs this
-module once; it runs the two :data:`CHAINS` of tasks in two processes, one per core: the
-quasi-static solver's (the longest, about 60 % of the compile time) and the dynamic engine's.
-Both compile the force elements they share (neither can wait for the other without leaving a
-core idle).  Each task is the smallest run that reaches one engine's scheme; with a warm cache
-the whole takes a few seconds.  ``python -m tests._warmup CHAIN`` runs one chain.
+workers the same kernels at once (a unit test took 68 s).  ``tests/conftest.py`` starts the
+two :data:`CHAINS` of tasks in two background processes, one per core: the quasi-static
+solver's (the longest, about 60 % of the compile time) and the dynamic engine's.  Each holds
+an exclusive lock on a file of its own until it ends; a test waits (a shared lock) for the
+chains its file needs (:func:`chains_for`) before it starts, so the tests that need no kernel
+run during the compile and those that need only the dynamic engine start when its chain ends,
+on the core the quasi-static chain leaves free (docs/decisions.md, issue 30, third session).
+Both chains compile the force elements they share (neither can wait for the other without
+leaving a core idle).  Each task is the smallest run that reaches one engine's scheme; with a
+warm cache a chain takes a few seconds.  ``python -m tests._warmup`` runs both side by side.
 """
-
 from __future__ import annotations
 
 import sys
@@ -29,6 +32,14 @@ def _ltca() -> None:
     from rvsim.quasistatic import ltca
 
     ltca(RV40E, positions=16, raise_on_failure=False)
+
+
+def _geometry() -> None:
+    from rvsim.geometry.cycloid import pin_gaps, profile_of
+    from rvsim.parameters import RV40E
+
+    pin_gaps(RV40E, 0.0)                     # the geometry's compiled curve functions
+    profile_of(RV40E).points(64)             # the profile's points (rvsim profile, FE meshes)
 
 
 def _simulate() -> None:
@@ -85,7 +96,55 @@ def _others() -> None:
 #: two chains of tasks, one per core (tests/conftest.py): the quasi-static solver's (the longest:
 #: ltca compiles the one sweep that efficiency and hysteresis reuse) and the dynamic engine's
 CHAINS = {"quasistatic": (_ltca, _efficiency, _hysteresis, _others),
-          "dynamic": (_simulate, _implicit, _simulate_others)}
+          "dynamic": (_geometry, _simulate, _implicit, _simulate_others)}
+
+
+#: test files that call only kernels the dynamic chain compiles (traced: the compiled functions
+#: each file calls from Python, its child processes included): they start as soon as that chain
+#: is cached.  Any file not listed waits for both chains.  A file listed wrongly costs time (it
+#: compiles what a chain is compiling), never a wrong result.
+DYNAMIC_ONLY = frozenset({
+    "test_api_inputs.py", "test_assembly.py", "test_carried_values.py", "test_cli_foundation.py",
+    "test_cycloid_geometry.py", "test_dynamics.py", "test_implicit_bearings.py",
+    "test_joint_model.py", "test_kernel_gaps.py", "test_layer_moves.py", "test_lost_motion.py",
+    "test_mesh_flanks.py", "test_model.py", "test_modification_signs.py", "test_parameters.py",
+    "test_part_validity.py", "test_profile_export.py", "test_robust_sn.py", "test_run_report.py",
+    "test_run_status.py", "test_simulate_cli.py", "test_stiff_nodes.py", "test_study_store.py",
+    "test_table1_sensitivity.py", "test_unit_strings.py",
+})
+#: test files that call no compiled kernel of the shared cache (the compile-notice and cache
+#: guard tests compile in private caches of their own): they run while the chains compile
+NO_KERNELS = frozenset({
+    "test_analysis.py", "test_cache_guard.py", "test_catalogue.py", "test_compile_watch.py",
+    "test_declared_ranges.py", "test_designs.py", "test_files.py", "test_import_layers.py",
+    "test_interactions.py", "test_jit_options.py", "test_lazy_imports.py", "test_result.py",
+    "test_stopping.py", "test_table3_range_analysis.py", "test_testrig_import.py",
+})
+
+
+#: the test files that take longest (summed test seconds, one worker, warm cache; measured
+#: 2026-11-28): handed out first within their group so that no long file is left for last
+#: (tests/conftest.py); a file not listed counts 0.05 s a test
+SECONDS: dict[str, float] = {
+    "test_study_faults.py": 40, "test_cli_process.py": 39, "test_fe.py": 31,
+    "test_tolerance_cli.py": 20, "test_report_browser.py": 17, "test_fe_pin.py": 17,
+    "test_dynamics.py": 15, "test_environment_faults.py": 14, "test_single_stage.py": 14,
+    "test_stiff_nodes.py": 14, "test_fe_modes.py": 12, "test_fe_holes.py": 11,
+    "test_study.py": 11, "test_cache_guard.py": 9, "test_fe_carrier.py": 8,
+    "test_analysis.py": 8, "test_hostile_calibrate_and_files.py": 7, "test_bad_inputs.py": 7,
+    "test_testrig_cli.py": 7, "test_testrig.py": 6, "test_implicit_bearings.py": 6,
+    "test_ring_output.py": 5, "test_fe_engines.py": 5, "test_compile_message.py": 5,
+    "test_simulate_cli.py": 5, "test_friction.py": 5,
+}
+
+
+def chains_for(filename: str) -> tuple[str, ...]:
+    """The chains a test file waits for (by its file name)."""
+    if filename in NO_KERNELS:
+        return ()
+    if filename in DYNAMIC_ONLY:
+        return ("dynamic",)
+    return tuple(CHAINS)
 
 
 def run_chain(name: str) -> list[tuple[str, float]]:

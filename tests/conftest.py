@@ -18,6 +18,12 @@ import pytest
 
 from rvsim.cli import main
 from rvsim.parameters import RV40E
+from tests._warmup import CHAINS, SECONDS, chains_for
+
+try:
+    import fcntl
+except ImportError:          # not POSIX: the warm-up runs before the tests instead
+    fcntl = None
 
 REFERENCE = Path(__file__).parent / "reference" / "data"
 
@@ -47,18 +53,36 @@ def pytest_configure(config):
 
 
 def pytest_unconfigure(config):
+    _end_warmup(config)
     folder = getattr(config, "_rvsim_fe_cache", None)
     if folder is not None:
         shutil.rmtree(folder, ignore_errors=True)
 
 
 def pytest_collection_modifyitems(config, items):
+    _order_files(items)
     if HAS_FE:
         return
     skip = pytest.mark.skip(reason=NO_FE)
     for item in items:
         if item.get_closest_marker("fe") is not None:
             item.add_marker(skip)
+
+
+def _order_files(items) -> None:
+    """The order pytest-xdist hands the files out in (``--no-loadscope-reorder``, pyproject):
+    the files that need no kernel first, then those that need only the dynamic chain's (they
+    run while the rest still compiles), then the others; within each group the longest files
+    first (:data:`tests._warmup.SECONDS`, else the number of tests), so that the last files
+    handed out are short and both workers finish together.  A file's tests stay together."""
+    counts: dict[str, int] = {}
+    for item in items:
+        counts[item.path.name] = counts.get(item.path.name, 0) + 1
+
+    def key(item):
+        name = item.path.name
+        return len(chains_for(name)), -SECONDS.get(name, 0.05 * counts[name]), str(item.path)
+    items.sort(key=key)     # stable: a file keeps its tests' order
 
 
 def _one_fe_cache(config) -> None:
@@ -75,26 +99,102 @@ def _one_fe_cache(config) -> None:
     os.environ["RVSIM_CACHE_DIR"] = folder
 
 
+#: environment variable naming each warm-up chain's lock file, ``chain=path`` joined by
+#: os.pathsep (set by the first process, inherited by pytest-xdist's workers)
+_WARMUP_LOCKS = "RVSIM_TEST_WARMUP_LOCKS"
+#: the tests' scheduling priority below the warm-up's (os.nice; CFS gives a nice-10 process
+#: about a tenth of a core beside a nice-0 one)
+_TEST_NICENESS = 10
+
+
 def _compile_kernels_once(config) -> None:
-    """Compile the numba kernels into their on-disk cache before any test runs, on two
-    processes (tests/_warmup.py), so that no test
-    (and no pair of pytest-xdist workers at once) pays for compiling them.  Only in the first
+    """Compile the numba kernels into their on-disk cache once, in two background processes
+    (tests/_warmup.py), so that no test (and no pair of pytest-xdist workers at once) pays for
+    compiling them.  Each chain's process holds an exclusive lock on a file of its own until it
+    ends (the lock is taken here and handed down, so no test can look before it is held); a test
+    waits for the chains its file needs (:func:`pytest_runtest_setup`), so the tests that need no
+    kernel, or only the dynamic chain's, run while the rest still compiles.  Only in the first
     process (not in xdist's workers), not for --collect-only; RVSIM_TEST_NO_WARMUP=1 leaves it
-    out.  A warm-up that fails is reported and the tests run anyway (they show the fault)."""
+    out.  A warm-up that fails is reported at the end and the tests run anyway (they show the
+    fault).  Without POSIX file locks the warm-up runs to its end before the tests."""
     if hasattr(config, "workerinput") or config.option.collectonly \
             or os.environ.get("RVSIM_TEST_NO_WARMUP"):
         return
     root = Path(__file__).resolve().parents[1]
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [str(root / "src"), str(root)] + [os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep)}
-    sys.stderr.write("rvsim tests: compiling the numba kernels once (a few seconds when "
-                     "cached)\n")
-    proc = subprocess.run([sys.executable, "-m", "tests._warmup"], cwd=root, env=env,
-                          stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                          stderr=subprocess.PIPE, text=True)
-    if proc.returncode != 0:
-        tail = "\n".join(proc.stderr.strip().splitlines()[-5:])
-        sys.stderr.write(f"rvsim tests: warm-up failed (exit {proc.returncode}):\n{tail}\n")
+    command = [sys.executable, "-m", "tests._warmup"]
+    if fcntl is None:
+        sys.stderr.write("rvsim tests: compiling the numba kernels once (a few seconds when "
+                         "cached)\n")
+        proc = subprocess.run(command, cwd=root, env=env, stdin=subprocess.DEVNULL,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        if proc.returncode != 0:
+            _report_warmup("both chains", proc.returncode, proc.stderr)
+        return
+    sys.stderr.write("rvsim tests: compiling the numba kernels in the background (a few "
+                     "seconds when cached); the tests that need them wait\n")
+    folder = Path(tempfile.mkdtemp(prefix="rvsim-test-warmup-"))
+    chains, locks = [], []
+    for chain in CHAINS:
+        lock = folder / f"{chain}.lock"
+        descriptor = os.open(lock, os.O_RDWR | os.O_CREAT, 0o600)
+        fcntl.flock(descriptor, fcntl.LOCK_EX)          # released when the chain's process ends
+        log = open(folder / f"{chain}.log", "w+")
+        try:
+            proc = subprocess.Popen(command + [chain], cwd=root, env=env,
+                                    stdin=subprocess.DEVNULL, stdout=log,
+                                    stderr=subprocess.STDOUT, pass_fds=(descriptor,))
+        finally:
+            os.close(descriptor)
+        chains.append((chain, proc, log))
+        locks.append(f"{chain}={lock}")
+    os.environ[_WARMUP_LOCKS] = os.pathsep.join(locks)
+    config._rvsim_warmup = (folder, chains)
+    # the quasi-static chain is the longest task of the run: the tests (this process, its
+    # pytest-xdist workers and their children inherit it) yield the cores to both chains while
+    # they compile, so the tests that need no kernel fill the idle time, not the critical path
+    try:
+        os.nice(_TEST_NICENESS)
+    except OSError:
+        pass
+
+
+#: the chains this process has seen end (a test waits for each at most once)
+_CHAINS_READY: set[str] = set()
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup(item):
+    """Before a test and its fixtures: wait for the warm-up chains its file needs."""
+    locks = dict(entry.split("=", 1) for entry in
+                 os.environ.get(_WARMUP_LOCKS, "").split(os.pathsep) if entry)
+    for chain in chains_for(item.path.name):
+        if chain in _CHAINS_READY or chain not in locks:
+            continue
+        with open(locks[chain]) as handle:
+            fcntl.flock(handle, fcntl.LOCK_SH)   # free once the chain's process has ended
+        _CHAINS_READY.add(chain)
+
+
+def _end_warmup(config) -> None:
+    """Stop a warm-up still running (an interrupted session), report one that failed."""
+    folder, chains = getattr(config, "_rvsim_warmup", (None, ()))
+    for chain, proc, log in chains:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        elif proc.returncode != 0:
+            log.seek(0)
+            _report_warmup(f"the {chain} chain", proc.returncode, log.read())
+        log.close()
+    if folder is not None:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _report_warmup(what: str, code: int, output: str) -> None:
+    tail = "\n".join(output.strip().splitlines()[-5:])
+    sys.stderr.write(f"rvsim tests: warm-up of {what} failed (exit {code}):\n{tail}\n")
 
 
 @pytest.fixture

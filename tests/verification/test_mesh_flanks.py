@@ -9,6 +9,7 @@ the forces within 2.9e-6 of its largest entry (the line-of-centres curvature lef
 tolerance 1e-5).
 """
 
+import functools
 import math
 
 import numpy as np
@@ -19,23 +20,30 @@ from rvsim.physics._gear_mesh import gear_mesh
 from rvsim.dynamics.model import build_model
 from rvsim.parameters import RV40E
 
-MODEL = build_model(RV40E, 1e-5)
-P = MODEL.P
+
+
+@functools.cache
+def _model():
+    """The RV-40E's model, built at the first test (not at collection: building it calls
+    compiled functions, which the warm-up compiles while the tests are collected)."""
+    return build_model(RV40E, 1e-5)
+
+
 B = L.CRANK0                       # crank 0
 
 
 def _mesh(q, want_stiffness=False):
     Q = np.zeros(L.N_DOF)
     K = np.zeros((L.N_DOF, L.N_DOF) if want_stiffness else (0, 0))
-    line = q[L.CARRIER] + MODEL.crank_angles[0]
-    out = gear_mesh(P, q, np.zeros(L.N_DOF), Q, K, 0, MODEL.crank_angles[0],
-                    MODEL.mesh_phase[0], 0.0, 0.0, 1.0, 0.0,   # one tooth pair held
+    line = q[L.CARRIER] + _model().crank_angles[0]
+    out = gear_mesh(_model().P, q, np.zeros(L.N_DOF), Q, K, 0, _model().crank_angles[0],
+                    _model().mesh_phase[0], 0.0, 0.0, 1.0, 0.0,   # one tooth pair held
                     math.cos(line), math.sin(line))
     return out, Q, K
 
 
 def _pressed(inward, turn=0.0):
-    q = MODEL.q0.copy()
+    q = _model().q0.copy()
     for node in (0, 2):             # both support nodes: the gear's station moves as well
         q[B + node] -= inward       # crank 0 sits on +x: towards the sun is -x
     q[B + 4] += turn
@@ -45,14 +53,14 @@ def _pressed(inward, turn=0.0):
 def test_a_crank_pressed_towards_the_sun_touches_both_flanks_equally():
     inward = 1e-6
     (force, torque, energy, _, stiffness, deflection, _, _), Q, _ = _mesh(_pressed(inward))
-    approach = inward * P[L.SIN_AW]
+    approach = inward * _model().P[L.SIN_AW]
     assert force == pytest.approx(2.0 * stiffness * approach, rel=1e-9)   # measured 6e-12
-    assert abs(torque) < 1e-12 * force * P[L.RB1]
+    assert abs(torque) < 1e-12 * force * _model().P[L.RB1]
     assert energy == pytest.approx(stiffness * approach ** 2, rel=1e-9)
     assert deflection == pytest.approx(math.sqrt(2.0) * approach, rel=1e-9)
-    assert abs(Q[B + 4]) < 1e-12 * force * P[L.RB2]           # no net moment on the planet
+    assert abs(Q[B + 4]) < 1e-12 * force * _model().P[L.RB2]           # no net moment on the planet
     # pushed back out along +x by the radial components of both flank forces
-    assert Q[B] + Q[B + 2] == pytest.approx(force * P[L.SIN_AW], rel=1e-9)
+    assert Q[B] + Q[B + 2] == pytest.approx(force * _model().P[L.SIN_AW], rel=1e-9)
 
 
 def test_turning_the_pressed_crank_shifts_load_between_the_flanks_continuously():
