@@ -16,7 +16,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from .geometry.layout import roller_pitch_diameter   # public here too (issue 31 step 4)
+from .geometry.layout import (arm_bushing_play, roller_pitch_diameter,  # public here too
+                              support_bushing_play)
 from .physics.compliance import effective_modulus, palmgren_coefficient
 from .parameters import Reducer
 
@@ -31,8 +32,7 @@ RAD_PER_ARCMIN = math.pi / (180.0 * 60.0)
 def arm_play(r: Reducer) -> float:
     """Radial play of the eccentric in its disc hole [m]: K + M, plus half the needle
     bearing's radial internal clearance when needles are fitted (negative: preload)."""
-    cl = r.clearances
-    play = cl.crank_arm_bushing + cl.disc_arm_bushing
+    play = arm_bushing_play(r)
     if r.bearings.arm_needles:
         play += 0.5 * r.bearings.needle_clearance
     return play
@@ -41,8 +41,7 @@ def arm_play(r: Reducer) -> float:
 def support_play(r: Reducer, upper: bool) -> float:
     """Radial play of a crank journal in its lower (flange, O + L) or upper (carrier, O + N)
     bore [m], plus half the tapered bearing's radial internal clearance when fitted."""
-    cl = r.clearances
-    play = cl.crank_support_bushing + (cl.support_carrier if upper else cl.support_flange)
+    play = support_bushing_play(r, upper)
     if r.bearings.support_rollers:
         play += 0.5 * r.bearings.support_clearance
     return play

@@ -76,11 +76,10 @@ def _pin_overlaps(reducer: Reducer) -> list[Overlap]:
 
 
 def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
-    from .layout import crank_holes, disc_count
+    from .layout import arm_bushing_play, crank_holes, disc_count, support_bushing_play
 
-    cl = reducer.clearances
     single = reducer.layout.single_stage
-    arm_clearance = cl.crank_arm_bushing + cl.disc_arm_bushing
+    arm_clearance = arm_bushing_play(reducer)
     eccentric = reducer.cycloid.eccentricity - reducer.errors.eccentricity
     result = []
     from .deviations import bore_offsets, eccentric_errors, hole_offsets
@@ -120,8 +119,8 @@ def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
                                   f"disc {disc + 1}", offset - arm_clearance))
         # the crank's support journals start on their bore centres
         supports = ((("input shaft", reducer.layout.input_bearing_clearance),) if single else
-                    (("lower (flange)", cl.crank_support_bushing + cl.support_flange),
-                     ("upper (carrier)", cl.crank_support_bushing + cl.support_carrier)))
+                    (("lower (flange)", support_bushing_play(reducer, False)),
+                     ("upper (carrier)", support_bushing_play(reducer, True))))
         for name, clearance in supports:
             kind = "bearing" if reducer.bearings.support_rollers else "bushing"
             result.append(Overlap(f"crank {crank + 1} overlaps its {name} support {kind}",

@@ -17,7 +17,7 @@ from ..parameters import Reducer
 from .assembly import check_assembly
 from .cycloid import check_profile
 from .involute import check_gear_stage, gear_geometry
-from .layout import neighbour_distance
+from .layout import arm_bushing_play, neighbour_distance
 from .validity import check_parts
 
 __all__ = ["check_geometry", "MAX_PRELOAD"]
@@ -98,7 +98,7 @@ def _check_clearances(r: Reducer) -> None:
     height 2a: with that much play a disc can slip over the pins (docs/parameters.md)."""
     cl = r.clearances
     if r.layout.single_stage:
-        play = cl.crank_arm_bushing + cl.disc_arm_bushing + r.layout.input_bearing_clearance
+        play = arm_bushing_play(r) + r.layout.input_bearing_clearance
         if play >= 2.0 * r.cycloid.eccentricity:
             raise ParameterError("layout.input_bearing_clearance", f"the play of a disc, K + M "
                                  f"+ input bearing = {play * 1e3:g} mm, reaches the cycloid "
@@ -119,7 +119,7 @@ def _check_clearances(r: Reducer) -> None:
         chain["bearings.needle_clearance"] = 0.5 * max(b.needle_clearance, 0.0)
     if b.support_rollers:
         chain["bearings.support_clearance"] = 0.5 * max(b.support_clearance, 0.0)
-    play = (cl.crank_arm_bushing + cl.disc_arm_bushing + cl.crank_support_bushing
+    play = (arm_bushing_play(r) + cl.crank_support_bushing
             + max(cl.support_flange, cl.support_carrier)
             + chain.get("bearings.needle_clearance", 0.0)
             + chain.get("bearings.support_clearance", 0.0))

@@ -16,7 +16,7 @@ from ..parameters import Reducer
 
 __all__ = ["crank_angles", "crank_holes", "disc_count", "output_pins", "output_hole_clearance",
            "crank_hole_radius", "pillar_angles", "neighbour_distance",
-           "roller_pitch_diameter", "disc_holes"]
+           "roller_pitch_diameter", "arm_bushing_play", "support_bushing_play", "disc_holes"]
 
 
 def crank_angles(reducer: Reducer) -> np.ndarray:
@@ -82,6 +82,21 @@ def roller_pitch_diameter(inner_radius: float, roller_diameter: float) -> float:
     """Pitch (roller-centre) diameter of a set of rollers running directly on a shaft of
     ``inner_radius`` (the eccentric or the journal is the inner raceway) [m]."""
     return 2.0 * inner_radius + roller_diameter
+
+
+def arm_bushing_play(reducer: Reducer) -> float:
+    """Radial play of the arm bushing, eccentric in its disc hole: K + M [m] (the rolling
+    bearing's clearance, where fitted, is added by its users: :func:`rvsim.bearings.arm_play`,
+    the checks)."""
+    cl = reducer.clearances
+    return cl.crank_arm_bushing + cl.disc_arm_bushing
+
+
+def support_bushing_play(reducer: Reducer, upper: bool) -> float:
+    """Radial play of a support bushing, crank journal in its lower (flange, O + L) or upper
+    (carrier, O + N) bore [m]."""
+    cl = reducer.clearances
+    return cl.crank_support_bushing + (cl.support_carrier if upper else cl.support_flange)
 
 
 def disc_holes(reducer: Reducer) -> dict[str, np.ndarray]:

@@ -15,7 +15,8 @@ from .._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-__all__ = ["EXPONENT", "spring_force", "spring_force_power", "spring_force_from", "spring_start", "power_ratio", "damped", "contact", "add_rank_one"]
+__all__ = ["EXPONENT", "spring_force", "spring_force_power", "spring_force_from", "spring_start",
+           "power_ratio", "damping", "damped", "contact", "add_rank_one"]
 
 EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
 _INV_EXPONENT = 1.0 / EXPONENT
@@ -160,11 +161,20 @@ def contact(delta, rate, c, cb, zeta, mass, guess):
     return fn, energy, power, f, k
 
 
+@numba.njit(cache=CACHE, inline="always")
+def damping(k, zeta, mass):
+    """The contacts' damping coefficient 2 zeta sqrt(k m) at the tangent stiffness ``k`` (zero
+    at first touch; docs/model.md section 5): the one damping law of every element (contacts,
+    gear mesh, input coupling)."""
+    return 2.0 * zeta * math.sqrt(k * mass)
+
+
 @numba.njit(**NO_REFCOUNT)
 def damped(f, k, rate, zeta, mass):
-    """Elastic force ``f`` of tangent stiffness ``k`` plus damping 2 zeta sqrt(k m) at the
-    approach rate; the total never pulls.  Returns (force, dissipated power)."""
-    fn = f + 2.0 * zeta * math.sqrt(k * mass) * rate
+    """Elastic force ``f`` of tangent stiffness ``k`` plus damping 2 zeta sqrt(k m)
+    (:func:`damping`) at the approach rate; the total never pulls.  Returns (force, dissipated
+    power)."""
+    fn = f + damping(k, zeta, mass) * rate
     if fn < 0.0:
         fn = 0.0
     return fn, (fn - f) * rate

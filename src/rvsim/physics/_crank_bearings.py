@@ -37,6 +37,22 @@ from ._layout import (ARM_A1, ARM_A2, ARM_C, ARM_CAGE_IN, ARM_CB, ARM_CLEAR, ARM
 from ._pins import CARRY_REFRESH  # noqa: E402
 
 
+@numba.njit(cache=CACHE, inline="always")
+def _material_stiffness(K, index, gx, gy, kxx, kxy, kyy, cx, cy, w_in, inner, outer):
+    """K += J^T dS/dr J + J^T dS/dcage dcage/dq of a radial element of the crank bearings, J
+    = (gx, gy) the rows d r / d q[index], dS/dr = [[kxx, kxy], [kxy, kyy]], dS/dcage = (cx,
+    cy) and the cage angle w_in q[inner] + (1 - w_in) q[outer] (the arm and the support
+    elements' common part: :func:`arm_stiffness`, :func:`support_stiffness`)."""
+    for a in range(len(index)):
+        ax = kxx * gx[a] + kxy * gy[a]
+        ay = kxy * gx[a] + kyy * gy[a]
+        for c in range(len(index)):
+            K[index[c], index[a]] += gx[c] * ax + gy[c] * ay
+        cage = gx[a] * cx + gy[a] * cy
+        K[index[a], inner] += w_in * cage
+        K[index[a], outer] += (1.0 - w_in) * cage
+
+
 @numba.njit(**NO_REFCOUNT)
 def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx, sy, cx, cy,
                   w_in):
@@ -48,14 +64,7 @@ def arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, lx, ly, kxx, kxy, kyy, sx,
     index = (b, b + 1, b + 2, b + 3, b + 4, d, d + 1, d + 2)
     gx = (wl, 0.0, wu, 0.0, -ecc * sin_p, -1.0, 0.0, ly)
     gy = (0.0, wl, 0.0, wu, ecc * cos_p, 0.0, -1.0, -lx)
-    for a in range(8):
-        ax = kxx * gx[a] + kxy * gy[a]
-        ay = kxy * gx[a] + kyy * gy[a]
-        for c in range(8):
-            K[index[c], index[a]] += gx[c] * ax + gy[c] * ay
-        cage = gx[a] * cx + gy[a] * cy
-        K[index[a], b + 4] += w_in * cage
-        K[index[a], d + 2] += (1.0 - w_in) * cage
+    _material_stiffness(K, index, gx, gy, kxx, kxy, kyy, cx, cy, w_in, b + 4, d + 2)
     K[b + 4, b + 4] -= ecc * (sx * cos_p + sy * sin_p)
     K[d + 2, d + 2] += sx * lx + sy * ly
 
@@ -67,14 +76,7 @@ def support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, sx, sy, cx, cy, w_in):
     index = (b, b + 1, CARRIER)
     gx = (1.0, 0.0, by)
     gy = (0.0, 1.0, -bx)
-    for a in range(3):
-        ax = kxx * gx[a] + kxy * gy[a]
-        ay = kxy * gx[a] + kyy * gy[a]
-        for c in range(3):
-            K[index[c], index[a]] += gx[c] * ax + gy[c] * ay
-        cage = gx[a] * cx + gy[a] * cy
-        K[index[a], phi] += w_in * cage
-        K[index[a], CARRIER] += (1.0 - w_in) * cage
+    _material_stiffness(K, index, gx, gy, kxx, kxy, kyy, cx, cy, w_in, phi, CARRIER)
     K[CARRIER, CARRIER] += sx * bx + sy * by
 
 
@@ -120,6 +122,16 @@ def _bushing(rx, ry, vx, vy, clearance, j1, a1, j2, a2, cb, zeta, mass, elastic,
     if want:
         kxx, kxy, kyy = radial_stiffness(nx, ny, k, f, dist)
     return fn * nx, fn * ny, energy, power, fn, f * nx, f * ny, kxx, kxy, kyy
+
+
+@numba.njit(cache=CACHE, inline="always")
+def _rolling(P, rx, ry, vx, vy, rollers, cage, c, clearance, cos_alpha):
+    """A rolling bearing in place of a bushing (arm needles or support tapered rollers):
+    :func:`~rvsim.physics._bearings.roller_set` with the contacts' damping, and its resultant
+    force: (Sx, Sy, energy, power, |S|, kxx, kxy, kyy, dS/dcage x, y)."""
+    sx, sy, energy, power, _, kxx, kxy, kyy, cx, cy = roller_set(
+        rx, ry, vx, vy, rollers, cage, c, clearance, cos_alpha, P[ZETA], P[M_NODE])
+    return sx, sy, energy, power, math.sqrt(sx * sx + sy * sy), kxx, kxy, kyy, cx, cy
 
 
 @numba.njit(**NO_REFCOUNT)
@@ -177,10 +189,8 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic, cos
     w_in = P[ARM_CAGE_IN]
     if P[ARM_KIND] == 1.0:
         cage = w_in * phi + (1.0 - w_in) * q[d + 2]
-        sx, sy, energy, power, _, kxx, kxy, kyy, cx, cy = roller_set(
-            rx, ry, rvx, rvy, P[ARM_ROLLERS], cage, P[ARM_C], P[ARM_CLEAR], 1.0,
-            P[ZETA], P[M_NODE])
-        fn = math.sqrt(sx * sx + sy * sy)
+        sx, sy, energy, power, fn, kxx, kxy, kyy, cx, cy = _rolling(
+            P, rx, ry, rvx, rvy, P[ARM_ROLLERS], cage, P[ARM_C], P[ARM_CLEAR], 1.0)
         ex_el, ey_el = sx, sy
         if fn == 0.0:
             return 0.0, 0.0, 0.0
@@ -317,10 +327,8 @@ def support_bushing(P, q, v, Q, K, crank, upper, bx, by, elastic):
     w_in = P[SUP_CAGE_IN]
     if P[SUP_KIND] == 1.0:
         cage = w_in * q[phi] + (1.0 - w_in) * q[CARRIER]
-        sx, sy, energy, power, _, kxx, kxy, kyy, cx, cy = roller_set(
-            rx, ry, vx, vy, P[SUP_ROLLERS], cage, P[SUP_C], clearance, P[SUP_COS_ALPHA],
-            P[ZETA], P[M_NODE])
-        fn = math.sqrt(sx * sx + sy * sy)
+        sx, sy, energy, power, fn, kxx, kxy, kyy, cx, cy = _rolling(
+            P, rx, ry, vx, vy, P[SUP_ROLLERS], cage, P[SUP_C], clearance, P[SUP_COS_ALPHA])
         ex_el, ey_el = sx, sy
         if fn == 0.0:
             return 0.0, 0.0, 0.0

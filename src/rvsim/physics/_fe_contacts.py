@@ -29,7 +29,7 @@ from .._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
-from ._contact_law import EXPONENT, spring_force  # noqa: E402
+from ._contact_law import EXPONENT, damped, spring_force  # noqa: E402
 from ._fe_modes import add_modal_force, foot_modes  # noqa: E402
 
 __all__ = ["table_compliance", "stretch_column", "coupled_forces", "lagged_forces", "apply_coupled",
@@ -437,10 +437,8 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
             # tangent stiffness of the contact's own law at f: 1 / (0.9 c f^-0.1 + cb)
             k_contact = 1.0 / (EXPONENT * c * f ** (EXPONENT - 1.0) + cb[a])
             k_series = 1.0 / (1.0 / k_contact + cii[a])
-            fn = f + 2.0 * zeta * math.sqrt(k_series * mass) * rate
-            if fn < 0.0:
-                fn = 0.0
-            power += (fn - f) * rate
+            fn, pw = damped(f, k_series, rate, zeta, mass)
+            power += pw
         forces[i] = fn
         elastic[i] = f
         if moving:

@@ -15,15 +15,14 @@ from .._jit import CACHE
 invalidate_stale_cache(__file__)
 
 from ._crank_bearings import crank_bearings  # noqa: E402
-from ._fe_holes import free_stretch, hole_css, hole_row, holes_on  # noqa: E402
-from ._fe_modes import clear_modal_force  # noqa: E402
+from ._fe_holes import holes_on  # noqa: E402
 from ._frames import add_crank_force, angle_trig, crank_point  # noqa: E402
 from ._friction import mesh_friction, seal_friction  # noqa: E402
 from ._gear_mesh import gear_mesh  # noqa: E402
 from ._layout import (CARRIER, CH_MESH_F0, CH_PIN_MAX, DISC_COUNT, FRICTION_ON,  # noqa: E402
                       N_DOF, OUT_COUNT, RING_OUTPUT, SEAL_IN, SEAL_OUT, STAGES,
                       W_G_L, W_G_U)
-from ._pins import coupled_pins, nothing_carried, pin_loop, ring_pins  # noqa: E402
+from ._pins import disc_pins, nothing_carried, ring_pins  # noqa: E402
 from ._single_stage import input_shaft, output_pin  # noqa: E402
 
 
@@ -81,7 +80,6 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
     """:func:`forces_at` with every work array given (``modes``, the pin contacts' ``slots``
     and ``work``; ``K_bearings`` 0 x 0 where the bearings' stiffness goes to ``K``): allocates
     nothing, so that the step loop compiles without reference counting."""
-    coupled = fe.shape[1] > 0
     for i in range(N_DOF):
         Q[i] = 0.0
     # one cosine and sine per angle, shared by the elements
@@ -120,29 +118,13 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
         if ring:  # the pins turn with the output: contacts found in the ring's axes
             e, pw, pen, peak = ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
                                          step, pin_force, pin_elastic, fe, modes, carried)
-        else:   # pin_contacts' parts, called here (no reference counting in the pin loop;
-                # docs/decisions.md): a change to one sequence belongs in the other too
-            if coupled:
-                clear_modal_force(modes[disc])
-            e, pw, pen, count, peak = pin_loop(
-                P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, step, pin_force,
-                pin_elastic, coupled, slots, work, carried, trig[4 + 2 * disc],
-                trig[5 + 2 * disc])
-            if count > 0:
-                if holes_on(P):     # the FE disc's crank holes as load points (_fe_holes)
-                    hole = hole_row(P, arm_elastic, disc)
-                    css = hole_css(P, disc)
-                else:
-                    hole = Q[0:0]
-                    css = 0.0
-                e_fe, pw_fe, peak_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modes[disc],
-                                                    slots, work, count, pin_force,
-                                                    pin_elastic, hole, css)
-                e += e_fe
-                pw += pw_fe
-                peak = max(peak, peak_fe)
-            elif holes_on(P):       # no pin touches: s = c_ss Q (_fe_holes.free_stretch)
-                e += free_stretch(hole_row(P, arm_elastic, disc), hole_css(P, disc))
+        else:   # pin_contacts' parts with the work arrays given (no allocation, no
+                # reference counting in the pin loop; docs/decisions.md); the FE disc's
+                # crank holes as load points where they are on (_fe_holes)
+            e, pw, pen, peak = disc_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
+                                         step, pin_force, pin_elastic, fe, modes, slots, work,
+                                         carried, trig[4 + 2 * disc], trig[5 + 2 * disc],
+                                         arm_elastic, holes_on(P))
         energy += e
         power += pw
         if pen > worst:

@@ -13,7 +13,7 @@ from .._jit import NO_REFCOUNT
 
 invalidate_stale_cache(__file__)
 
-from ._contact_law import add_rank_one  # noqa: E402
+from ._contact_law import add_rank_one, damping  # noqa: E402
 from ._frames import add_crank_force, crank_point  # noqa: E402
 from ._layout import (BACKLASH, BASE_PITCH, CARRIER, CENTRE_DIST, CONTACT_RATIO,  # noqa: E402
                       CRANK0, CRANK_STRIDE, K_MESH, MESH_MASS, RB1, RB2, SIN_AW,
@@ -65,7 +65,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
     frac = roll - math.floor(roll)
     natural = 2.0 if frac < P[CONTACT_RATIO] - 1.0 else 1.0
     stiffness = P[K_MESH] * (pairs if pairs > 0.0 else natural)
-    damping = 2.0 * P[ZETA] * math.sqrt(stiffness * P[MESH_MASS])
+    coefficient = damping(stiffness, P[ZETA], P[MESH_MASS])
     half = 0.5 * P[BACKLASH]
     total = 0.0
     net = 0.0
@@ -81,7 +81,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
         if delta <= 0.0:
             continue
         rate = sign * rot_rate - radial_rate
-        force = stiffness * delta + damping * rate
+        force = stiffness * delta + coefficient * rate
         if force < 0.0:
             force = 0.0
         energy += 0.5 * stiffness * delta * delta

@@ -40,8 +40,8 @@ CARRY_REFRESH = 64
 def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
                  fe, modal, arm_elastic=None, carried=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration,
-    largest pin force).  (``forces_at`` calls the same parts, :func:`pin_loop` and :func:`coupled_pins`, itself for
-    the pins in the housing; a change here belongs there too.)
+    largest pin force): :func:`disc_pins` (which ``forces_with`` calls itself for the pins in
+    the housing) with its work arrays allocated.
 
     ``u[disc, i]`` holds the foot-point parameter as an offset from the pin's nominal parameter
     gamma_i - theta (exact in the kinematic pose).  Near contact one Newton step from the
@@ -68,7 +68,7 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
     only with the holes as load points (an array argument costs the step its reference
     counting: measured 4-6 % of the closed-form run).  The loop over the pins,
     :func:`pin_loop`, allocates nothing and counts no references; the coupled solve,
-    :func:`coupled_pins`, does.  (:func:`forces_at` calls the two itself.)  ``carried``: what
+    :func:`coupled_pins`, does.  ``carried``: what
     each pin's evaluation carries to the next (:func:`pin_loop`; omitted: nothing).
     """
     coupled = fe.shape[1] > 0
@@ -79,25 +79,45 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
         carry = carried
     pin_slots = np.empty(n if coupled else 0, dtype=np.int64)
     pin_work = np.empty((n if coupled else 0, 12))
+    if arm_elastic is None:
+        arm = np.empty((0, 0))
+    else:
+        arm = arm_elastic
+    cos_d, sin_d = disc_trig(q, disc)
+    return disc_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces,
+                     elastic, fe, modal, pin_slots, pin_work, carry, cos_d, sin_d, arm,
+                     arm_elastic is not None)
+
+
+@numba.njit(cache=CACHE, inline="always")
+def disc_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic, fe,
+              modal, slots, work, carried, cos_d, sin_d, arm_elastic, with_holes):
+    """The parts of :func:`pin_contacts` in their order, with its work arrays given (inlined
+    into :func:`~rvsim.physics._forces.forces_with`, which calls it with no allocation and
+    no reference counting in :func:`pin_loop`): the pin loop, then the touching pins of a
+    finite-element disc solved together (:func:`coupled_pins`), or with none touching the
+    holes' free stretch.  ``with_holes``: the crank holes' columns of ``arm_elastic`` are
+    used (:mod:`rvsim.physics._fe_holes`).  Returns (energy, dissipated power, max
+    penetration, largest pin force)."""
+    coupled = fe.shape[1] > 0
     if coupled:
         clear_modal_force(modal[disc])
-    cos_d, sin_d = disc_trig(q, disc)
     energy, power, worst, count, peak = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u,
                                                  next_eval, clock, forces, elastic, coupled,
-                                                 pin_slots, pin_work, carry, cos_d, sin_d)
+                                                 slots, work, carried, cos_d, sin_d)
     if count > 0:
-        if arm_elastic is None:
-            hole = Q[0:0]
-            css = 0.0
-        else:
+        if with_holes:
             hole = hole_row(P, arm_elastic, disc)
             css = hole_css(P, disc)
-        e, pw, peak_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], pin_slots,
-                                      pin_work, count, forces, elastic, hole, css)
+        else:
+            hole = Q[0:0]
+            css = 0.0
+        e, pw, peak_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], slots,
+                                      work, count, forces, elastic, hole, css)
         energy += e
         power += pw
         peak = max(peak, peak_fe)
-    elif arm_elastic is not None and holes_on(P):     # no pin touches: s = c_ss Q
+    elif with_holes and holes_on(P):     # no pin touches: s = c_ss Q (_fe_holes.free_stretch)
         energy += free_stretch(hole_row(P, arm_elastic, disc), hole_css(P, disc))
     return energy, power, worst, peak
 

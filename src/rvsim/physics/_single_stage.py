@@ -16,7 +16,7 @@ from .._cache_guard import invalidate_stale_cache
 # compiled in: the layout constants and the contact law (the kernel's guard lists this file)
 invalidate_stale_cache(__file__)
 
-from ._contact_law import add_rank_one, contact  # noqa: E402
+from ._contact_law import add_rank_one, contact, damping  # noqa: E402
 from ._layout import (CARRIER, CRANK0, DISC0, DISC_STRIDE, J_CRANK, K_INPUT,  # noqa: E402
                       M_DISC, N_DOF, OUT_C, OUT_CB, OUT_CLEAR, OUT_COUNT, OUT_RADIUS,
                       OUT_SLOT0, RING_OUTPUT, ZETA)
@@ -33,7 +33,7 @@ def input_shaft(P, q, v, Q, K, theta_in, omega_in):
     k = P[K_INPUT]
     twist = theta_in - q[b]
     rate = omega_in - v[b]
-    torque = k * twist + 2.0 * P[ZETA] * math.sqrt(k * P[J_CRANK]) * rate
+    torque = k * twist + damping(k, P[ZETA], P[J_CRANK]) * rate
     Q[b] += torque
     if K.shape[0] > 0:
         K[b, b] += k
