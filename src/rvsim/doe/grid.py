@@ -27,12 +27,10 @@ import pandas as pd
 
 from .._files import atomic_write_text
 from .._json import to_json_safe
-from .._stopping import stop_signals
 from ..errors import ParameterError
 from ..parameters import Reducer, with_values
 from ..units import ARCMIN, TO_SI
-from .folder import check_not_foreign, check_same_study, lock_folder
-from .store import ResultStore, run_key
+from .store import run_key
 
 __all__ = ["grid_duration", "grid_points", "evaluate_point", "run_grid", "grid_table",
            "REVOLUTION_MARGIN", "MAIN_ORDERS", "GRID_NAME"]
@@ -184,40 +182,30 @@ def run_grid(base: Reducer, points: list[dict], folder: str | Path, *, time_step
     Points already in the folder's store are not run again.  ``progress(line)``, if given, is
     called with one line per finished point.  Ctrl-C, SIGTERM and SIGHUP stop the workers and
     keep every finished point (KeyboardInterrupt, or Terminated, is raised)."""
-    from .runner import RETRIED_ON_RESUME, run_local
+    from .runner import run_local, study_folder, to_run
 
     folder = Path(folder)
     definition = _definition(base, time_step, scheme)
     keys = [run_key(p["reducer"], f"grid {time_step} {scheme} {_digest()}") for p in points]
-    check_not_foreign(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    with lock_folder(folder), stop_signals():
-        store = ResultStore(folder)
-        try:
-            done = store.finished()
-            check_same_study(folder, definition, bool(done))
-            atomic_write_text(folder / "study.json", _dumps(definition))
-            todo = {k: p["reducer"] for k, p in zip(keys, points)
-                    if k not in done or done[k]["status"] == RETRIED_ON_RESUME}
-            by_key = dict(zip(keys, points))
-            total, count = len(set(keys)), [len(set(keys)) - len(todo)]
+    with study_folder(folder, definition, _dumps(definition)) as (store, done):
+        todo = to_run(keys, [p["reducer"] for p in points], done)
+        by_key = dict(zip(keys, points))
+        total, count = len(set(keys)), [len(set(keys)) - len(todo)]
+        if progress:
+            progress(f"grid: {total} points, {count[0]} stored, {len(todo)} to run")
+        start = time.monotonic()
+
+        def store_result(key: str, outcome: dict) -> None:
+            store.put(key, outcome)
+            count[0] += 1
             if progress:
-                progress(f"grid: {total} points, {count[0]} stored, {len(todo)} to run")
-            start = time.monotonic()
+                progress(_progress_line(by_key[key], outcome, count[0], total,
+                                        time.monotonic() - start))
 
-            def store_result(key: str, outcome: dict) -> None:
-                store.put(key, outcome)
-                count[0] += 1
-                if progress:
-                    progress(_progress_line(by_key[key], outcome, count[0], total,
-                                            time.monotonic() - start))
-
-            if todo:
-                run_local(todo, (time_step, evaluate_point, False, 360, scheme), workers,
-                          store_result)
-            done = store.get_many(keys)
-        finally:
-            store.close()
+        if todo:
+            run_local(todo, (time_step, evaluate_point, False, 360, scheme), workers,
+                      store_result)
+        done = store.get_many(keys)
     return grid_table(points, keys, done)
 
 

@@ -15,6 +15,7 @@ import dataclasses
 import json
 import os
 import signal
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable
 
@@ -129,33 +130,22 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
         engine = study.noise.evaluator(study)
     keys = [run_key(r, tag) for r in reducers]
     options = (time_step, engine, study.hysteresis, 360, study.scheme)
-    check_not_foreign(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    # Ctrl-C, SIGTERM and SIGHUP stop the workers and keep every finished row
-    with lock_folder(folder), stop_signals():
-        store = ResultStore(folder)
-        try:
-            done = store.finished()
-            check_same_study(folder, definition, bool(done), _other_schemes(study, reducers[0]))
-            atomic_write_text(folder / "study.json", json.dumps(definition, indent=2,
-                                                                default=str))
-            # a run whose worker died (killed from outside, out of memory) is a fault of the
-            # process, not a result: a resumed study runs it again (docs/decisions.md)
-            todo = {k: r for k, r in zip(keys, reducers)
-                    if k not in done or done[k]["status"] == RETRIED_ON_RESUME}
-            bar = _progress(len(set(keys)), len(set(keys)) - len(todo), progress)
-            with bar:
-                def store_result(key: str, outcome: dict) -> None:
-                    store.put(key, outcome)
-                    bar.update(1)
+    text = json.dumps(definition, indent=2, default=str)
+    with study_folder(folder, definition, text, _other_schemes(study, reducers[0])) as (
+            store, done):
+        todo = to_run(keys, reducers, done)
+        bar = _progress(len(set(keys)), len(set(keys)) - len(todo), progress)
+        with bar:
+            def store_result(key: str, outcome: dict) -> None:
+                store.put(key, outcome)
+                bar.update(1)
 
-                if scheduler and todo:
-                    run_dask(todo, options, scheduler, store_result)
-                elif todo:
-                    run_local(todo, options, workers, store_result, prepare)
-            done = store.finished()
-        finally:
-            store.close()
+            if scheduler and todo:
+                run_dask(todo, options, scheduler, store_result)
+            elif todo:
+                run_local(todo, options, workers, store_result, prepare)
+        done = store.finished()
+        store.close()                    # complete on disk before the report is written
         results = _results_table(study, table, keys, done)
         if finish is not None:
             finish(results)
@@ -164,6 +154,34 @@ def run(study: Study, folder: str | Path, *, workers: int | None = None,
 
 #: stored status that a resumed study evaluates again
 RETRIED_ON_RESUME = "worker_died"
+
+
+@contextmanager
+def study_folder(folder: Path, definition: dict, text: str,
+                 other_schemes: dict[str, dict] | None = None):
+    """``folder`` made and locked, Ctrl-C, SIGTERM and SIGHUP stopping the workers and keeping
+    every finished row, its store open: yields (store, finished rows) once the stored rows are
+    checked to belong to ``definition`` and ``text`` (the definition as written) is in
+    study.json; the store is closed on the way out.  Shared by studies and grids."""
+    check_not_foreign(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    with lock_folder(folder), stop_signals():
+        store = ResultStore(folder)
+        try:
+            done = store.finished()
+            check_same_study(folder, definition, bool(done), other_schemes)
+            atomic_write_text(folder / "study.json", text)
+            yield store, done
+        finally:
+            store.close()
+
+
+def to_run(keys: list[str], items: list, done: dict) -> dict:
+    """key -> item of the runs not stored yet, or stored by a worker that died (killed from
+    outside, out of memory: a fault of the process, not a result, so a resumed study runs it
+    again; docs/decisions.md)."""
+    return {k: item for k, item in zip(keys, items)
+            if k not in done or done[k]["status"] == RETRIED_ON_RESUME}
 
 
 def run_local(todo: dict, options: tuple, workers: int | None, store_result,
