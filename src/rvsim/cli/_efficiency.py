@@ -22,21 +22,25 @@ __all__ = ["register", "parse_list", "MAX_POINTS"]
 MAX_POINTS = 4000
 
 
-def parse_list(option: str, text: str | None) -> list[float] | None:
-    """Comma-separated positive numbers, each once (None: the default)."""
+def parse_list(option: str, text: str | None, *, positive: bool = True,
+               example: str = "500,1000") -> list[float] | None:
+    """Comma-separated numbers, each once, positive unless ``positive`` is False (then any
+    finite number, e.g. temperatures); None: the default."""
     if text is None:
         return None
     parts = [p.strip() for p in text.split(",")]
-    if not parts or any(not p for p in parts):
-        raise ParameterError(option, f"'{text}': give comma-separated numbers, e.g. 500,1000")
+    if any(not p for p in parts):
+        raise ParameterError(option, f"'{text}': give comma-separated numbers, e.g. {example}")
     values = []
     for p in parts:
         try:
             value = plain_number(p)           # as --torque: no digit groups
         except ValueError:
             raise ParameterError(option, f"'{p}' is not a number") from None
-        if not math.isfinite(value) or value <= 0:
+        if positive and not (math.isfinite(value) and value > 0):
             raise ParameterError(option, f"every value must be a positive number (got {p})")
+        if not math.isfinite(value):
+            raise ParameterError(option, f"'{p}' is not a finite number")
         values.append(value)
     if len(set(values)) != len(values):
         raise ParameterError(option, f"'{text}': a value is given twice")

@@ -8,12 +8,10 @@ written (one line, exit 2); the points run on the study's local workers, stored 
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 
 from ..errors import ParameterError
-from ..parameters import plain_number
 from ._common import (add_command, add_reducer_options, check_load, check_output_file,
                       check_output_folder, number, path_text, positive_int, print_json,
                       reducer_from_args, stopped_line)
@@ -24,28 +22,6 @@ __all__ = ["register", "MAX_GRID_POINTS"]
 #: most points of one grid: each is a dynamic run of one output revolution (seconds to a
 #: minute of CPU each), so 400 points are already hours on two cores
 MAX_GRID_POINTS = 400
-
-
-def _temperatures(text: str | None) -> list[float] | None:
-    """Comma-separated temperatures [degC] (any sign), each once; None: the parameter set's."""
-    if text is None:
-        return None
-    parts = [p.strip() for p in text.split(",")]
-    if any(not p for p in parts):
-        raise ParameterError("--temperatures", f"'{text}': give comma-separated numbers, "
-                                               "e.g. 20,40,60")
-    values = []
-    for p in parts:
-        try:
-            value = plain_number(p)
-        except ValueError:
-            raise ParameterError("--temperatures", f"'{p}' is not a number") from None
-        if not math.isfinite(value):
-            raise ParameterError("--temperatures", f"'{p}' is not a finite number")
-        values.append(value)
-    if len(set(values)) != len(values):
-        raise ParameterError("--temperatures", f"'{text}': a value is given twice")
-    return values
 
 
 def _check_loads(points) -> None:
@@ -76,7 +52,8 @@ def _grid(args: argparse.Namespace) -> int:
 
     speeds = parse_list("--speeds", args.speeds)
     torques = parse_list("--torques", args.torques)
-    temperatures = _temperatures(args.temperatures)
+    temperatures = parse_list("--temperatures", args.temperatures, positive=False,
+                              example="20,40,60")
     if max(speeds) > MAX_SPEED_RPM:
         raise ParameterError("--speeds", f"input speeds up to {MAX_SPEED_RPM:g} rpm (got "
                                          f"{max(speeds):g})")
