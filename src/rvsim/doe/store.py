@@ -5,8 +5,11 @@ time step) and the fingerprint of the model's source code (:mod:`rvsim._fingerpr
 re-run skips what is finished, a changed parameter is a new row and a changed model is a new
 row.  Each result is committed as it arrives (WAL journal) and checkpointed into
 ``results.sqlite`` at once: a study killed with SIGKILL loses only the runs that were in
-flight, and ``results.sqlite`` alone holds every committed row.  A store that another process
-keeps locked is waited for: a finished run is never dropped for a lock timeout.
+flight.  ``results.sqlite`` alone (copied without its -wal file, or read as immutable) holds
+every row checkpointed; a kill in the few ms between a commit and its checkpoint leaves that
+row in the -wal file only, and the next opening of the store for writing (a re-run) recovers
+it.  A store that another process keeps locked is waited for: a finished run is never dropped
+for a lock timeout.
 """
 
 from __future__ import annotations
@@ -58,7 +61,8 @@ class ResultStore:
         try:
             if readonly:
                 # immutable: a reader creates no -wal / -shm file beside the store (the WAL is
-                # checkpointed after every commit, so the main file holds every finished run)
+                # checkpointed after every commit, so the main file holds every finished run
+                # but one committed in the last few ms before a kill, until a re-run opens it)
                 self._db = sqlite3.connect(f"{self.path.resolve().as_uri()}?mode=ro&immutable=1",
                                            uri=True, timeout=_OPEN_TIMEOUT)
             else:
