@@ -27,13 +27,21 @@ COUNTS = 2 ** 23
 ZERO_ARCMIN = 1.5
 SEED = 7
 
-if __name__ == "__main__":
+OUT = Path(__file__).resolve().parents[1] / "docs" / "examples" / "hysteresis_loop.csv"
+
+
+def make():
+    """The example loop (pandas DataFrame, the columns of ``rvsim hysteresis --csv``)."""
     table = loop_table(hysteresis(with_values(RV40E, TRUE), points_per_branch=20))
     rng = np.random.default_rng(SEED)
     step = 360.0 * 60.0 / COUNTS                       # arcmin per count
     twist = table["twist_arcmin"] + ZERO_ARCMIN + rng.normal(0.0, NOISE_ARCSEC / 60.0,
                                                              len(table))
     table["twist_arcmin"] = np.floor(twist / step) * step
-    out = Path(__file__).resolve().parents[1] / "docs" / "examples" / "hysteresis_loop.csv"
-    table.to_csv(out, index=False, float_format="%.10g")
-    print(f"wrote {out} ({len(table)} rows)")
+    return table
+
+
+if __name__ == "__main__":
+    table = make()
+    table.to_csv(OUT, index=False, float_format="%.10g")
+    print(f"wrote {OUT} ({len(table)} rows)")

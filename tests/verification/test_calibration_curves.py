@@ -3,9 +3,9 @@ stiffening; round trips on loop curves and efficiency points made by the model i
 known parameters recover them (estimates and 95 % intervals pinned from a real run); data that
 cannot separate two parameters say so."""
 
-from pathlib import Path
-
 import dataclasses
+import runpy
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -91,3 +91,13 @@ def test_two_clearances_in_series_are_not_identifiable_from_a_loop():
     assert np.all(np.isnan(fit.ci_low)) and np.all(np.isnan(fit.ci_high))
     assert any("cannot tell clearances.crank_arm_bushing and clearances.disc_arm_bushing "
                "apart" in n for n in fit.notes)
+
+
+def test_the_example_loop_is_what_its_script_makes():
+    """docs/examples/hysteresis_loop.csv (the user guide's fit) from its stated parameters."""
+    import pandas as pd
+
+    script = runpy.run_path("scripts/make_loop_example.py")
+    made, stored = script["make"](), pd.read_csv(script["OUT"])
+    assert list(stored.columns) == list(made.columns)
+    assert np.allclose(stored.to_numpy(), made.to_numpy(), rtol=1e-9, atol=1e-12)
