@@ -107,5 +107,6 @@ def test_efficiency_is_fitted_on_its_own_and_something_must_be_given(tmp_path, c
                  "stiffness.pins", "--out", str(out)]) == 2
     assert "'--efficiency': is fitted on its own" in capsys.readouterr().err
     assert main(["calibrate", "--fit", "stiffness.pins", "--out", str(out)]) == 2
-    assert capsys.readouterr().err.startswith("rvsim: error: parameter 'FILE_OR_FOLDER': give recordings")
+    assert capsys.readouterr().err.startswith(
+        "rvsim: error: parameter 'FILE_OR_FOLDER': give recordings")
     assert not out.exists()

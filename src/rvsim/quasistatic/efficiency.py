@@ -19,8 +19,8 @@ from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..units import from_si
 
-__all__ = ["efficiency", "efficiency_points", "EfficiencyResult", "DEFAULT_SPEEDS_RPM", "DEFAULT_TORQUE_FRACTIONS",
-           "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM", "RESOLVED_TORQUE_FRACTION"]
+__all__ = ["efficiency", "efficiency_points", "EfficiencyResult", "DEFAULT_SPEEDS_RPM",
+           "DEFAULT_TORQUE_FRACTIONS", "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM", "RESOLVED_TORQUE_FRACTION"]
 
 RPM = 2.0 * math.pi / 60.0
 #: input speeds of the default map [rpm] (RV-40E, i = 121: output 4 to 25 rpm)

@@ -1,6 +1,6 @@
 """Test-bench data: import of encoder recordings, the standard analyses (the catalogue's, through
-:mod:`rvsim.analysis.catalogue`), the model side by side, calibration of uncertain parameters to them and to loop curves and
-efficiency points.
+:mod:`rvsim.analysis.catalogue`), the model side by side, calibration of uncertain parameters to
+them and to loop curves and efficiency points (:mod:`rvsim.testrig.curves`).
 
 Names load on first use (:mod:`lazy_loader`).
 """
