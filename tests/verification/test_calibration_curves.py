@@ -101,3 +101,19 @@ def test_the_example_loop_is_what_its_script_makes():
     made, stored = script["make"](), pd.read_csv(script["OUT"])
     assert list(stored.columns) == list(made.columns)
     assert np.allclose(stored.to_numpy(), made.to_numpy(), rtol=1e-9, atol=1e-12)
+
+
+def test_efficiency_points_at_their_own_lubricant_temperature():
+    """Each point's temperature_c is the model's operating.temperature there (the viscosity
+    law of RV-40E-bearings makes it matter): the model's own points leave no residual."""
+    from rvsim.testrig.calibration import _efficiency_residuals
+
+    base = BUILT_IN_SETS["RV-40E-bearings"]
+    speeds, torques = np.array([3000.0, 3000.0]), np.array([200.0, 200.0])
+    temperatures = np.array([20.0, 60.0])
+    model = [efficiency_points(with_values(base, {"operating.temperature": t}), [n], [q])[0]
+             for n, q, t in zip(speeds, torques, temperatures)]
+    assert model[0] < model[1] - 0.005           # thicker oil at 20 degC: more viscous loss
+    points = EfficiencyPoints(Path("points.csv"), speeds, torques, np.array(model),
+                              temperatures)
+    assert np.array_equal(_efficiency_residuals(points, base), [0.0, 0.0])
