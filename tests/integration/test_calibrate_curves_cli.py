@@ -33,6 +33,26 @@ def test_hysteresis_csv_is_what_calibrate_reads_and_the_fit_is_usable(tmp_path, 
                  "--json"]) == 0
 
 
+def test_efficiency_csv_is_what_calibrate_reads(tmp_path, capsys):
+    points = tmp_path / "points.csv"
+    assert main(["efficiency", "--params", "RV-40E-bearings", "--set",
+                 "contact.friction_coefficient=0.03", "--speeds", "3000", "--torques",
+                 "100,400", "--csv", str(points)]) == 0
+    frame = pd.read_csv(points)
+    assert list(frame.columns) == ["input_speed_rpm", "output_torque_nm", "input_torque_nm",
+                                   "efficiency", "temperature_c"]
+    assert len(frame) == 2 and (frame.temperature_c == 40.0).all()
+    capsys.readouterr()
+    out = tmp_path / "fit"
+    assert main(["calibrate", "--efficiency", str(points), "--params", "RV-40E-bearings",
+                 "--fit", "contact.friction_coefficient", "--out", str(out), "--json"]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["residual_unit"] == "%" and payload["rms_start_percent"] > 0.1
+    # the model's own points (written to 1e-16): recovered to the solver's tolerance
+    fitted = payload["parameters"]["contact.friction_coefficient"]["estimate"]
+    assert fitted == pytest.approx(0.03, rel=1e-4)
+
+
 def _loop_frame():
     return pd.read_csv(LOOP)
 

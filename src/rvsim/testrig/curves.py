@@ -13,8 +13,7 @@ The torque goes in strictly monotone ramps between its reversals, each ramp from
 zero to the other (the first from anywhere, the last to anywhere), and the recording holds at
 least one rising and one falling ramp across zero: one loop.
 
-Efficiency CSV, one row per operating point (the columns of
-:meth:`rvsim.quasistatic.EfficiencyResult.to_frame`):
+Efficiency CSV, one row per operating point (what ``rvsim efficiency --csv`` writes):
 
 * ``input_speed_rpm`` [rpm], ``output_torque_nm`` [N*m], ``efficiency`` [-] output power /
   input power as a fraction (0 < efficiency <= 1);
