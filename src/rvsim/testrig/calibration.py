@@ -88,8 +88,8 @@ class Calibration:
     ci_high: np.ndarray
     correlation: np.ndarray
     notes: list
-    rms_start_arcsec: float
-    rms_arcsec: float
+    rms_start_arcsec: float          # RMS of the residuals at the start, in ``unit``
+    rms_arcsec: float                # and at the estimate (the names of the angle fits)
     residuals: int
     evaluations: int
     status: str
