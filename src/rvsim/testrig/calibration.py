@@ -9,8 +9,8 @@ encoder zero makes the mean arbitrary):
 * every torque-reversal loop: the angle of each branch at 24 torques on each side of zero
   (2 % to 98 % of the test torque), read by :func:`rvsim.analysis.catalogue.angle_at`;
 * every sample of a loop curve (``loops``, :func:`rvsim.testrig.curves.read_loop`): its
-  angle, the model's the torque-reversal test along the curve's own torque history
-  (:func:`rvsim.quasistatic.hysteresis` with ``torques``), the path friction follows.
+  angle against the model's, the torque-reversal test run along the curve's own torque
+  history (:func:`rvsim.quasistatic.hysteresis` with ``torques``: the path friction follows).
 
 Efficiency points (``efficiency``, :func:`rvsim.testrig.curves.read_efficiency`) are fitted
 on their own, residuals in percentage points and no mean removed: measured minus
@@ -198,7 +198,8 @@ def _loop_angles(loop, reach: float) -> np.ndarray:
 
 
 def residuals(targets, reducer, positions: int) -> np.ndarray:
-    """Measured minus model [arcsec] of every target, each with its mean removed."""
+    """Measured minus model of every target: angles [arcsec], each group with its mean
+    removed; efficiency points [percentage points] as they are."""
     parts = []
     for kind, torque, direction, measured in targets:
         if kind == "efficiency":
