@@ -37,6 +37,17 @@ BAD_ROWS = {
          "--set", "friction.oil_viscosity_100=2.1", "--set", "friction.oil_cloud_point=-270",
          "--set", "operating.temperature=-270"],
         "'operating.temperature': -270 degC: the viscosity law gives more than"),
+    # the life run at 1.2e8 rpm input ended not_converged, exit 1: refused before any run
+    "life --output-speed 1e6": (
+        ["life", "--params", "RV-40E-bearings", "--output-speed", "1e6"],
+        "'--output-speed': 1e+06 rpm at the output is above the allowable output speed of "
+        "RV-40E-bearings, 70 rpm (rating.allowable_output_speed, 100 % duty)"),
+    "life --output-speed 70.5": (
+        ["life", "--params", "RV-40E-bearings", "--output-speed", "70.5"],
+        "'--output-speed': 70.5 rpm at the output is above the allowable output speed"),
+    "rated output speed above the allowable": (
+        ["life", "--params", "RV-40E-bearings", "--set", "rating.rated_output_speed=80"],
+        "'rating.allowable_output_speed': must be at least the rated output speed 80 rpm"),
     # the repeated-level rule compared the texts: "0um" and "0mm" ran as two levels of H
     "levels ['0um', '0mm']": (
         ["study", "{toml:" + QS + 'levels = ["0um", "0mm"]\n}', "--out", "o"],
@@ -159,3 +170,27 @@ def test_budget_of_a_paper_run_converges_at_the_default_factor():
                                     "support_bearings": 0.26966, "gear_mesh": 0.00540},
                                    abs=1e-5)
     assert budget["rigidity_nm_per_arcmin"] == pytest.approx(639.206, abs=1e-3)
+
+
+def test_input_speeds_above_the_allowable_output_speed_warn():
+    """efficiency / grid --speeds are input speeds: divided by the ratio (121) and held to
+    rating.allowable_output_speed (70 rpm): one warning above it, nothing within it; life()
+    refuses the same speed (no run)."""
+    import math
+
+    from rvsim.cli._common import check_input_speeds, flush_warnings, _WARNINGS
+    from rvsim.errors import ParameterError
+    from rvsim.parameters import BUILT_IN_SETS, RV40E
+    from rvsim.quasistatic import life
+
+    flush_warnings(show=False)
+    check_input_speeds(RV40E, [500.0, 8470.0], "--speeds")       # 70.0 rpm: within
+    assert _WARNINGS == []
+    check_input_speeds(RV40E, [500.0, 9000.0], "--speeds")
+    assert _WARNINGS == ["rvsim: warning: --speeds (9000 rpm at the input, ratio 121): 74.38 "
+                         "rpm at the output is above the allowable output speed of RV-40E, 70 "
+                         "rpm (rating.allowable_output_speed, 100 % duty)"]
+    flush_warnings(show=False)
+    with pytest.raises(ParameterError, match="70.01 rpm at the output") as info:
+        life(BUILT_IN_SETS["RV-40E-bearings"], output_speed=70.01 * 2 * math.pi / 60)
+    assert info.value.field == "output_speed"

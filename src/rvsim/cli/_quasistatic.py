@@ -252,6 +252,10 @@ def _life(args: argparse.Namespace) -> int:
 
     rpm = reducer.rating.rated_output_speed / RPM if args.output_speed is None \
         else args.output_speed
+    from ..parameters.rating import check_output_speed
+
+    check_output_speed(reducer, rpm * RPM, "rating.rated_output_speed" if args.output_speed
+                       is None else "--output-speed", refuse=True)
     check_life_inputs(reducer, 1.0, rpm * RPM)      # the reducer: RV with rolling bearings
     check_positions(reducer, args.positions, "--positions")
     check_load(reducer, reducer.rating.rated_torque if args.torque is None else args.torque,

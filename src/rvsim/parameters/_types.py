@@ -280,6 +280,10 @@ class Rating:
     rated_life: float = quantity(6000.0 * 3600.0, "h", "rated service life K at the rated "
                                  "torque and rated output speed (RV-E class: 6000 h)",
                                  positive=True)
+    allowable_output_speed: float = quantity(70.0 * _RPM, "rpm", "allowable output speed "
+                                             "at 100 % duty (RV-40E class: 70 rpm): faster "
+                                             "output speeds are refused by 'life' and "
+                                             "warned of elsewhere", positive=True)
 
 
 @dataclasses.dataclass(frozen=True)

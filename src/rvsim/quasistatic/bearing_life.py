@@ -128,8 +128,9 @@ def crank_speed(reducer: Reducer, output_speed: float) -> float:
 def check_life_inputs(reducer: Reducer, torque: float, output_speed: float,
                       **external: float) -> None:
     """Refuse what has no rating life: a single-stage drive, bushings only, a torque or an
-    output speed that is not positive, an ``external`` main-bearing load (name=value) that is
-    negative or not finite (ParameterError)."""
+    output speed that is not positive, an output speed above ``rating.allowable_output_speed``,
+    an ``external`` main-bearing load (name=value) that is negative or not finite
+    (ParameterError)."""
     if reducer.layout.single_stage:
         raise ParameterError("layout.stages", "rating life is modelled for the RV reducer's "
                              "crank bearings (layout.stages = 2) only")
@@ -143,6 +144,9 @@ def check_life_inputs(reducer: Reducer, torque: float, output_speed: float,
         if not math.isfinite(value) or value <= 0.0:
             raise ParameterError(name, f"must be a positive finite number (got {value:g} "
                                  f"{unit})")
+    from ..parameters.rating import check_output_speed
+
+    check_output_speed(reducer, output_speed, "output_speed", refuse=True)
     if b.support_rollers:      # before the quasi-static run: ISO 281 needs alpha > 0
         from ..physics.rating_life import tapered_factors
 
