@@ -37,6 +37,19 @@ BAD_ROWS = {
          "--set", "friction.oil_viscosity_100=2.1", "--set", "friction.oil_cloud_point=-270",
          "--set", "operating.temperature=-270"],
         "'operating.temperature': -270 degC: the viscosity law gives more than"),
+    # a life of 1e-20 h printed as ok: the main bearings' static capacity (ISO 76) bounds the
+    # external loads before any run
+    "life --moment 1e12": (
+        ["life", "--params", "RV-40E-bearings", "--moment", "1e12"],
+        "'--moment': 1e+12 N*m: a main bearing row's equivalent load 1.667e+13 N is above its "
+        "basic static load rating C0 = 2.92e+04 N (ISO 76)"),
+    "life --thrust 1e12": (
+        ["life", "--params", "RV-40E-bearings", "--thrust", "1e12"],
+        "'--thrust': 1e+12 N: a main bearing row's equivalent load 5.7e+11 N is above its "
+        "basic static load rating C0"),
+    "life --radial-load 1e12 --moment 10": (
+        ["life", "--params", "RV-40E-bearings", "--radial-load", "1e12", "--moment", "10"],
+        "'--radial-load': 1e+12 N: a main bearing row's equivalent load"),
     # the life run at 1.2e8 rpm input ended not_converged, exit 1: refused before any run
     "life --output-speed 1e6": (
         ["life", "--params", "RV-40E-bearings", "--output-speed", "1e6"],
@@ -194,3 +207,29 @@ def test_input_speeds_above_the_allowable_output_speed_warn():
     with pytest.raises(ParameterError, match="70.01 rpm at the output") as info:
         life(BUILT_IN_SETS["RV-40E-bearings"], output_speed=70.01 * 2 * math.pi / 60)
     assert info.value.field == "output_speed"
+
+
+def test_main_bearing_static_rating_bounds_the_external_loads():
+    """ISO 76: C0 = f0 Z Dw^2 cos(alpha) with f0 interpolated at Dw cos(alpha) / Dpw; the
+    RV-40E-bearings main bearing (30 balls of 9 mm on 140 mm, 40 deg): gamma = 0.04925,
+    f0 = 15.5 + 0.925 x 0.2 = 15.685, C0 = 29.2 kN.  life() refuses a moment whose row load
+    exceeds it (1800 N*m: 30.0 kN) before the LTCA run, names the API's field, and runs at
+    1600 N*m (row 26.7 kN)."""
+    import math
+
+    from rvsim.errors import ParameterError
+    from rvsim.parameters import BUILT_IN_SETS
+    from rvsim.physics.rating_life import ball_static_rating
+    from rvsim.quasistatic.bearing_life import check_static_capacity
+
+    a = math.radians(40.0)
+    gamma = 9.0 * math.cos(a) / 140.0
+    f0 = 15.5 + (gamma - 0.04) / 0.01 * 0.2
+    assert ball_static_rating(30, 9e-3, 0.14, a) == pytest.approx(
+        f0 * 30 * 81.0 * math.cos(a), rel=1e-12)
+    r = BUILT_IN_SETS["RV-40E-bearings"]
+    check_static_capacity(r, 0.0, 1600.0, 0.0)
+    with pytest.raises(ParameterError, match="1800 N.m: a main bearing row's equivalent load "
+                       "3e\\+04 N") as info:
+        check_static_capacity(r, 0.0, 1800.0, 0.0)
+    assert info.value.field == "moment"
