@@ -68,7 +68,8 @@ def lubricant_viscosity(reducer: Reducer) -> float:
     ``friction.oil_viscosity_100`` the ASTM D341 law through it and ``friction.oil_viscosity``
     (40 degC), else ``friction.oil_viscosity`` itself, which then only holds at 40 degC (another
     temperature without a law is refused).  Outside the law's range (below the cloud point,
-    or hotter than where it gives 2 mm^2/s) raises :class:`ParameterError`."""
+    above ``friction.oil_max_temperature``, or hotter than where it gives 2 mm^2/s) raises
+    :class:`ParameterError`."""
     from .errors import ParameterError
     from .parameters._io import SI_CEILING
     from .physics.losses import (REFERENCE_TEMPERATURES, WALTHER_MIN_VISCOSITY,
@@ -94,6 +95,15 @@ def lubricant_viscosity(reducer: Reducer) -> float:
         raise ParameterError("operating.temperature", f"{temperature:g} degC is below the "
                              f"lubricant's cloud point friction.oil_cloud_point = "
                              f"{f.oil_cloud_point:g} degC (ASTM D341 holds from it up)")
+    if f.oil_max_temperature <= f.oil_cloud_point:
+        raise ParameterError("friction.oil_max_temperature", f"{f.oil_max_temperature:g} degC "
+                             f"must be above the cloud point friction.oil_cloud_point = "
+                             f"{f.oil_cloud_point:g} degC")
+    if temperature > f.oil_max_temperature:
+        raise ParameterError("operating.temperature", f"{temperature:g} degC is above the "
+                             f"lubricant's highest temperature friction.oil_max_temperature = "
+                             f"{f.oil_max_temperature:g} degC (mineral base oils degrade from "
+                             "110-150 degC)")
     try:
         nu = walther_viscosity(temperature, f.oil_viscosity, f.oil_viscosity_100)
     except OverflowError:      # 10^(10^z) beyond a double: the law far below 40 degC

@@ -61,6 +61,17 @@ BAD_ROWS = {
     "rated output speed above the allowable": (
         ["life", "--params", "RV-40E-bearings", "--set", "rating.rated_output_speed=80"],
         "'rating.allowable_output_speed': must be at least the rated output speed 80 rpm"),
+    # 1000-5000 degC were accepted where the oil's two points keep the law above 2 mm^2/s
+    "operating.temperature=1000": (
+        ["efficiency", "--params", "RV-40E-bearings", "--set", "operating.temperature=1000"],
+        "'operating.temperature': 1000 degC is above the lubricant's highest temperature "
+        "friction.oil_max_temperature = 150 degC (mineral base oils degrade from 110-150 degC)"),
+    "operating.temperature=5000 (simulate)": (
+        ["simulate", "--params", "RV-40E-bearings", "--set", "operating.temperature=5000"],
+        "'operating.temperature': 5000 degC is above the lubricant's highest temperature"),
+    "oil_max_temperature below the cloud point": (
+        ["params", "--params", "RV-40E-bearings", "--set", "friction.oil_max_temperature=-30"],
+        "'friction.oil_max_temperature': -30 degC must be above the cloud point"),
     # the repeated-level rule compared the texts: "0um" and "0mm" ran as two levels of H
     "levels ['0um', '0mm']": (
         ["study", "{toml:" + QS + 'levels = ["0um", "0mm"]\n}', "--out", "o"],

@@ -351,6 +351,10 @@ class Friction:
     oil_cloud_point: float = quantity(-20.0, "degC", "lowest temperature of the viscosity-"
                                       "temperature law (ASTM D341: from the lubricant's cloud "
                                       "point up)", minimum=-273.15, positive=True)
+    oil_max_temperature: float = quantity(150.0, "degC", "highest temperature of the "
+                                          "lubricant (mineral base oils degrade from 110-150 "
+                                          "degC): a hotter operating.temperature is refused",
+                                          minimum=-273.15, positive=True)
     input_seal_count: int = count(0, "radial lip seals on the input shaft", minimum=0)
     input_seal_diameter: float = quantity(0.0, "mm", "shaft diameter at the input seals' lips "
                                           "(ISO/TR 14179-2 drag)")
