@@ -72,6 +72,21 @@ BAD_ROWS = {
     "oil_max_temperature below the cloud point": (
         ["params", "--params", "RV-40E-bearings", "--set", "friction.oil_max_temperature=-30"],
         "'friction.oil_max_temperature': -30 degC must be above the cloud point"),
+    # a 1 km input seal gave an efficiency of 1e-8 as ok: each seal is bounded by its part
+    "1 km input seal": (
+        ["efficiency", "--set", "friction.input_seal_count=1", "--set",
+         "friction.input_seal_diameter=1e6"],
+        "'friction.input_seal_diameter': 1e+06 mm is larger than the discs' central bore the "
+        "input shaft passes through, 2 cycloid.disc_bore_radius (40 mm)"),
+    "output seal beyond the pin ring": (
+        ["simulate", "--set", "friction.output_seal_count=2", "--set",
+         "friction.output_seal_diameter=171mm"],
+        "'friction.output_seal_diameter': 171 mm is larger than the pin ring's outer diameter, "
+        "2 (cycloid.pin_circle_radius + cycloid.pin_radius) (170 mm)"),
+    "cycloid-drive input seal beyond its bore": (
+        ["params", "--params", "cycloid-drive", "--set", "friction.input_seal_count=1",
+         "--set", "friction.input_seal_diameter=37"],
+        "'friction.input_seal_diameter': 37 mm is larger than the discs' central bore"),
     # the repeated-level rule compared the texts: "0um" and "0mm" ran as two levels of H
     "levels ['0um', '0mm']": (
         ["study", "{toml:" + QS + 'levels = ["0um", "0mm"]\n}', "--out", "o"],
