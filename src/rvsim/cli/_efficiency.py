@@ -12,8 +12,8 @@ import sys
 
 from ..errors import ParameterError
 from ..parameters import plain_number
-from ._common import (add_command, add_reducer_options, check_load, compile_time_text, print_json,
-                      reducer_from_args, with_compile_time)
+from ._common import (add_command, add_reducer_options, check_input_speeds, check_load,
+                      compile_time_text, print_json, reducer_from_args, with_compile_time)
 from ._quasistatic import _output_path, _solve, _write
 
 __all__ = ["register", "parse_list", "MAX_POINTS"]
@@ -63,6 +63,8 @@ def _efficiency(args: argparse.Namespace) -> int:
     reducer = reducer_from_args(args)
     if torques:
         check_load(reducer, max(torques), "--torques")
+    if speeds:
+        check_input_speeds(reducer, speeds, "--speeds")
     from ..quasistatic import efficiency
 
     result, code = _solve(lambda: efficiency(reducer, speeds_rpm=speeds, torques=torques),

@@ -257,7 +257,19 @@ def _life(args: argparse.Namespace) -> int:
 
     rpm = reducer.rating.rated_output_speed / RPM if args.output_speed is None \
         else args.output_speed
+    from ..parameters.rating import check_output_speed
+
+    check_output_speed(reducer, rpm * RPM, "rating.rated_output_speed" if args.output_speed
+                       is None else "--output-speed", refuse=True)
     check_life_inputs(reducer, 1.0, rpm * RPM)      # the reducer: RV with rolling bearings
+    if args.radial_load or args.moment or args.thrust:
+        from ..physics.rating_life import angular_contact_factors
+        from ..quasistatic.bearing_life import check_static_capacity
+
+        angular_contact_factors(reducer.bearings.main_contact_angle,
+                                "bearings.main_contact_angle")
+        check_static_capacity(reducer, args.radial_load, args.moment, args.thrust,
+                              ("--radial-load", "--moment", "--thrust"))
     check_positions(reducer, args.positions, "--positions")
     check_load(reducer, reducer.rating.rated_torque if args.torque is None else args.torque,
                "rating.rated_torque" if args.torque is None else "--torque")

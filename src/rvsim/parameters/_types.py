@@ -280,6 +280,10 @@ class Rating:
     rated_life: float = quantity(6000.0 * 3600.0, "h", "rated service life K at the rated "
                                  "torque and rated output speed (RV-E class: 6000 h)",
                                  positive=True)
+    allowable_output_speed: float = quantity(70.0 * _RPM, "rpm", "allowable output speed "
+                                             "at 100 % duty (RV-40E class: 70 rpm): faster "
+                                             "output speeds are refused by 'life' and "
+                                             "warned of elsewhere", positive=True)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -347,6 +351,10 @@ class Friction:
     oil_cloud_point: float = quantity(-20.0, "degC", "lowest temperature of the viscosity-"
                                       "temperature law (ASTM D341: from the lubricant's cloud "
                                       "point up)", minimum=-273.15, positive=True)
+    oil_max_temperature: float = quantity(150.0, "degC", "highest temperature of the "
+                                          "lubricant (mineral base oils degrade from 110-150 "
+                                          "degC): a hotter operating.temperature is refused",
+                                          minimum=-273.15, positive=True)
     input_seal_count: int = count(0, "radial lip seals on the input shaft", minimum=0)
     input_seal_diameter: float = quantity(0.0, "mm", "shaft diameter at the input seals' lips "
                                           "(ISO/TR 14179-2 drag)")
