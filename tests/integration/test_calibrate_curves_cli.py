@@ -3,13 +3,14 @@ other commands; bad curves are one line naming the option, file and column, exit
 written."""
 
 import json
+from pathlib import Path
 
 import pandas as pd
 import pytest
 
 from rvsim.cli import main
 
-LOOP = "docs/examples/hysteresis_loop.csv"
+LOOP = str(Path(__file__).resolve().parents[2] / "docs" / "examples" / "hysteresis_loop.csv")
 
 
 def test_hysteresis_csv_is_what_calibrate_reads_and_the_fit_is_usable(tmp_path, capsys):

@@ -97,7 +97,8 @@ def test_the_example_loop_is_what_its_script_makes():
     """docs/examples/hysteresis_loop.csv (the user guide's fit) from its stated parameters."""
     import pandas as pd
 
-    script = runpy.run_path("scripts/make_loop_example.py")
+    root = Path(__file__).resolve().parents[2]
+    script = runpy.run_path(str(root / "scripts" / "make_loop_example.py"))
     made, stored = script["make"](), pd.read_csv(script["OUT"])
     assert list(stored.columns) == list(made.columns)
     assert np.allclose(stored.to_numpy(), made.to_numpy(), rtol=1e-9, atol=1e-12)
