@@ -14,6 +14,11 @@ Measured (2026-11-22) and the tolerance of each test:
   equals the integral of F d(delta) within 1.2e-8, the quadrature's error at the logarithmic
   end (tolerance 1e-7); stiffness factor s scales
   the force exactly (1e-12);
+* conforming law against Johnson's approach of two cylinders with Hertz's width of the
+  conforming pair, written independently: 4.4e-16 (tolerance 1e-13); its wrap at b = R within
+  dR / 2R; its neat-fit limit 2.29 times stiffer than Johnson's approach at b = R (2026-11-28);
+* the paper's RV-40E across the roughness-sourced floors (2.5 / 5 / 10 um): rigidity and lost
+  motion of real runs pinned to 1e-9 (a finding of issue 32 item 2, not a tuning);
 * the stiffness matrix of the bearing set (cage terms included) gives the local torsional
   stiffness within 1.8e-5 of the finite-difference derivative (tolerance 1e-4);
 * the dynamic steady mean TE at a quarter of the paper's speed equals the quasi-static mean
@@ -220,10 +225,11 @@ def test_conforming_law_is_johnsons_approach_with_the_hertz_width():
     dR) / dR) in Johnson's approach of two cylinders (Contact Mechanics, Sec. 5.6, one term
     2 ln(4 R_i / b) - 1 per body) is the law to round-off (measured 4.4e-16, tolerance 1e-13);
     the law's wrap force a / 16 is where b reaches R, within sqrt(1 + dR / R) - 1 (2.0e-4 at
-    5 um on 12.5 mm; bound dR / 2R) - so b / R = 4 sqrt(F / a) (docs/model.md section 16).  For dR -> 0 the law is its linear continuation,
-    compliance j (ln 16 - 2) per interface (1e-12), while Johnson's approach with the width of
-    a neat fit held at b = R (the 90-degree arc of a zero-clearance pin) has j (ln 16 - 1):
-    2.29 times as compliant (docs/decisions.md, issue 32 item 2: a finding, not changed)."""
+    5 um on 12.5 mm; bound dR / 2R), so b / R = 4 sqrt(F / a) (docs/model.md section 16).
+    For dR -> 0 the law is its linear continuation, compliance j (ln 16 - 2) per interface
+    (1e-12), while Johnson's approach with the width of a neat fit held at b = R (the
+    90-degree arc of a zero-clearance pin) has j (ln 16 - 1): 2.29 times as compliant
+    (docs/decisions.md, issue 32 item 2: a finding, not changed)."""
     length, radius, e_star = 0.015, 0.0125, STEEL.elastic_modulus / (2 * (1 - 0.09))
     for dr in (1e-6, 5e-6, 20e-6):
         j, a = conforming_constants(length, STEEL, STEEL, dr)
