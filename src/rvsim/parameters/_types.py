@@ -256,8 +256,8 @@ class ContactModel:
     friction_coefficient: float = quantity(0.0, "-", "Coulomb friction at pin contacts "
                                            "(paper: none)", maximum=1.0)
     bushing_stiffness_factor: float = quantity(1.0, "-", "multiplies the stiffness of every "
-                                               "bushing contact (1: Palmgren law; large: rigid "
-                                               "bearings)", positive=True)
+                                               "bushing contact (1: the conforming law; "
+                                               "large: rigid bearings)", positive=True)
     friction_velocity: float = quantity(1e-3, "mm/s", "sliding speed at which the "
                                         "regularised friction is fully developed", positive=True)
 
@@ -397,7 +397,8 @@ class Bearings:
     bushing_min_radial_difference: float = quantity(0.005 * _MM, "mm", "smallest radial "
                                                     "difference of a bushing's conforming "
                                                     "surfaces used by the contact law (a "
-                                                    "smaller clearance is conforming to this)",
+                                                    "smaller clearance is conforming to this): "
+                                                    "the two surfaces' summed roughness Rz",
                                                     positive=True)
     needle_count: int = count(20, "needle rollers per eccentric", minimum=3)
     needle_diameter: float = quantity(3.0 * _MM, "mm", "needle roller diameter", positive=True)
