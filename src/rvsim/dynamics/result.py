@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._display import Headline, draw, figure, number
 from .._files import atomic_write
 from ..errors import InputFileError
 from ..units import ARCMIN
@@ -74,11 +75,12 @@ def ate_note(revolutions: float) -> str:
             "(the ATE needs one); te_pp_arcmin is the peak-to-peak over that part of one")
 
 
-@dataclasses.dataclass
-class Result:
+@dataclasses.dataclass(repr=False)
+class Result(Headline):
     """Histories (SI) sampled at ``time`` and the summary of one run.
 
-    ``te`` is theta_in / i - theta_out (Eq. 22) [rad]; metrics are in arcmin.
+    ``te`` is theta_in / i - theta_out (Eq. 22) [rad]; metrics are in arcmin.  Shown as its
+    headline figures (:meth:`headline`); ``plot()`` draws the TE over time.
     """
 
     time: np.ndarray
@@ -181,6 +183,26 @@ class Result:
         if not np.isfinite(out["ate_arcmin"]) and np.isfinite(out["te_window_revolutions"]):
             out["ate_note"] = ate_note(out["te_window_revolutions"])
         return out
+
+    def headline(self) -> tuple[str, list[tuple[str, str]]]:
+        """Status, time simulated and the steady window's TE figures (the repr)."""
+        m = self.summary()
+        ate = (number(m["ate_arcmin"], "arcmin") if "ate_note" not in m
+               else f"n/a ({number(m['te_window_revolutions'], 'output revolutions', 3)} "
+               "in the steady window, the ATE needs 1)")
+        return (f"Result of {self.reducer_name}: {m['status']}, {number(m['sim_time_s'], 's')} "
+                f"simulated ({m['steps']} steps, {number(m['wall_s'], 's', 3)} wall)",
+                [("TE mean", number(m["te_mean_arcmin"], "arcmin")),
+                 ("TE peak-to-peak", number(m["te_pp_arcmin"], "arcmin")),
+                 ("ATE", ate), ("speed ratio", number(m["speed_ratio"], "", 6)),
+                 ("max pin force", number(m["max_pin_force_n"], "N")),
+                 ("energy residual", number(m["energy_residual"], "of the input work", 2))])
+
+    def plot(self, ax=None):
+        """TE [arcmin] over time, the steady window shaded (:func:`rvsim.plots.te_plot`);
+        returns the Axes."""
+        return draw(figure("rvsim.plots", "te_plot"), ax, {self.reducer_name: self},
+                    self.steady_start)
 
     def spectrum(self, pin_count: int | None = None):
         """Steady-window TE spectrum: DataFrame of ``order`` (crank rotation relative to the

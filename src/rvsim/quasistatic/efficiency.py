@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from .._cache_guard import RunClock
+from .._display import Headline, draw, figure, number
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..units import from_si
@@ -42,9 +43,10 @@ RESOLVED_TORQUE_FRACTION = 1e-4
 STARTING_SPEED_RPM = 1.0
 
 
-@dataclasses.dataclass
-class EfficiencyResult:
-    """Efficiency over input speed and output torque (SI)."""
+@dataclasses.dataclass(repr=False)
+class EfficiencyResult(Headline):
+    """Efficiency over input speed and output torque (SI).  Shown as its headline figures
+    (:meth:`headline`); ``plot()`` draws the map."""
 
     input_speed: np.ndarray        # (s,) [rad/s]
     output_torque: np.ndarray      # (t,) [N*m]
@@ -84,6 +86,27 @@ class EfficiencyResult:
             "wall_s": self.wall_s,
             "status": self.status,
         }
+
+    def headline(self) -> tuple[str, list[tuple[str, str]]]:
+        """Status, the map's range and the running and starting torques (the repr)."""
+        rpm, eta = self.input_speed / RPM, 100.0 * self.efficiency
+        return (f"Efficiency map: {self.status}, {len(rpm)} speeds x "
+                f"{len(self.output_torque)} torques ({number(self.wall_s, 's', 3)} wall)",
+                [("efficiency", f"{number(float(eta.min()), '', 4)} to "
+                                f"{number(float(eta.max()), '%', 4)}"),
+                 ("input speed", f"{number(float(rpm.min()))} to {number(float(rpm.max()), 'rpm')}"),
+                 ("output torque", f"{number(float(self.output_torque.min()))} to "
+                                   f"{number(float(self.output_torque.max()), 'N*m')}"),
+                 ("no-load running torque", number(float(self.no_load_running_torque[0]),
+                                                   f"N*m at {rpm[0]:g} rpm", 3)),
+                 ("starting torque", number(float(self.starting_torque), "N*m", 3)),
+                 ("lubricant", f"{number(self.temperature, 'degC')}")])
+
+    def plot(self, ax=None):
+        """The efficiency map (:func:`rvsim._efficiency_report.efficiency_plot`); returns the
+        first panel's Axes."""
+        return draw(figure("rvsim._efficiency_report", "efficiency_plot"), ax, self,
+                    panels=True)
 
     def to_frame(self):
         """One row per (input speed, output torque) point."""

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from .._display import Headline, draw, figure, number
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer
 from ..units import ARCMIN
@@ -24,9 +25,10 @@ __all__ = ["hysteresis", "HysteresisResult", "sweep_torques", "TEST_OUTPUT_SPEED
 TEST_OUTPUT_SPEED = 0.01
 
 
-@dataclasses.dataclass
-class HysteresisResult:
-    """Output angle against output torque, input locked (SI; contract of issue 9)."""
+@dataclasses.dataclass(repr=False)
+class HysteresisResult(Headline):
+    """Output angle against output torque, input locked (SI; contract of issue 9).  Shown as
+    its catalogue quantities (:meth:`headline`); ``plot()`` draws the loop."""
 
     torque: np.ndarray             # (m,) [N*m] applied to the output (turns it positive)
     angle: np.ndarray              # (m,) [rad] output angle
@@ -68,6 +70,23 @@ class HysteresisResult:
             "wall_s": self.wall_s,
             "status": self.status,
         }
+
+    def headline(self) -> tuple[str, list[tuple[str, str]]]:
+        """Status, rated torque and the catalogue quantities of the loop (the repr)."""
+        m = self.summary()
+        return (f"Torque reversal to +-{number(m['rated_torque_nm'], 'N*m')}: {m['status']}, "
+                f"{m['points']} points ({number(m['wall_s'], 's', 3)} wall)",
+                [("torsional rigidity", number(m["torsional_rigidity_nm_per_arcmin"],
+                                               "N*m/arcmin")),
+                 ("lost motion (+-3 %)", number(m["lost_motion_arcmin"], "arcmin")),
+                 ("backlash", number(m["backlash_arcmin"], "arcmin")),
+                 ("hysteresis loss", number(m["hysteresis_loss_arcmin"], "arcmin"))])
+
+    def plot(self, ax=None):
+        """Output angle [arcmin] against output torque [N*m], the catalogue quantities marked
+        (:func:`rvsim.plots.hysteresis_plot`); returns the first panel's Axes."""
+        return draw(figure("rvsim.plots", "hysteresis_plot"), ax, self, self.rated_torque,
+                    panels=True)
 
     def to_frame(self):
         import pandas as pd

@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from .._cache_guard import RunClock
+from .._display import Headline, draw, figure, number
 from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
@@ -169,9 +170,11 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
     return out
 
 
-@dataclasses.dataclass
-class LtcaResult:
-    """Loaded tooth contact analysis over an output revolution (SI; contract of issue 9)."""
+@dataclasses.dataclass(repr=False)
+class LtcaResult(Headline):
+    """Loaded tooth contact analysis over an output revolution (SI; contract of issue 9).
+    Shown as its headline figures (:meth:`headline`); ``plot()`` draws the TE over the
+    revolution."""
 
     input_angle: np.ndarray        # (n,) [rad]
     output_angle: np.ndarray       # (n,) [rad] carrier at equilibrium
@@ -235,6 +238,26 @@ class LtcaResult:
             "wall_s": self.wall_s,
             "status": self.status,
         }
+
+    def headline(self) -> tuple[str, list[tuple[str, str]]]:
+        """Status, torque and the summary's TE, stiffness and contact figures (the repr)."""
+        m = self.summary()
+        return (f"LTCA at {number(m['torque_nm'], 'N*m')}: {m['status']}, {m['positions']} "
+                f"positions ({number(m['wall_s'], 's', 3)} wall)",
+                [("TE mean", number(m["te_mean_arcmin"], "arcmin")),
+                 ("TE peak-to-peak", number(m["te_pp_arcmin"], "arcmin")),
+                 ("ATE", number(m["ate_arcmin"], "arcmin")),
+                 ("torsional stiffness", number(m["torsional_stiffness_nm_per_arcmin"],
+                                                "N*m/arcmin")),
+                 ("max pin force", number(m["max_pin_force_n"], "N")),
+                 ("max contact stress", number(m["max_contact_stress_mpa"], "MPa")),
+                 ("pins in contact", f"{m['pins_in_contact_min']} to "
+                                     f"{m['pins_in_contact_max']} per disc")])
+
+    def plot(self, ax=None):
+        """TE [arcmin] over the output revolution, absolute and minus its mean
+        (:func:`rvsim.plots.te_revolution_plot`); returns the first panel's Axes."""
+        return draw(figure("rvsim.plots", "te_revolution_plot"), ax, self, panels=True)
 
     def ate(self) -> tuple[float, float]:
         """(ATE [arcmin], output revolutions covered): the angular transmission error, the
