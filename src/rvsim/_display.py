@@ -15,7 +15,7 @@ import html
 import math
 from importlib import import_module
 
-__all__ = ["Headline", "number", "figure", "draw"]
+__all__ = ["Headline", "number", "figure", "draw", "without_status"]
 
 
 def number(value, unit: str = "", digits: int = 4) -> str:
@@ -28,24 +28,38 @@ def number(value, unit: str = "", digits: int = 4) -> str:
 
 
 class Headline:
-    """Mixin: ``__repr__`` and ``_repr_html_`` from ``self.headline()`` -> (title, rows of
-    (label, text)).  Dataclasses using it are declared with ``repr=False``."""
+    """Mixin: ``__repr__`` (a line per row) and ``_repr_html_`` (a table) from
+    ``self.headline()`` -> (title, rows).
 
-    def headline(self) -> tuple[str, list[tuple[str, str]]]:
+    A row is (quantity, value) or, as the reports' opening block has it
+    (:mod:`rvsim.analysis.headline`), (quantity, value, class or reference, verdict).
+    Dataclasses using it are declared with ``repr=False``."""
+
+    def headline(self) -> tuple[str, list[tuple]]:
         raise NotImplementedError
 
     def __repr__(self) -> str:
         title, rows = self.headline()
-        width = max((len(label) for label, _ in rows), default=0)
-        return "\n".join([title] + [f"  {label:<{width}}  {text}" for label, text in rows])
+        width = max((len(row[0]) for row in rows), default=0)
+        lines = [title]
+        for label, value, *rest in rows:     # the verdict, not the class's text (HTML has it)
+            extra = str(rest[-1]) if rest and rest[-1] not in ("", "-") else ""
+            lines.append(f"  {label:<{width}}  {value}" + (f"  ({extra})" if extra else ""))
+        return "\n".join(lines)
 
     def _repr_html_(self) -> str:
         title, rows = self.headline()
-        body = "".join(f"<tr><th style='text-align:left'>{html.escape(label)}</th>"
-                       f"<td style='text-align:left'>{html.escape(text)}</td></tr>"
-                       for label, text in rows)
+        head = ("<tr><th>quantity</th><th>value</th><th>class or reference</th>"
+                "<th>verdict</th></tr>" if any(len(row) > 2 for row in rows) else "")
+        body = "".join("<tr>" + "".join(f"<td style='text-align:left'>{html.escape(str(x))}</td>"
+                                        for x in row) + "</tr>" for row in rows)
         return (f"<table><caption style='text-align:left'><b>{html.escape(title)}</b>"
-                f"</caption>{body}</table>")
+                f"</caption>{head}{body}</table>")
+
+
+def without_status(rows: list[tuple]) -> list[tuple]:
+    """A report's headline rows without their status row (a repr's title says it)."""
+    return [row for row in rows if row[0] != "status"]
 
 
 def figure(module: str, name: str):

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._display import Headline, draw, figure, number
+from .._display import Headline, draw, figure, number, without_status
 from .._files import atomic_write
 from ..errors import InputFileError
 from ..units import ARCMIN
@@ -184,19 +184,18 @@ class Result(Headline):
             out["ate_note"] = ate_note(out["te_window_revolutions"])
         return out
 
-    def headline(self) -> tuple[str, list[tuple[str, str]]]:
-        """Status, time simulated and the steady window's TE figures (the repr)."""
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, time simulated and the report's opening rows
+        (:func:`rvsim.analysis.headline.run_rows`): the repr."""
+        from ..analysis.headline import run_rows
+
         m = self.summary()
-        ate = (number(m["ate_arcmin"], "arcmin") if "ate_note" not in m
-               else f"n/a ({number(m['te_window_revolutions'], 'output revolutions', 3)} "
-               "in the steady window, the ATE needs 1)")
+        rows = without_status(run_rows(m))
+        rows.append(("energy residual", number(m["energy_residual"], "of the input work", 2)))
+        if "ate_note" in m:
+            rows.append(("note", m["ate_note"]))
         return (f"Result of {self.reducer_name}: {m['status']}, {number(m['sim_time_s'], 's')} "
-                f"simulated ({m['steps']} steps, {number(m['wall_s'], 's', 3)} wall)",
-                [("TE mean", number(m["te_mean_arcmin"], "arcmin")),
-                 ("TE peak-to-peak", number(m["te_pp_arcmin"], "arcmin")),
-                 ("ATE", ate), ("speed ratio", number(m["speed_ratio"], "", 6)),
-                 ("max pin force", number(m["max_pin_force_n"], "N")),
-                 ("energy residual", number(m["energy_residual"], "of the input work", 2))])
+                f"simulated ({m['steps']} steps, {number(m['wall_s'], 's', 3)} wall)", rows)
 
     def plot(self, ax=None):
         """TE [arcmin] over time, the steady window shaded (:func:`rvsim.plots.te_plot`);

@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from .._cache_guard import RunClock
-from .._display import Headline, draw, figure, number
+from .._display import Headline, draw, figure, number, without_status
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..units import from_si
@@ -63,6 +63,7 @@ class EfficiencyResult(Headline):
     oil_viscosity: float = 0.0     # [m^2/s] its kinematic viscosity there (ASTM D341)
     seal_torque_input: float = 0.0   # [N*m] input seals' drag torque
     seal_torque_output: float = 0.0  # [N*m] output seals' drag torque
+    rated_torque: float = math.nan   # [N*m] the reducer's (reducer.rating.rated_torque)
 
     def summary(self) -> dict:
         """The JSON keys of ``rvsim efficiency`` (speeds in rpm, torques in N*m)."""
@@ -87,20 +88,16 @@ class EfficiencyResult(Headline):
             "status": self.status,
         }
 
-    def headline(self) -> tuple[str, list[tuple[str, str]]]:
-        """Status, the map's range and the running and starting torques (the repr)."""
-        rpm, eta = self.input_speed / RPM, 100.0 * self.efficiency
-        return (f"Efficiency map: {self.status}, {len(rpm)} speeds x "
-                f"{len(self.output_torque)} torques ({number(self.wall_s, 's', 3)} wall)",
-                [("efficiency", f"{number(float(eta.min()), '', 4)} to "
-                                f"{number(float(eta.max()), '%', 4)}"),
-                 ("input speed", f"{number(float(rpm.min()))} to {number(float(rpm.max()), 'rpm')}"),
-                 ("output torque", f"{number(float(self.output_torque.min()))} to "
-                                   f"{number(float(self.output_torque.max()), 'N*m')}"),
-                 ("no-load running torque", number(float(self.no_load_running_torque[0]),
-                                                   f"N*m at {rpm[0]:g} rpm", 3)),
-                 ("starting torque", number(float(self.starting_torque), "N*m", 3)),
-                 ("lubricant", f"{number(self.temperature, 'degC')}")])
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, the map's size and the report's opening rows
+        (:func:`rvsim.analysis.headline.efficiency_rows`): the repr."""
+        from ..analysis.headline import efficiency_rows
+
+        rated = self.rated_torque if math.isfinite(self.rated_torque) \
+            else float(np.max(self.output_torque))
+        rows = without_status(efficiency_rows(self.to_frame(), self.summary(), rated))
+        return (f"Efficiency map: {self.status}, {len(self.input_speed)} speeds x "
+                f"{len(self.output_torque)} torques ({number(self.wall_s, 's', 3)} wall)", rows)
 
     def plot(self, ax=None):
         """The efficiency map (:func:`rvsim._efficiency_report.efficiency_plot`); returns the
@@ -217,4 +214,5 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
                             friction=friction, status="ok",
                             wall_s=clock.split()[0],
                             temperature=reducer.operating.temperature, oil_viscosity=viscosity,
-                            seal_torque_input=seal_in, seal_torque_output=seal_out)
+                            seal_torque_input=seal_in, seal_torque_output=seal_out,
+                            rated_torque=reducer.rating.rated_torque)

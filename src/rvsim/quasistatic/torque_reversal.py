@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .._display import Headline, draw, figure, number
+from .._display import Headline, draw, figure, number, without_status
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer
 from ..units import ARCMIN
@@ -71,16 +71,15 @@ class HysteresisResult(Headline):
             "status": self.status,
         }
 
-    def headline(self) -> tuple[str, list[tuple[str, str]]]:
-        """Status, rated torque and the catalogue quantities of the loop (the repr)."""
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, rated torque and the report's opening rows, the catalogue quantities
+        against the class (:func:`rvsim.analysis.headline.hysteresis_rows`): the repr."""
+        from ..analysis.headline import hysteresis_rows
+
         m = self.summary()
         return (f"Torque reversal to +-{number(m['rated_torque_nm'], 'N*m')}: {m['status']}, "
                 f"{m['points']} points ({number(m['wall_s'], 's', 3)} wall)",
-                [("torsional rigidity", number(m["torsional_rigidity_nm_per_arcmin"],
-                                               "N*m/arcmin")),
-                 ("lost motion (+-3 %)", number(m["lost_motion_arcmin"], "arcmin")),
-                 ("backlash", number(m["backlash_arcmin"], "arcmin")),
-                 ("hysteresis loss", number(m["hysteresis_loss_arcmin"], "arcmin"))])
+                without_status(hysteresis_rows(m)))
 
     def plot(self, ax=None):
         """Output angle [arcmin] against output torque [N*m], the catalogue quantities marked

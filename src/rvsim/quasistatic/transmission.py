@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from .._cache_guard import RunClock
-from .._display import Headline, draw, figure, number
+from .._display import Headline, draw, figure, number, without_status
 from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
@@ -197,6 +197,7 @@ class LtcaResult(Headline):
     force_resolution: float = 0.0  # [N] pin forces up to this are below the solver's tolerance
     #: (n, discs, n_w) [N] output pins in the discs' holes (single-stage drive; n_w = 0: RV)
     output_pin_forces: np.ndarray = None
+    rated_torque: float | None = None  # [N*m] the reducer's (reducer.rating.rated_torque)
 
     @property
     def te_relative(self) -> np.ndarray:
@@ -239,20 +240,20 @@ class LtcaResult(Headline):
             "status": self.status,
         }
 
-    def headline(self) -> tuple[str, list[tuple[str, str]]]:
-        """Status, torque and the summary's TE, stiffness and contact figures (the repr)."""
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, torque and the report's opening rows
+        (:func:`rvsim.analysis.headline.ltca_rows`), stiffness and contacts: the repr."""
+        from ..analysis.headline import ltca_rows
+
         m = self.summary()
+        rows = without_status(ltca_rows(m, self.rated_torque))
+        rows += [("torsional stiffness (mean)", number(m["torsional_stiffness_nm_per_arcmin"],
+                                                       "N*m/arcmin")),
+                 ("largest pin force", number(m["max_pin_force_n"], "N")),
+                 ("pins in contact per disc", f"{m['pins_in_contact_min']} to "
+                                              f"{m['pins_in_contact_max']}")]
         return (f"LTCA at {number(m['torque_nm'], 'N*m')}: {m['status']}, {m['positions']} "
-                f"positions ({number(m['wall_s'], 's', 3)} wall)",
-                [("TE mean", number(m["te_mean_arcmin"], "arcmin")),
-                 ("TE peak-to-peak", number(m["te_pp_arcmin"], "arcmin")),
-                 ("ATE", number(m["ate_arcmin"], "arcmin")),
-                 ("torsional stiffness", number(m["torsional_stiffness_nm_per_arcmin"],
-                                                "N*m/arcmin")),
-                 ("max pin force", number(m["max_pin_force_n"], "N")),
-                 ("max contact stress", number(m["max_contact_stress_mpa"], "MPa")),
-                 ("pins in contact", f"{m['pins_in_contact_min']} to "
-                                     f"{m['pins_in_contact_max']} per disc")])
+                f"positions ({number(m['wall_s'], 's', 3)} wall)", rows)
 
     def plot(self, ax=None):
         """TE [arcmin] over the output revolution, absolute and minus its mean
@@ -353,7 +354,8 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         torsional_stiffness=path.torsional_stiffness, status=path.status, wall_s=path.wall_s,
         converged=converged, iterations=path.iterations,
         force_resolution=path.force_resolution,
-        output_pin_forces=path.output_pin_forces[:, :discs])
+        output_pin_forces=path.output_pin_forces[:, :discs],
+        rated_torque=reducer.rating.rated_torque)
     result.te[~converged] = np.nan
     if path.status != "ok" and raise_on_failure:
         k = int(np.argmax(path.status_codes != 0))
