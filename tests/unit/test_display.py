@@ -1,0 +1,151 @@
+"""The notebook API (issue 34 item 5): help(rvsim) is a short quick start, the top-level names
+load lazily, a parameter set and every result show their headline figures (repr and HTML)
+and draw themselves with ``.plot()``.  Results are built from known curves, no compiled run."""
+
+from __future__ import annotations
+
+import math
+import pydoc
+
+import numpy as np
+import pytest
+
+import rvsim
+from rvsim.errors import ParameterError
+from rvsim.units import ARCMIN
+from tests.unit.test_joint_model import FREE_PLAY, RATED, STIFFNESS, known_loop, known_te
+
+W_OUT = 2.0 * math.pi        # [rad/s] one output revolution per second
+
+
+def known_run(ratio: float = 121.0):
+    """2 s at one output revolution per second; TE 1.5 + 0.2 sin(2 theta_out) arcmin; every
+    pin at 500 N; steady from 0.5 s (1.5 output revolutions, three whole TE periods)."""
+    from rvsim.dynamics.result import Result
+    from rvsim.physics import _layout as L
+
+    time = np.linspace(0.0, 2.0, 2001)
+    te = (1.5 + 0.2 * np.sin(2.0 * W_OUT * time)) * ARCMIN
+    channels = np.zeros((time.size, len(L.CHANNEL_NAMES)))
+    for name, values in (("time", time), ("theta_in", ratio * W_OUT * time),
+                         ("omega_in", np.full_like(time, ratio * W_OUT)),
+                         ("theta_out", W_OUT * time - te), ("omega_out", np.full_like(time, W_OUT))):
+        channels[:, L.CHANNEL_NAMES.index(name)] = values
+    return Result(time, channels, np.full((time.size, 2, 40), 500.0), ratio, 0.5, "ok", 4000,
+                  1.25, {"relative_residual": 3e-5}, reducer_name="RV-40E")
+
+
+def known_map():
+    from rvsim.quasistatic.efficiency import RPM, EfficiencyResult
+
+    speeds, torques = np.array([500.0, 1500.0]) * RPM, np.array([206.0, 412.0])
+    eff = np.array([[0.90, 0.92], [0.88, 0.91]])
+    return EfficiencyResult(speeds, torques, eff, torques / (121.0 * eff), np.array([0.01, 0.02]),
+                            0.005, 121.0, 24, True, "ok", 0.5, rated_torque=412.0)
+
+
+def test_help_is_a_short_quick_start():
+    text = pydoc.render_doc(rvsim, renderer=pydoc.plaintext)
+    assert len(text.splitlines()) <= 80                  # 596 lines before (issue 34)
+    assert "rvsim.simulate(r)" in text and "ParameterError" in text
+    assert "class ParameterError" not in text            # the exceptions' methods left out
+
+
+def test_top_level_names_are_the_subpackages_own():
+    from rvsim.doe.runner import run
+    from rvsim.quasistatic.efficiency import efficiency
+    from rvsim.testrig.calibration import calibrate
+
+    assert rvsim.efficiency is efficiency and rvsim.run_study is run
+    assert rvsim.calibrate is calibrate
+    assert rvsim.BUILT_IN_SETS["RV-40E-bearings"].name == "RV-40E-bearings"
+    assert set(rvsim._LAZY) <= set(dir(rvsim))
+    with pytest.raises(AttributeError, match="no attribute 'simulat'"):
+        rvsim.simulat
+
+
+def test_reducer_shows_its_dimensions_in_mm():
+    text = repr(rvsim.RV40E)
+    assert len(text.splitlines()) == 6 and len(text) < 450        # was 3,735 characters
+    for words in ("ratio 121", "40 pins r 3 mm on r 82 mm", "eccentricity 1.5 mm",
+                  "412 N*m rated", "2058 N*m momentary"):
+        assert words in text
+    assert "gear stage" not in repr(rvsim.CYCLOID_DRIVE)          # one stage
+    assert rvsim.RV40E._repr_html_().count("<tr>") == 5
+
+
+def _check(result, title: str, figures: list[str], lines: int):
+    text = repr(result)
+    assert text.startswith(title)
+    assert len(text.splitlines()) == lines and len(text) < 900
+    for figure in figures:
+        assert figure in text
+    page = result._repr_html_()
+    assert page.startswith("<table>") and all(f in page for f in figures)
+
+
+def test_run_shows_its_te_figures():
+    _check(known_run(), "Result of RV-40E: ok, 2 s simulated (4000 steps, 1.25 s wall)",
+           ["1.5 arcmin", "0.4 arcmin", "500 N", "3e-05 of the input work"], 6)
+
+
+def test_ltca_shows_its_figures_against_the_class():
+    # the known TE: the wind-up at rated torque, half the free play and three harmonics
+    te = known_te(rvsim.RV40E)
+    mean = RATED / STIFFNESS / ARCMIN + FREE_PLAY / 2 / ARCMIN
+    _check(te, "LTCA at 412 N*m: ok, 360 positions",
+           [f"{mean:.4g} arcmin", "35 N*m/arcmin", "0 N", "0 to 0"], 9)
+
+
+def test_hysteresis_shows_the_catalogue_quantities():
+    # the spring with free play: rigidity 35 N*m/arcmin (113 the class's lowest), lost motion
+    # the free play plus the wind-up of +-3 % of rated, 0.4 + 2 x 12.36 / 35 = 1.106 arcmin,
+    # the loop's width at 0 N*m the free play, 0.4 arcmin
+    _check(known_loop(), "Torque reversal to +-412 N*m: ok, 101 points",
+           ["35 N*m/arcmin", "0.31 x the class (softer)", "1.11 arcmin", "0.4 arcmin"], 5)
+
+
+def test_efficiency_shows_its_map():
+    _check(known_map(), "Efficiency map: ok, 2 speeds x 2 torques",
+           ["92 %", "91 %", "0.01 N*m", "0.005 N*m"], 5)
+
+
+def test_analysis_frames_carry_units():
+    from rvsim.parameters import paper_l36_scheme
+
+    table = paper_l36_scheme().drop(columns=["note"])
+    analysis = rvsim.analyze_table(table)               # the default response: te_arcmin
+    assert analysis["significant"] == ["H", "I"] and analysis.response == "te_arcmin"
+    assert list(analysis.ranges.columns) == ["k1_arcmin", "k2_arcmin", "k3_arcmin",
+                                             "R_arcmin", "rank", "optimal_level"]
+    assert list(analysis.anova.columns) == ["df", "adj_ss_arcmin2", "adj_ms_arcmin2", "f", "p"]
+    assert list(analysis.sn.columns) == ["level1_dB", "level2_dB", "level3_dB", "delta_dB",
+                                         "rank"]
+    assert analysis.ranges.loc["H", "R_arcmin"] == analysis["range"]["H"]["R"]
+    text = repr(analysis)
+    assert "H>I>N" in text and "H, I" in text and len(text.splitlines()) == 5
+
+
+@pytest.mark.parametrize("make", [known_run, lambda: known_te(rvsim.RV40E), known_loop, known_map])
+def test_plot_returns_an_axes(make):
+    from rvsim.plots import pyplot
+
+    plt = pyplot()
+    result = make()
+    ax = result.plot()
+    assert ax.get_ylabel() and ax.lines or ax.images or ax.collections
+    plt.close(ax.figure)
+    fig, given = plt.subplots()
+    assert result.plot(ax=given).figure is fig         # drawn in the caller's figure
+    plt.close(fig)
+
+
+def test_a_figure_of_panels_needs_an_axes_alone():
+    from rvsim.plots import pyplot
+
+    plt = pyplot()
+    fig, (left, _) = plt.subplots(1, 2)
+    with pytest.raises(ParameterError, match="this result draws a figure of several") as error:
+        known_loop().plot(ax=left)
+    assert error.value.field == "ax"
+    plt.close(fig)
