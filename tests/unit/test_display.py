@@ -126,7 +126,8 @@ def test_analysis_frames_carry_units():
     assert "H>I>N" in text and "H, I" in text and len(text.splitlines()) == 5
 
 
-@pytest.mark.parametrize("make", [known_run, lambda: known_te(rvsim.RV40E), known_loop, known_map])
+@pytest.mark.parametrize("make", [known_run, lambda: known_te(rvsim.RV40E), known_loop, known_map,
+                                  lambda: known_tolerances()])
 def test_plot_returns_an_axes(make):
     from rvsim.plots import pyplot
 
@@ -149,3 +150,32 @@ def test_a_figure_of_panels_needs_an_axes_alone():
         known_loop().plot(ax=left)
     assert error.value.field == "ax"
     plt.close(fig)
+
+
+def known_tolerances():
+    """Eleven reducers whose metrics are evenly spread (p5, p50, p95 known)."""
+    from rvsim.tolerance.analysis import ToleranceSummary
+    from rvsim.tolerance.montecarlo import summarise
+
+    values = {"ate_arcmin": np.linspace(0.1, 0.3, 11), "te_mean_arcmin": np.linspace(1, 2, 11),
+              "lost_motion_arcmin": np.linspace(0.2, 0.4, 11),
+              "torsional_rigidity_nm_per_arcmin": np.linspace(100.0, 120.0, 11)}
+    status = np.array(["ok"] * 11, dtype=object)
+    return ToleranceSummary({"study": "spread", **summarise(status, values)}, values)
+
+
+def test_tolerance_summary_is_still_the_dict_and_shows_its_percentiles():
+    import json
+
+    summary = known_tolerances()
+    assert json.loads(json.dumps(summary))["metrics"]["ate_arcmin"]["p95"] == pytest.approx(0.29)
+    _check(summary, "Tolerance study spread: 11 reducers, 11 analysed, 0 bind, 0 failed",
+           ["0.29 arcmin", "1.05 / 1.5 / 1.95 arcmin", "0.39 arcmin", "101 N*m/arcmin"], 6)
+    assert summary.to_frame().shape == (11, 4)
+    from rvsim.plots import pyplot
+
+    ax = summary.plot(metric="lost_motion_arcmin")
+    assert ax.get_xlabel() == "lost_motion_arcmin"
+    pyplot().close(ax.figure)
+    with pytest.raises(ParameterError, match="not a metric of this study"):
+        summary.plot(metric="te_arcmin")
