@@ -179,3 +179,13 @@ def test_tolerance_summary_is_still_the_dict_and_shows_its_percentiles():
     pyplot().close(ax.figure)
     with pytest.raises(ParameterError, match="not a metric of this study"):
         summary.plot(metric="te_arcmin")
+
+
+def test_calibration_shows_each_estimate_with_its_interval():
+    from rvsim.testrig.calibration import Calibration
+
+    fit = Calibration(["errors.pin_radius"], ["mm"], np.array([0.0]), np.array([0.0123]),
+                      np.array([0.0011]), np.array([0.0101]), np.array([0.0145]), np.eye(1),
+                      [], 41.5, 3.25, 2048, 17, "ok")
+    _check(fit, "Calibration: ok, 2048 residuals, 17 model evaluations",
+           ["3.25 arcsec (at the start 41.5 arcsec)", "0.0123 mm (95 %: 0.0101 to 0.0145; start 0)"], 3)

@@ -22,6 +22,7 @@ import math
 
 import numpy as np
 
+from .._display import Headline, number
 from ..analysis import catalogue
 from ..errors import ParameterError, RvsimError, SimulationError
 from ..parameters import SPECS, get_value, resolve_name, with_values
@@ -63,9 +64,10 @@ class CalibrationError(RvsimError):
     """The data or the chosen parameters cannot be fitted (message says why)."""
 
 
-@dataclasses.dataclass
-class Calibration:
-    """Result of :func:`calibrate` (values in the parameters' user units)."""
+@dataclasses.dataclass(repr=False)
+class Calibration(Headline):
+    """Result of :func:`calibrate` (values in the parameters' user units).  Shown as each
+    fitted value with its 95 % interval and the residual before and after (:meth:`headline`)."""
 
     names: list
     units: list
@@ -82,6 +84,18 @@ class Calibration:
     evaluations: int
     status: str
     reducer: object = None
+
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, the fit's residual and each parameter's estimate (the repr)."""
+        rows = [("RMS residual", f"{number(self.rms_arcsec, 'arcsec', 4)} (at the start "
+                                 f"{number(self.rms_start_arcsec, 'arcsec', 4)})")]
+        for name, unit, start, estimate, low, high in zip(self.names, self.units, self.start,
+                                                          self.estimate, self.ci_low,
+                                                          self.ci_high):
+            rows.append((name, f"{number(float(estimate), unit)} (95 %: {number(float(low))} "
+                               f"to {number(float(high))}; start {number(float(start))})"))
+        return (f"Calibration: {self.status}, {self.residuals} residuals, {self.evaluations} "
+                "model evaluations", rows + [("note", n) for n in self.notes])
 
     def to_dict(self) -> dict:
         def num(v):
