@@ -189,3 +189,19 @@ def test_calibration_shows_each_estimate_with_its_interval():
                       [], 41.5, 3.25, 2048, 17, "ok")
     _check(fit, "Calibration: ok, 2048 residuals, 17 model evaluations",
            ["3.25 arcsec (at the start 41.5 arcsec)", "0.0123 mm (95 %: 0.0101 to 0.0145; start 0)"], 3)
+
+
+@pytest.mark.parametrize("setup, backend", [
+    ("import os; os.environ['MPLBACKEND'] = 'svg'", "svg"),   # as Jupyter's kernel sets it
+    ("import matplotlib; matplotlib.use('pdf'); import matplotlib.pyplot", "pdf"),
+])
+def test_pyplot_keeps_a_backend_already_chosen(setup, backend):
+    import subprocess
+    import sys
+
+    code = (f"{setup}\nfrom rvsim._matplotlib import pyplot\nimport matplotlib\npyplot()\n"
+            "print(matplotlib.get_backend().lower())")
+    env = {k: v for k, v in __import__("os").environ.items() if k != "MPLBACKEND"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, env=env).stdout
+    assert out.split()[-1] == backend
