@@ -205,3 +205,17 @@ def test_pyplot_keeps_a_backend_already_chosen(setup, backend):
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True, env=env).stdout
     assert out.split()[-1] == backend
+
+
+def test_every_frame_column_names_its_unit():
+    from rvsim.analysis import unit_suffix
+
+    counts = {"branch", "converged", "pins_in_contact_disc1", "pins_in_contact_disc2"}
+    for frame in (known_run().to_frame(), known_te(rvsim.RV40E).to_frame(),
+                  known_loop().to_frame(), known_map().to_frame()):
+        unnamed = [c for c in frame.columns if c not in counts and not unit_suffix(c)[1]]
+        assert not unnamed or unnamed == ["efficiency"]     # a ratio
+    frame = known_run().to_frame()
+    assert frame["te_arcmin"].mean() == pytest.approx(1.5, abs=1e-3)
+    assert {"time_s", "theta_in_rad", "omega_out_rad_per_s", "torque_in_nm",
+            "pin_f_max_n"} <= set(frame.columns)

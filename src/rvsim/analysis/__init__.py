@@ -21,9 +21,10 @@ __all__ = ["RangeAnalysis", "range_analysis", "AnovaTable", "anova", "predict_op
 
 
 #: the unit suffixes of rvsim's column names and the units they stand for (longest first)
-UNIT_SUFFIXES = {"_nm_per_arcmin": "N*m/arcmin", "_arcmin": "arcmin", "_arcsec": "arcsec",
-                 "_mpa": "MPa", "_nm": "N*m", "_n": "N", "_hours": "h", "_rpm": "rpm",
-                 "_sn": "dB"}
+UNIT_SUFFIXES = {"_nm_per_arcmin": "N*m/arcmin", "_nm_per_rad": "N*m/rad", "_n_per_m": "N/m",
+                 "_rad_per_s": "rad/s", "_arcmin": "arcmin", "_arcsec": "arcsec",
+                 "_rad": "rad", "_mpa": "MPa", "_pa": "Pa", "_nm": "N*m", "_n": "N",
+                 "_hours": "h", "_rpm": "rpm", "_s": "s", "_sn": "dB"}
 
 
 def unit_suffix(column: str) -> tuple[str, str]:

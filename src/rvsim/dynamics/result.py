@@ -14,7 +14,8 @@ from ..errors import InputFileError
 from ..units import ARCMIN
 from ..physics import _layout as L
 
-__all__ = ["Result", "te_metrics", "te_spectrum", "crank_frequency", "ate_note"]
+__all__ = ["Result", "te_metrics", "te_spectrum", "crank_frequency", "ate_note",
+           "channel_unit", "CHANNEL_UNITS"]
 
 
 def crank_frequency(time: np.ndarray, omega_out: np.ndarray, steady_start: float,
@@ -66,6 +67,15 @@ def te_metrics(time: np.ndarray, te: np.ndarray, omega_in: np.ndarray, omega_out
         "te_max_arcmin": float(np.max(te_w)),
         "speed_ratio": float(np.mean(omega_in[window]) / np.mean(omega_out[window])),
     }
+
+
+#: the unit suffix of each kind of channel (by its name's first word); forces the rest [N]
+CHANNEL_UNITS = {"time": "s", "theta": "rad", "omega": "rad_per_s", "torque": "nm"}
+
+
+def channel_unit(name: str) -> str:
+    """The unit suffix of the channel ``name`` in a frame's column name."""
+    return CHANNEL_UNITS.get(name.split("_")[0], "n")
 
 
 def ate_note(revolutions: float) -> str:
@@ -216,10 +226,14 @@ class Result(Headline):
         return pd.DataFrame({"order": orders, "amplitude_arcmin": amplitude})
 
     def to_frame(self):
-        """Time histories as a pandas DataFrame (SI units, TE also in arcmin)."""
+        """Time histories as a pandas DataFrame, SI with the unit in each column name
+        (``time_s``, ``theta_in_rad``, ``omega_out_rad_per_s``, ``torque_in_nm``,
+        ``mesh_f0_n`` ...; TE in rad and arcmin).  The .npz of :meth:`save` keeps the
+        channels' plain names."""
         import pandas as pd
 
-        data = {name: self.channels[:, i] for i, name in enumerate(L.CHANNEL_NAMES)}
+        data = {f"{name}_{channel_unit(name)}": self.channels[:, i]
+                for i, name in enumerate(L.CHANNEL_NAMES)}
         data["te_rad"] = self.te
         data["te_arcmin"] = self.te / ARCMIN
         return pd.DataFrame(data)

@@ -88,11 +88,12 @@ class HysteresisResult(Headline):
                     panels=True)
 
     def to_frame(self):
+        """One row per point, SI with the unit in each column name (angle also in arcmin)."""
         import pandas as pd
 
-        return pd.DataFrame({"torque": self.torque, "angle": self.angle,
+        return pd.DataFrame({"torque_nm": self.torque, "angle_rad": self.angle,
                              "angle_arcmin": self.angle / ARCMIN, "branch": self.branch,
-                             "torsional_stiffness": self.torsional_stiffness,
+                             "torsional_stiffness_nm_per_rad": self.torsional_stiffness,
                              "converged": self.converged})
 
 

@@ -273,27 +273,29 @@ class LtcaResult(Headline):
         return (ate if self.converged.all() else float("nan")), revolutions
 
     def to_frame(self):
-        """One row per position: angles [rad], TE [rad and arcmin], stiffness, forces."""
+        """One row per position, SI with the unit in each column name: angles [rad], TE
+        [rad and arcmin], stiffness [N*m/rad], forces [N], stress [Pa]."""
         import pandas as pd
 
         frame = {
-            "input_angle": self.input_angle, "output_angle": self.output_angle, "te": self.te,
-            "te_arcmin": self.te / ARCMIN, "te_relative_arcmin": self.te_relative / ARCMIN,
-            "torsional_stiffness": self.torsional_stiffness,
+            "input_angle_rad": self.input_angle, "output_angle_rad": self.output_angle,
+            "te_rad": self.te, "te_arcmin": self.te / ARCMIN,
+            "te_relative_arcmin": self.te_relative / ARCMIN,
+            "torsional_stiffness_nm_per_rad": self.torsional_stiffness,
         }
         for d in range(self.pin_forces.shape[1]):
             frame[f"pins_in_contact_disc{d + 1}"] = self.pins_in_contact[:, d]
-        frame["max_pin_force"] = self.pin_forces.max(axis=(1, 2))
-        frame["max_contact_stress"] = self.contact_stress.max(axis=(1, 2))
+        frame["max_pin_force_n"] = self.pin_forces.max(axis=(1, 2))
+        frame["max_contact_stress_pa"] = self.contact_stress.max(axis=(1, 2))
         if self.output_pin_forces is not None and self.output_pin_forces.shape[2]:
-            frame["max_output_pin_force"] = self.output_pin_forces.max(axis=(1, 2))
+            frame["max_output_pin_force_n"] = self.output_pin_forces.max(axis=(1, 2))
         for j in range(2):
-            frame[f"mesh_force_{j + 1}"] = self.mesh_forces[:, j]
-            frame[f"mesh_stiffness_{j + 1}"] = self.mesh_stiffness[:, j]
+            frame[f"mesh_force_{j + 1}_n"] = self.mesh_forces[:, j]
+            frame[f"mesh_stiffness_{j + 1}_n_per_m"] = self.mesh_stiffness[:, j]
             for d in range(2):
-                frame[f"arm_force_{j + 1}{d + 1}"] = self.arm_forces[:, j, d]
+                frame[f"arm_force_{j + 1}{d + 1}_n"] = self.arm_forces[:, j, d]
             for s, name in enumerate(("lower", "upper")):
-                frame[f"support_force_{j + 1}_{name}"] = self.support_forces[:, j, s]
+                frame[f"support_force_{j + 1}_{name}_n"] = self.support_forces[:, j, s]
         frame["converged"] = self.converged
         return pd.DataFrame(frame)
 
