@@ -51,8 +51,10 @@ class Headline:
         title, rows = self.headline()
         head = ("<tr><th>quantity</th><th>value</th><th>class or reference</th>"
                 "<th>verdict</th></tr>" if any(len(row) > 2 for row in rows) else "")
-        body = "".join("<tr>" + "".join(f"<td style='text-align:left'>{html.escape(str(x))}</td>"
-                                        for x in row) + "</tr>" for row in rows)
+        cell = "<td style='text-align:left{}'>{}</td>"       # a value and its unit on one line
+        body = "".join("<tr>" + "".join(cell.format(";white-space:nowrap" if i == 1 else "",
+                                                    html.escape(str(x)))
+                                        for i, x in enumerate(row)) + "</tr>" for row in rows)
         return (f"<table><caption style='text-align:left'><b>{html.escape(title)}</b>"
                 f"</caption>{head}{body}</table>")
 
