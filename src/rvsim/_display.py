@@ -19,10 +19,10 @@ __all__ = ["Headline", "number", "figure", "draw", "without_status"]
 
 
 def number(value, unit: str = "", digits: int = 4) -> str:
-    """``value`` to ``digits`` significant digits, with its unit; "n/a" for None or NaN (a
-    quantity a run could not give)."""
+    """``value`` to ``digits`` significant digits, with its unit; "not available" for None or
+    NaN (a quantity a run could not give; the reports' word, :mod:`rvsim.analysis.headline`)."""
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
-        return "n/a"
+        return "not available"
     text = f"{value:.{digits}g}" if isinstance(value, float) else str(value)
     return f"{text} {unit}".rstrip()
 
@@ -38,8 +38,15 @@ class Headline:
     def headline(self) -> tuple[str, list[tuple]]:
         raise NotImplementedError
 
+    def _rows(self) -> tuple[str, list[tuple]]:
+        """``headline()``, or a title that says why there is none (a repr never raises)."""
+        try:
+            return self.headline()
+        except Exception as exc:          # noqa: BLE001 - shown, not swallowed
+            return (f"{type(self).__name__} (no headline: {type(exc).__name__}: {exc})", [])
+
     def __repr__(self) -> str:
-        title, rows = self.headline()
+        title, rows = self._rows()
         width = max((len(row[0]) for row in rows), default=0)
         lines = [title]
         for label, value, *rest in rows:     # the verdict, not the class's text (HTML has it)
@@ -48,7 +55,7 @@ class Headline:
         return "\n".join(lines)
 
     def _repr_html_(self) -> str:
-        title, rows = self.headline()
+        title, rows = self._rows()
         head = ("<tr><th>quantity</th><th>value</th><th>class or reference</th>"
                 "<th>verdict</th></tr>" if any(len(row) > 2 for row in rows) else "")
         cell = "<td style='text-align:left{}'>{}</td>"       # a value and its unit on one line

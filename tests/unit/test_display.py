@@ -219,3 +219,22 @@ def test_every_frame_column_names_its_unit():
     assert frame["te_arcmin"].mean() == pytest.approx(1.5, abs=1e-3)
     assert {"time_s", "theta_in_rad", "omega_out_rad_per_s", "torque_in_nm",
             "pin_f_max_n"} <= set(frame.columns)
+
+
+def test_a_failed_result_shows_its_status_not_numbers():
+    import dataclasses
+
+    te = known_te(rvsim.RV40E)
+    failed = dataclasses.replace(te, status="not_converged",
+                                 converged=np.zeros(te.converged.size, bool))
+    text = repr(failed)
+    assert text.startswith("LTCA at 412 N*m: not_converged")
+    for row in text.splitlines()[2:]:                 # every figure but the torque
+        assert row.endswith("not available") or "not available  (" in row, row
+
+
+def test_a_repr_never_raises():
+    loop = known_loop()
+    loop.torque = loop.torque[:3]                       # no longer a loop
+    text = repr(loop)
+    assert text.startswith("HysteresisResult (no headline: ") and "\n" not in text

@@ -251,7 +251,8 @@ class LtcaResult(Headline):
                                                        "N*m/arcmin")),
                  ("largest pin force", number(m["max_pin_force_n"], "N")),
                  ("pins in contact per disc", f"{m['pins_in_contact_min']} to "
-                                              f"{m['pins_in_contact_max']}")]
+                                              f"{m['pins_in_contact_max']}"
+                  if m["pins_in_contact_min"] >= 0 else number(None))]
         return (f"LTCA at {number(m['torque_nm'], 'N*m')}: {m['status']}, {m['positions']} "
                 f"positions ({number(m['wall_s'], 's', 3)} wall)", rows)
 
