@@ -9,8 +9,8 @@ Quick start (in a notebook every result shows its headline figures; SI inside)::
     rvsim.hysteresis(r)                 # torque reversal: rigidity, lost motion, backlash
     rvsim.efficiency(r)                 # efficiency map, running and starting torque
     rvsim.life(r)                       # bearings' rating life (ISO 281)
-    table = rvsim.run_study(rvsim.paper_l36(), "study")   # a design of experiments
-    rvsim.analyze_table(table)          # range analysis, ANOVA, S/N ratios (DataFrames)
+    study = rvsim.run_study(rvsim.paper_l36(), "study")   # a design of experiments
+    study.analysis()                    # range analysis, ANOVA, S/N ratios (DataFrames)
 
 Each result has ``.summary()`` (the command line's JSON keys), ``.to_frame()`` (a pandas
 DataFrame) and ``.plot(ax=None)`` (matplotlib; returns the Axes).
@@ -51,7 +51,7 @@ _LAZY = {
     "load_study": ("doe.study", "load_study"),
     "paper_l36": ("doe.study", "paper_l36"),
     "BUILT_IN_STUDIES": ("doe.study", "BUILT_IN_STUDIES"),
-    "run_study": ("doe.runner", "run"),
+    "run_study": ("doe.result", "run_study"),
     "load_tolerance_study": ("tolerance.spec", "load_tolerance_study"),
     "BUILT_IN_TOLERANCE_STUDIES": ("tolerance.spec", "BUILT_IN_TOLERANCE_STUDIES"),
     "tolerance_analysis": ("tolerance.analysis", "tolerance_analysis"),

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import pydoc
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -52,11 +53,11 @@ def test_help_is_a_short_quick_start():
 
 
 def test_top_level_names_are_the_subpackages_own():
-    from rvsim.doe.runner import run
+    from rvsim.doe.result import run_study
     from rvsim.quasistatic.efficiency import efficiency
     from rvsim.testrig.calibration import calibrate
 
-    assert rvsim.efficiency is efficiency and rvsim.run_study is run
+    assert rvsim.efficiency is efficiency and rvsim.run_study is run_study
     assert rvsim.calibrate is calibrate
     assert rvsim.BUILT_IN_SETS["RV-40E-bearings"].name == "RV-40E-bearings"
     assert set(rvsim._LAZY) <= set(dir(rvsim))
@@ -238,3 +239,20 @@ def test_a_repr_never_raises():
     loop.torque = loop.torque[:3]                       # no longer a loop
     text = repr(loop)
     assert text.startswith("HysteresisResult (no headline: ") and "\n" not in text
+
+
+def test_a_study_result_shows_its_analysis():
+    from rvsim.doe.result import StudyResult
+    from rvsim.parameters import paper_l36_scheme
+
+    table = paper_l36_scheme().drop(columns=["note"]).assign(status="ok")
+    table.loc[35, "status"] = "diverged"                 # left out of the analysis
+    result = StudyResult(rvsim.paper_l36(), Path("study"), table)
+    _check(result, "Study paper-l36: 35 of 36 runs ok (dynamic engine, L36), in study",
+           ["te_arcmin", "H"], 6)
+    assert result.analysis().ranges.shape[0] == 15
+    from rvsim.plots import pyplot
+
+    ax = result.plot()
+    assert ax.get_title() == "A"
+    pyplot().close(ax.figure)
