@@ -8,12 +8,12 @@ Quick start (in a notebook every result shows its headline figures; SI inside)::
     rvsim.ltca(r, torque=412.0)         # loaded TE over an output revolution, contact stress
     rvsim.hysteresis(r)                 # torque reversal: rigidity, lost motion, backlash
     rvsim.efficiency(r)                 # efficiency map, running and starting torque
-    rvsim.life(r)                       # bearings' rating life (ISO 281)
+    rvsim.life(rvsim.BUILT_IN_SETS["RV-40E-bearings"])   # rolling bearings' life (ISO 281)
     study = rvsim.run_study(rvsim.paper_l36(), "study")   # a design of experiments
     study.analysis()                    # range analysis, ANOVA, S/N ratios (DataFrames)
 
-Each result has ``.summary()`` (the command line's JSON keys), ``.to_frame()`` (a pandas
-DataFrame) and ``.plot(ax=None)`` (matplotlib; returns the Axes).
+Results have ``.summary()`` (the command line's JSON keys), ``.to_frame()`` (a DataFrame,
+units in the column names) and ``.plot(ax=None)`` (matplotlib; returns the Axes).
 
 Also here: the sets ``CYCLOID_DRIVE``, ``BUILT_IN_SETS`` (by name), ``load_toml``,
 ``Reducer``; ``decompose_te``, ``compliance_budget``; studies ``load_study``,

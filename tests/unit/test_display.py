@@ -256,3 +256,10 @@ def test_a_study_result_shows_its_analysis():
     ax = result.plot()
     assert ax.get_title() == "A"
     pyplot().close(ax.figure)
+
+
+def test_a_map_without_friction_says_so():
+    import dataclasses
+
+    text = repr(dataclasses.replace(known_map(), friction=False))
+    assert text.splitlines()[1].startswith("  friction") and "none in this parameter set" in text

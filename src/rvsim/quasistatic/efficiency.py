@@ -96,6 +96,9 @@ class EfficiencyResult(Headline):
         rated = self.rated_torque if math.isfinite(self.rated_torque) \
             else float(np.max(self.output_torque))
         rows = without_status(efficiency_rows(self.to_frame(), self.summary(), rated))
+        if not self.friction:            # the report's note: 1 by construction, not a figure
+            rows.insert(0, ("friction", "none in this parameter set: efficiency 1, no running "
+                            "or starting torque (set contact.friction_coefficient, friction.*)"))
         return (f"Efficiency map: {self.status}, {len(self.input_speed)} speeds x "
                 f"{len(self.output_torque)} torques ({number(self.wall_s, 's', 3)} wall)", rows)
 
