@@ -34,3 +34,4 @@ def test_the_reference_builds_without_a_warning(tmp_path):
     build(config)                             # raises mkdocs's Abort on a warning (strict)
     page = (tmp_path / "site" / "quasistatic" / "index.html").read_text(encoding="utf-8")
     assert "rvsim.quasistatic.efficiency.efficiency" in page and "EfficiencyResult" in page
+    assert ":func:" not in page and ":class:" not in page      # docs/api_hooks.py
