@@ -67,7 +67,8 @@ def te_plot(results: dict, steady_start: float, ax=None):
     ax.set_ylabel("transmission error [arcmin]")
     ax.grid(alpha=0.3)
     if len(results) > 1:
-        ax.legend(fontsize="x-small", ncol=min(len(results), 5), loc="lower left")
+        ax.legend(fontsize="x-small", ncol=min(len(results), 5), loc="lower left",
+                  bbox_to_anchor=(0.0, 1.0), frameon=False)     # above the axes, off the data
     inset = ax.inset_axes([0.56, 0.58, 0.42, 0.38])
     for result in results.values():
         inset.plot(result.time, result.te * arcmin, lw=0.5)
