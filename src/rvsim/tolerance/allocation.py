@@ -210,7 +210,7 @@ def _evaluate(study, store, folder, samples, tolerances, targets, workers, sched
     return achieved, share, failed
 
 
-def status_text(success: bool, calls: int, limit: int, evaluations: int) -> str:
+def status_text(success: bool, calls: int, limit: int | None, evaluations: int) -> str:
     """The allocation's end in plain words (SciPy's COBYLA message is kept beside it as
     ``optimizer_message``): converged, or stopped at the --max-evaluations limit, or stopped
     otherwise; the tolerances reported are the cheapest that met every target."""
@@ -218,8 +218,9 @@ def status_text(success: bool, calls: int, limit: int, evaluations: int) -> str:
     if success:
         return (f"converged: the search's steps fell below its tolerance after {done}; the "
                 "cheapest tolerances that met every target are reported")
-    if calls >= limit:
-        return (f"stopped at the evaluation limit (--max-evaluations {limit}) before "
+    if limit is None or calls >= limit:
+        given = "" if limit is None else f" {limit}"
+        return (f"stopped at the evaluation limit (--max-evaluations{given}) before "
                 f"converging, after {done}: the cheapest tolerances found so far that meet "
                 "every target are reported; a larger --max-evaluations may loosen them further")
     return (f"stopped before converging after {done} (see optimizer_message): the cheapest "

@@ -260,6 +260,20 @@ def before_after_figure(result: dict):
     return fig
 
 
+def _older_status(result: dict) -> str:
+    """The plain status of an allocation.json written before ``status_text`` (its status was
+    "ok" or "stopped: " and SciPy's message)."""
+    from .allocation import status_text
+
+    status = str(result.get("status", ""))
+    evaluations = int(result.get("evaluations", 0))
+    if status == "ok":
+        return status_text(True, 0, None, evaluations)
+    if "MAXFUN" in status:
+        return status_text(False, 0, None, evaluations)
+    return status_text(False, 0, 1 << 30, evaluations) + (f" ({status})" if status else "")
+
+
 def write_allocation_report(folder: Path, result: dict) -> Path:
     from ..analysis.headline import allocation_rows
     from ..html import page as _page, png as _png, summary_block, table as _table
@@ -268,7 +282,7 @@ def write_allocation_report(folder: Path, result: dict) -> Path:
     met = [t.get("achieved") is not None and Target(
         t["metric"], t.get("percentile"), t["limit"], t["target"]).margin(t["achieved"]) >= 0.0
         for t in result["targets"]]
-    status = result.get("status_text") or result["status"]   # allocation.json of older versions
+    status = result.get("status_text") or _older_status(result)
     columns = {"name": "name", "unit": "unit", "given": "given", "allocated": "allocated",
                "tightest": "tightest", "loosest": "loosest", "weight": "cost weight [-]",
                "exponent": "cost exponent [-]"}
