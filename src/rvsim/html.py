@@ -62,7 +62,9 @@ def table(frame: pd.DataFrame, *, index: bool = True, highlight=None) -> str:
     rows.append("<tr>" + "".join(head) + "</tr>")
     for idx, row in frame.iterrows():
         cls = ' class="sig"' if highlight and idx in highlight else ""
-        cells = [f'<td class="l">{html.escape(str(idx))}</td>'] if index else []
+        # a number in the index as it reads (1500, not 1500.0)
+        label = f"{idx:g}" if isinstance(idx, (float, np.floating)) else str(idx)
+        cells = [f'<td class="l">{html.escape(label)}</td>'] if index else []
         for value in row:
             numeric = isinstance(value, (int, float, np.number)) and not isinstance(value, bool)
             if isinstance(value, float):
