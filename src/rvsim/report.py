@@ -412,8 +412,8 @@ def _speed_note(result, reducer) -> str:
         text.append(f"Once the {op.load_torque:g} N*m load has taken up the play (t >= "
                     f"{op.steady_start:g} s) it stays between {lo:.3g} and {hi:.3g} deg/s "
                     f"({100 * (lo / rigid - 1):+.1f} % to {100 * (hi / rigid - 1):+.1f} "
-                    f"% of the rigid drive's): what remains is the torsional vibration of the loaded "
-                    f"drive{_speed_peaks(result, reducer)}.")
+                    f"% from the rigid drive's): what remains is the torsional vibration of the "
+                    f"loaded drive{_speed_peaks(result, reducer)}.")
     return "<p class='note'>" + html.escape(" ".join(text)) + "</p>"
 
 
