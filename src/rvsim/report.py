@@ -510,7 +510,8 @@ def write_ltca_report(result, reducer, path: str | Path) -> Path:
     lines = pd.DataFrame({"order": orders, "amplitude [arcmin]": amplitude / ARCMIN})
     floor = 1e-9 * max(float(lines["amplitude [arcmin]"].max()), 1e-300)  # round-off lines
     lines = lines[(lines["order"] > 0) & (lines["amplitude [arcmin]"] > floor)]
-    lines = lines.nlargest(10, "amplitude [arcmin]").set_index("order")
+    lines = lines.nlargest(10, "amplitude [arcmin]").rename(columns={"order": "order [-]"}
+                                                            ).set_index("order [-]")
     names = {}
     for name, order in marks.items():
         names.setdefault(order, []).append(name)
