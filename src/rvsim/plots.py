@@ -20,23 +20,33 @@ _ARCMIN = math.pi / 10800.0
 _pyplot = pyplot
 
 
-def speed_plot(result, fig=None):
-    """Input and output speed against time (paper Fig. 4), each on its own panel and scale
-    [deg/s, rpm on the right]: drawn on one axis with the output multiplied by the ratio, the
-    output's ripple hid the input (issue 34 item 2)."""
+def speed_plot(result, ax=None, *, fig=None):
+    """Input and output speed against time (paper Fig. 4), each on its own scale: drawn on
+    one axis with the output multiplied by the ratio, the output's ripple hid the input
+    (issue 34 item 2).  By default (or into ``fig``) two panels sharing the time axis [deg/s,
+    rpm on the right]; into a given ``ax``, the input on it and the output on a twin y-axis."""
     plt = pyplot()
+    deg = 180.0 / math.pi
+    if ax is not None:
+        ax.plot(result.time, result.omega_in * deg, color="C0", lw=0.8, label="input shaft")
+        ax.set_ylabel("input shaft [deg/s]", color="C0")
+        twin = ax.twinx()
+        twin.plot(result.time, result.omega_out * deg, color="C1", lw=0.8, label="output")
+        twin.set_ylabel("output (carrier) [deg/s]", color="C1")
+        ax.set_xlabel("time [s]")
+        ax.grid(alpha=0.3)
+        return ax.figure
     if fig is None:
         fig = plt.figure(figsize=(7, 4.4))
     top, bottom = fig.subplots(2, 1, sharex=True)
-    deg = 180.0 / math.pi
     rpm = deg / 6.0                       # deg/s per rpm
-    for ax, omega, name, color in ((top, result.omega_in, "input shaft", "C0"),
-                                   (bottom, result.omega_out, "output (carrier)", "C1")):
-        ax.plot(result.time, omega * deg, color=color, lw=0.8)
-        ax.set_ylabel(f"{name}\n[deg/s]")
-        ax.secondary_yaxis("right", functions=(lambda v: v / rpm, lambda v: v * rpm)
-                           ).set_ylabel("[rpm]")
-        ax.grid(alpha=0.3)
+    for panel, omega, name, color in ((top, result.omega_in, "input shaft", "C0"),
+                                      (bottom, result.omega_out, "output (carrier)", "C1")):
+        panel.plot(result.time, omega * deg, color=color, lw=0.8)
+        panel.set_ylabel(f"{name}\n[deg/s]")
+        panel.secondary_yaxis("right", functions=(lambda v: v / rpm, lambda v: v * rpm)
+                              ).set_ylabel("[rpm]")
+        panel.grid(alpha=0.3)
     bottom.set_xlabel("time [s]")
     fig.tight_layout()
     return fig

@@ -43,6 +43,11 @@ def test_speed_plot_draws_the_output_on_its_own_scale():
     assert top.lines[0].get_ydata().max() == pytest.approx(7000.0, rel=1e-12)       # deg/s
     assert bottom.lines[0].get_ydata().max() == pytest.approx(7000.0 / 121, rel=1e-12)
     pyplot().close(fig)
+    fig, ax = pyplot().subplots()          # into a caller's axis: the output on a twin axis
+    speed_plot(_run(), ax=ax)
+    assert [a.lines[0].get_ydata().max() for a in fig.axes] == pytest.approx(
+        [7000.0, 7000.0 / 121], rel=1e-12)
+    pyplot().close(fig)
 
 
 def test_order_labels_do_not_overlap_on_a_log_axis():
