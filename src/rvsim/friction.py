@@ -13,7 +13,7 @@ from .parameters import Reducer
 
 __all__ = ["TYPICAL_FRICTION", "TYPICAL_FRICTION_SOURCES", "gear_loss_factor",
            "bearing_diameters", "pin_friction_coefficient", "has_friction", "fill_constants",
-           "lubricant_viscosity", "seal_torques", "check_losses"]
+           "lubricant_viscosity", "seal_torques", "seal_limits", "check_losses"]
 
 from .parameters.friction_values import TYPICAL_FRICTION, TYPICAL_FRICTION_SOURCES  # noqa: E402,F401
 
@@ -68,7 +68,8 @@ def lubricant_viscosity(reducer: Reducer) -> float:
     ``friction.oil_viscosity_100`` the ASTM D341 law through it and ``friction.oil_viscosity``
     (40 degC), else ``friction.oil_viscosity`` itself, which then only holds at 40 degC (another
     temperature without a law is refused).  Outside the law's range (below the cloud point,
-    or hotter than where it gives 2 mm^2/s) raises :class:`ParameterError`."""
+    above ``friction.oil_max_temperature``, or hotter than where it gives 2 mm^2/s) raises
+    :class:`ParameterError`."""
     from .errors import ParameterError
     from .parameters._io import SI_CEILING
     from .physics.losses import (REFERENCE_TEMPERATURES, WALTHER_MIN_VISCOSITY,
@@ -94,6 +95,15 @@ def lubricant_viscosity(reducer: Reducer) -> float:
         raise ParameterError("operating.temperature", f"{temperature:g} degC is below the "
                              f"lubricant's cloud point friction.oil_cloud_point = "
                              f"{f.oil_cloud_point:g} degC (ASTM D341 holds from it up)")
+    if f.oil_max_temperature <= f.oil_cloud_point:
+        raise ParameterError("friction.oil_max_temperature", f"{f.oil_max_temperature:g} degC "
+                             f"must be above the cloud point friction.oil_cloud_point = "
+                             f"{f.oil_cloud_point:g} degC")
+    if temperature > f.oil_max_temperature:
+        raise ParameterError("operating.temperature", f"{temperature:g} degC is above the "
+                             f"lubricant's highest temperature friction.oil_max_temperature = "
+                             f"{f.oil_max_temperature:g} degC (mineral base oils degrade from "
+                             "110-150 degC)")
     try:
         nu = walther_viscosity(temperature, f.oil_viscosity, f.oil_viscosity_100)
     except OverflowError:      # 10^(10^z) beyond a double: the law far below 40 degC
@@ -109,20 +119,40 @@ def lubricant_viscosity(reducer: Reducer) -> float:
     return nu
 
 
+def seal_limits(reducer: Reducer) -> tuple[tuple[float, str], tuple[float, str]]:
+    """The largest lip diameter [m] of the input and of the output seals, each with the part
+    that bounds it: the input shaft passes through the discs' central bore (RV: to the sun
+    gear; single stage: the eccentric shaft in the discs' bearing bore), so its seal is at
+    most the bore's diameter; the output seal closes the flange in the housing, which holds
+    the pin ring, so it is at most the pin ring's outer diameter 2 (r_p + r_rp), the largest
+    diameter of the reducer's own geometry (docs/parameters.md, "friction")."""
+    c = reducer.cycloid
+    return ((2.0 * c.disc_bore_radius, "the discs' central bore the input shaft passes "
+                                       "through, 2 cycloid.disc_bore_radius"),
+            (2.0 * (c.pin_circle_radius + c.pin_radius), "the pin ring's outer diameter, "
+             "2 (cycloid.pin_circle_radius + cycloid.pin_radius)"))
+
+
 def seal_torques(reducer: Reducer) -> tuple[float, float]:
     """Drag torques [N*m] of the input shaft's and of the output's lip seals, all seals of
     each together (ISO/TR 14179-2, :func:`rvsim.physics.losses.seal_torque`).  A seal count
-    without its diameter raises :class:`ParameterError`."""
+    without its diameter, or a diameter larger than the part the seal sits on
+    (:func:`seal_limits`), raises :class:`ParameterError`."""
     from .errors import ParameterError
     from .physics.losses import seal_torque
 
     f = reducer.friction
     torques = []
-    for side, seals, diameter in (("input", f.input_seal_count, f.input_seal_diameter),
-                                  ("output", f.output_seal_count, f.output_seal_diameter)):
+    for side, seals, diameter, (limit, part) in zip(
+            ("input", "output"), (f.input_seal_count, f.output_seal_count),
+            (f.input_seal_diameter, f.output_seal_diameter), seal_limits(reducer)):
         if seals > 0 and diameter <= 0.0:
             raise ParameterError(f"friction.{side}_seal_diameter", f"must be given (> 0 mm) "
                                  f"with friction.{side}_seal_count = {seals}")
+        if seals > 0 and diameter > limit:
+            raise ParameterError(f"friction.{side}_seal_diameter", f"{diameter * 1e3:g} mm is "
+                                 f"larger than {part} ({limit * 1e3:g} mm): the seal cannot "
+                                 "sit on the reducer")
         torques.append(seals * seal_torque(diameter) if seals > 0 else 0.0)
     return torques[0], torques[1]
 

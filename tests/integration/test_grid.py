@@ -132,7 +132,10 @@ def test_a_grid_whose_points_all_fail_says_so_and_exits_1(tmp_path):
     assert res.code == 1
     assert res.err == ("rvsim: error: grid: all 1 points failed (first: runaway_penetration: "
                        "simulation runaway penetration at step 5); their rows are in "
-                       f"{tmp_path / 'out'}/grid.csv\n")
+                       f"{tmp_path / 'out'}/grid.csv\n"
+                       "rvsim: warning: --speeds (8000 rpm at the input, ratio 29): 275.9 rpm "
+                       "at the output is above the allowable output speed of cycloid-drive, "
+                       "70 rpm (rating.allowable_output_speed, 100 % duty)\n")
     table = pd.read_csv(tmp_path / "out" / "grid.csv")
     assert table["status"].tolist() == ["runaway_penetration"]
 

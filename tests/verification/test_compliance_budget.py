@@ -261,20 +261,21 @@ def test_bad_arguments_name_their_field(kwargs, field):
     assert info.value.field == field
 
 
-@pytest.mark.parametrize("factor, status", [(1e6, "not_converged"),
-                                            (1e8, "singular_stiffness")])
-def test_a_failed_stiffened_test_is_a_status_naming_the_element(factor, status):
-    # pins 1e6 x stiffer: the solver's tolerance is below the round-off of forces that stiff;
-    # 1e8 x: the condensed stiffness cannot be inverted
+@pytest.mark.parametrize("factor, element, status", [
+    (1e7, "arm_bearings", "not_converged"), (1e8, "pins", "singular_stiffness")])
+def test_a_failed_stiffened_test_is_a_status_naming_the_element(factor, element, status):
+    # arm bushings 1e7 x stiffer: the solver's tolerance is below the round-off of forces that
+    # stiff, even by continuation in the factor (pins converge there: share 14.25 % at 1e4 to
+    # 1e7 x); pins 1e8 x: the condensed stiffness cannot be inverted
     budget = compliance_budget(RV40E, points_per_branch=POINTS, factor=factor,
-                               elements=("pins",))
-    assert budget.status == f"{status} (pins stiffened)"
-    assert budget.status.endswith("(pins stiffened)") and np.isnan(budget.shares[0])
+                               elements=(element,))
+    assert budget.status == f"{status} ({element} stiffened)"
+    assert np.isnan(budget.shares[0])
     assert budget.summary()["elements"][0]["share"] is None
 
 
 def test_a_failed_reference_test_fails_the_whole_budget():
     budget = compliance_budget(RV40E, points_per_branch=POINTS,
-                               base={"pins": 1e6, "arm_bearings": 1e6})
+                               base={"arm_bearings": 1e8})
     assert budget.status == "not_converged (reference test)"
     assert np.all(np.isnan(budget.shares)) and math.isnan(budget.rigidity)

@@ -127,6 +127,20 @@ def check_load(reducer: Reducer, torque: float, field: str) -> None:
         warn(note)
 
 
+def check_input_speeds(reducer: Reducer, speeds_rpm, field: str) -> None:
+    """Input speeds [rpm] against the reducer's allowable output speed, converted by the
+    ratio (rvsim.parameters.rating.check_output_speed): one warning line above it."""
+    from ..parameters.rating import check_output_speed
+    from ..units import TO_SI
+
+    fastest = max(speeds_rpm)
+    note = check_output_speed(reducer, fastest * TO_SI["rpm"] / abs(reducer.ratio),
+                              f"{field} ({fastest:g} rpm at the input, ratio "
+                              f"{abs(reducer.ratio):g})", refuse=False)
+    if note:
+        warn(note)
+
+
 def print_json(payload: Any) -> None:
     """One JSON object on stdout (NaN/inf become null so any JSON reader accepts it)."""
     json.dump(to_json_safe(payload), sys.stdout, indent=2, allow_nan=False)

@@ -12,8 +12,8 @@ import sys
 
 from ..errors import ParameterError
 from ..parameters import plain_number
-from ._common import (add_command, add_reducer_options, check_load, compile_time_text, print_json,
-                      reducer_from_args, with_compile_time)
+from ._common import (add_command, add_reducer_options, check_input_speeds, check_load,
+                      compile_time_text, print_json, reducer_from_args, with_compile_time)
 from ._quasistatic import _output_path, _solve, _write
 
 __all__ = ["register", "parse_list", "MAX_POINTS"]
@@ -59,9 +59,12 @@ def _efficiency(args: argparse.Namespace) -> int:
     if count > MAX_POINTS:
         raise ParameterError("--speeds", f"{count} points: at most {MAX_POINTS} speeds x torques")
     report = _output_path("--report", args.report, ".html")
+    csv = _output_path("--csv", args.csv, ".csv")
     reducer = reducer_from_args(args)
     if torques:
         check_load(reducer, max(torques), "--torques")
+    if speeds:
+        check_input_speeds(reducer, speeds, "--speeds")
     from ..quasistatic import efficiency
 
     result, code = _solve(lambda: efficiency(reducer, speeds_rpm=speeds, torques=torques),
@@ -72,6 +75,13 @@ def _efficiency(args: argparse.Namespace) -> int:
         from .._efficiency_report import write_efficiency_report
 
         _write("--report", report, lambda: write_efficiency_report(result, reducer, report))
+    if csv:
+        from .._files import atomic_outputs
+
+        # the points as rvsim calibrate --efficiency reads them, with their temperature
+        frame = result.to_frame().assign(temperature_c=result.temperature)
+        with atomic_outputs(csv) as (csv_tmp,):
+            _write("--csv", csv, lambda: frame.to_csv(csv_tmp, index=False))
     summary = result.summary()
     if not result.friction:
         note = ("no friction in this parameter set: efficiency 1 (set "
@@ -121,4 +131,8 @@ def register(sub) -> None:
                         "rated torque in 5 steps)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--report", metavar="FILE.html", help="write a self-contained HTML report")
+    p.add_argument("--csv", metavar="FILE.csv",
+                   help="write the points: input_speed_rpm, output_torque_nm, "
+                        "input_torque_nm, efficiency, temperature_c (what rvsim calibrate "
+                        "--efficiency reads)")
     p.set_defaults(func=_efficiency)

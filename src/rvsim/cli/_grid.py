@@ -12,9 +12,9 @@ import sys
 from pathlib import Path
 
 from ..errors import ParameterError
-from ._common import (add_command, add_reducer_options, check_load, check_output_file,
-                      check_output_folder, number, path_text, positive_int, print_json,
-                      reducer_from_args, stopped_line)
+from ._common import (add_command, add_reducer_options, check_input_speeds, check_load,
+                      check_output_file, check_output_folder, number, path_text, positive_int,
+                      print_json, reducer_from_args, stopped_line)
 from ._efficiency import parse_list
 
 __all__ = ["register", "MAX_GRID_POINTS"]
@@ -65,6 +65,7 @@ def _grid(args: argparse.Namespace) -> int:
     if report is not None and report.suffix.lower() != ".html":
         raise ParameterError("--report", f"{report}: the report is an .html file")
     base = reducer_from_args(args)
+    check_input_speeds(base, speeds, "--speeds")
     from ..doe._workers import WorkerStartError
     from ..doe.grid import grid_points, progress_to_stderr, run_grid, write_outputs
     from ..dynamics.simulate import default_time_step

@@ -126,6 +126,7 @@ def _hysteresis(args: argparse.Namespace) -> int:
     _check_budget_options(args)
     report = _output_path("--report", args.report, ".html")
     export = _output_path("--export", args.export, ".json")
+    csv = _output_path("--csv", args.csv, ".csv")
     reducer = reducer_from_args(args)
     check_load(reducer, reducer.rating.rated_torque if args.rated_torque is None
                else args.rated_torque,
@@ -162,7 +163,11 @@ def _hysteresis(args: argparse.Namespace) -> int:
         model = joint_model(result, te_run, reducer)
     from .._files import atomic_outputs
 
-    with atomic_outputs(export, report) as (export_tmp, report_tmp):      # both or neither
+    with atomic_outputs(export, report, csv) as (export_tmp, report_tmp, csv_tmp):  # all or none
+        if csv:
+            from ..testrig.curves import loop_table
+
+            _write("--csv", csv, lambda: loop_table(result).to_csv(csv_tmp, index=False))
         if export:
             from ..joint_model import write_joint_model
 
@@ -252,7 +257,19 @@ def _life(args: argparse.Namespace) -> int:
 
     rpm = reducer.rating.rated_output_speed / RPM if args.output_speed is None \
         else args.output_speed
+    from ..parameters.rating import check_output_speed
+
+    check_output_speed(reducer, rpm * RPM, "rating.rated_output_speed" if args.output_speed
+                       is None else "--output-speed", refuse=True)
     check_life_inputs(reducer, 1.0, rpm * RPM)      # the reducer: RV with rolling bearings
+    if args.radial_load or args.moment or args.thrust:
+        from ..physics.rating_life import angular_contact_factors
+        from ..quasistatic.bearing_life import check_static_capacity
+
+        angular_contact_factors(reducer.bearings.main_contact_angle,
+                                "bearings.main_contact_angle")
+        check_static_capacity(reducer, args.radial_load, args.moment, args.thrust,
+                              ("--radial-load", "--moment", "--thrust"))
     check_positions(reducer, args.positions, "--positions")
     check_load(reducer, reducer.rating.rated_torque if args.torque is None else args.torque,
                "rating.rated_torque" if args.torque is None else "--torque")
@@ -325,6 +342,9 @@ def register(sub) -> None:
     p.add_argument("--rated-torque", type=number, metavar="NM",
                    help="rated torque [N*m] (default: the reducer's rating.rated_torque, "
                         "412 N*m for the RV-40E)")
+    p.add_argument("--csv", metavar="FILE.csv",
+                   help="write the loop: torque_nm [N*m], twist_arcmin [arcmin], branch "
+                        "(+1 rising, -1 falling), what rvsim calibrate --loop reads")
     p.add_argument("--export", metavar="FILE.json",
                    help="write the joint model for robot simulators (docs/joint_model.md)")
     p.add_argument("--budget", action="store_true",

@@ -132,6 +132,9 @@ def _calibrate(args: argparse.Namespace) -> int:
     if not 32 <= args.positions <= 8192:
         raise ParameterError("--positions", f"must be 32 to 8192 (got {args.positions})")
     names = [n.strip() for n in args.fit.split(",") if n.strip()]
+    if args.path is None and not args.loops and args.efficiency is None:
+        raise ParameterError("FILE_OR_FOLDER", "give recordings, --loop FILE.csv or "
+                             "--efficiency FILE.csv to fit")
     reducer = reducer_from_args(args)
     from ..analysis.sampling import check_positions
 
@@ -140,11 +143,19 @@ def _calibrate(args: argparse.Namespace) -> int:
     from ..parameters._io import toml_text
     from ..testrig.bench import analyse_path
     from ..testrig.calibration import calibrate, fitted_names
+    from ..testrig.curves import read_efficiency, read_loop
 
     fitted_names(names)                    # before the recordings are read
-    analysed = analyse_path(args.path, reducer, column_map)
+    loops = [read_loop(path) for path in args.loops]
+    for loop in loops:
+        check_load(reducer, float(abs(loop.torque).max()), f"--loop {loop.path.name}")
+    efficiency = None if args.efficiency is None else read_efficiency(args.efficiency)
+    if efficiency is not None:
+        check_load(reducer, float(efficiency.torque.max()), "--efficiency output_torque_nm")
+    analysed = [] if args.path is None else analyse_path(args.path, reducer, column_map)
     _check_model_loads(analysed, reducer)
-    result = calibrate(analysed, reducer, names, positions=args.positions)
+    result = calibrate(analysed, reducer, names, positions=args.positions, loops=loops,
+                       efficiency=efficiency)
     from .._files import atomic_outputs
 
     out.mkdir(parents=True, exist_ok=True)
@@ -153,8 +164,10 @@ def _calibrate(args: argparse.Namespace) -> int:
     # used with --params as one (an earlier run's fitted.toml is removed with it)
     fitted = out / "fitted.toml" if payload["status"] == "ok" else None
     # the fitted set says what it is (its name shows in every report made with it)
+    sources = ([Path(args.path).name] if args.path else []) + [Path(p).name for p in args.loops] \
+        + ([Path(args.efficiency).name] if args.efficiency else [])
     calibrated = dataclasses.replace(result.reducer, name=f"{reducer.name}, calibrated to "
-                                     f"{Path(args.path).name}")
+                                     f"{', '.join(sources)}")
     payload["fitted_params"] = None if fitted is None else str(fitted)
     with atomic_outputs(fitted, out / "calibration.json") as (fitted_tmp, payload_tmp):
         if fitted_tmp is not None:
@@ -166,9 +179,13 @@ def _calibrate(args: argparse.Namespace) -> int:
     if args.json:
         print_json(payload)
     else:
+        unit = payload["residual_unit"]
+        key = "arcsec" if unit == "arcsec" else "percent"
         print(f"fitted {len(names)} parameters to {payload['residuals']} residuals "
-              f"({payload['evaluations']} model evaluations): RMS {payload['rms_start_arcsec']:.3f}"
-              f" -> {payload['rms_arcsec']:.3f} arcsec, status {payload['status']}")
+              f"({payload['evaluations']} model evaluations): RMS "
+              f"{payload[f'rms_start_{key}']:.3f} -> {payload[f'rms_{key}']:.3f} "
+              f"{'arcsec' if unit == 'arcsec' else 'percentage points'}, status "
+              f"{payload['status']}")
         for name, p in payload["parameters"].items():
             lo, hi = p["ci95"]
             interval = "not identifiable" if lo is None else f"95 % CI {lo:.6g} .. {hi:.6g}"
@@ -183,10 +200,12 @@ def _calibrate(args: argparse.Namespace) -> int:
     return 0 if payload["status"] == "ok" else 1
 
 
-def _inputs(p: argparse.ArgumentParser) -> None:
+def _inputs(p: argparse.ArgumentParser, optional: bool = False) -> None:
     p.add_argument("path", metavar="FILE_OR_FOLDER", type=path_text,
+                   nargs="?" if optional else None,
                    help="a recording (.csv, .parquet) or a folder of them (with an optional "
-                        "manifest.csv)")
+                        "manifest.csv)" + (" (optional with --loop or --efficiency)"
+                                           if optional else ""))
     p.add_argument("--map", metavar="FILE.toml", type=path_text,
                    help="column names, units and ratio (docs/user_guide.md, Test-bench data)")
     p.add_argument("--column", metavar="QUANTITY=COLUMN[:UNIT[:COUNTS]]", action="append",
@@ -220,15 +239,29 @@ def register(sub) -> None:
 
     p = add_command(sub, "calibrate", "fit uncertain parameters to bench recordings",
                     "Least-squares fit of the named parameters to the measured TE curves and "
-                    "torque-reversal loops (quasi-static model), with 95 % confidence "
+                    "torque-reversal loops, loop curves (--loop) or, on their own, efficiency "
+                    "points (--efficiency) (quasi-static model), with 95 % confidence "
                     "intervals from the Jacobian and the correlation of the fitted "
                     "parameters; writes OUT/fitted.toml (for --params) and "
                     "OUT/calibration.json.",
                     ["rvsim calibrate docs/examples/testrig --params base.toml "
                      "--fit errors.disc_runout,clearances.crank_arm_bushing --out fit",
+                     "rvsim calibrate --loop docs/examples/hysteresis_loop.csv "
+                     "--fit stiffness.pins,stiffness.support_bearings --out fit",
+                     "rvsim calibrate --efficiency points.csv --params RV-40E-bearings "
+                     "--fit friction.arm_bearing_f0,contact.friction_coefficient --out fit",
                      "rvsim calibrate bench/ --fit contact.bushing_stiffness_factor --out fit "
                      "--json"])
-    _inputs(p)
+    _inputs(p, optional=True)
+    p.add_argument("--loop", metavar="FILE.csv", action="append", default=[], dest="loops",
+                   type=path_text,
+                   help="a torque-reversal curve: columns torque_nm [N*m], twist_arcmin "
+                        "[arcmin], optional branch (+1/-1), as rvsim hysteresis --csv writes "
+                        "(repeatable)")
+    p.add_argument("--efficiency", metavar="FILE.csv", type=path_text,
+                   help="efficiency points: columns input_speed_rpm, output_torque_nm, "
+                        "efficiency (fraction), optional temperature_c [degC] and "
+                        "input_torque_nm; fitted on their own")
     p.add_argument("--fit", required=True, metavar="NAME,NAME,...",
                    help="parameters to fit (dotted names as --set takes)")
     p.add_argument("--out", required=True, metavar="DIR", type=path_text,

@@ -16,6 +16,7 @@ from ..geometry.deviations import bore_offsets, eccentric_errors, hole_offsets, 
 from ..geometry.involute import gear_geometry
 from ..parameters.fe_sizes import check_element_sizes
 from ..friction import fill_constants as fill_friction_constants
+from ..errors import ParameterError
 from ..parameters import Reducer
 from ..physics import _layout as L
 from ..physics._bearings import bushing_shift
@@ -357,8 +358,33 @@ def build_model(r: Reducer, time_step: float, scheme: str = EXPLICIT) -> KernelM
         d = L.DISC0 + L.DISC_STRIDE * kd
         q0[d] = P[L.ECC] * math.cos(kd * math.pi)
         q0[d + 1] = P[L.ECC] * math.sin(kd * math.pi)
-    return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses,
-                       _fe_tables(r, P, holes) if fe_disc else np.zeros((2, 0, 0)))
+    tables = _fe_tables(r, P, holes) if fe_disc else np.zeros((2, 0, 0))
+    P, tables = _scaled_stiffness(r, P, tables)
+    return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses, tables)
+
+
+def _scaled_stiffness(r: Reducer, P: np.ndarray, tables: np.ndarray):
+    """P and the FE disc tables with the ``stiffness.*`` scalings of ``r`` (the compliance
+    budget's stiffening, :func:`rvsim.physics.stiffening.stiffen`); unchanged, not copied,
+    when every factor is 1.  A factor other than 1 for a group the model lacks is a
+    ParameterError."""
+    from ..physics.stiffening import elements_in, stiffen
+
+    factors = {f.name: getattr(r.stiffness, f.name) for f in dataclasses.fields(r.stiffness)
+               if getattr(r.stiffness, f.name) != 1.0}
+    if not factors:
+        return P, tables
+    present = elements_in(P)
+    for name in factors:
+        if name not in present:
+            raise ParameterError(f"stiffness.{name}", f"this model has no such element (it "
+                                 f"has {', '.join(present)}): leave it at 1")
+    if "fe_disc" in factors and P[L.FE_MODES] > 0:
+        # the dynamic engine's disc modes come from the unscaled mesh (rvsim.fe.modes)
+        raise ParameterError("stiffness.fe_disc", "cannot be scaled with flexibility.fe_modes "
+                             "> 0 (the disc's modes are not scaled): leave it at 1 or set "
+                             "fe_modes = 0")
+    return stiffen(P, tables, factors)
 
 
 def _fe_tables(r: Reducer, P: np.ndarray, holes: np.ndarray) -> np.ndarray:

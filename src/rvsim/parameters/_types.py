@@ -17,7 +17,7 @@ from ._schema import choice, count, flag, quantity
 __all__ = [
     "Material", "Materials", "GearStage", "CycloidStage", "Crankshaft", "Errors", "Clearances",
     "Flexibility", "Operating", "ContactModel", "Rating", "Layout", "Friction", "Bearings", "Reducer",
-    "PartErrors",
+    "PartErrors", "Stiffness",
 ]
 
 #: ``layout.stages`` of the RV reducer (involute + cycloid stage) and of the single-stage drive
@@ -280,6 +280,10 @@ class Rating:
     rated_life: float = quantity(6000.0 * 3600.0, "h", "rated service life K at the rated "
                                  "torque and rated output speed (RV-E class: 6000 h)",
                                  positive=True)
+    allowable_output_speed: float = quantity(70.0 * _RPM, "rpm", "allowable output speed "
+                                             "at 100 % duty (RV-40E class: 70 rpm): faster "
+                                             "output speeds are refused by 'life' and "
+                                             "warned of elsewhere", positive=True)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -347,6 +351,10 @@ class Friction:
     oil_cloud_point: float = quantity(-20.0, "degC", "lowest temperature of the viscosity-"
                                       "temperature law (ASTM D341: from the lubricant's cloud "
                                       "point up)", minimum=-273.15, positive=True)
+    oil_max_temperature: float = quantity(150.0, "degC", "highest temperature of the "
+                                          "lubricant (mineral base oils degrade from 110-150 "
+                                          "degC): a hotter operating.temperature is refused",
+                                          minimum=-273.15, positive=True)
     input_seal_count: int = count(0, "radial lip seals on the input shaft", minimum=0)
     input_seal_diameter: float = quantity(0.0, "mm", "shaft diameter at the input seals' lips "
                                           "(ISO/TR 14179-2 drag)")
@@ -421,6 +429,39 @@ class Bearings:
 
 
 @dataclasses.dataclass(frozen=True)
+class Stiffness:
+    """Stiffness scalings of the compliance budget's element groups (issue 33 item 5).
+
+    Each factor s makes every force law of its group give s times its force at every approach,
+    the budget's stiffening (rvsim.physics.stiffening, docs/model.md section 12) applied by
+    every engine; 1 is the model as built.  The names are those of
+    ``rvsim hysteresis --budget`` (tests/unit/test_stiffness_scaling.py keeps them equal); a
+    factor other than 1 for a group the model does not have is refused.  What a calibration
+    to a bench's torque-reversal curve fits (docs/user_guide.md section 9).
+    """
+
+    gear_mesh: float = quantity(1.0, "-", "scales the sun-planet mesh stiffness (first stage)",
+                                positive=True)
+    input_coupling: float = quantity(1.0, "-", "single-stage: scales the input coupling "
+                                     "(input shaft - eccentric shaft)", positive=True)
+    arm_bearings: float = quantity(1.0, "-", "scales the force laws of the arm bearings "
+                                   "(bushings or needle rollers; single-stage: the discs' "
+                                   "bearings on the eccentric)", positive=True)
+    pins: float = quantity(1.0, "-", "scales the pin - disc contacts with the pin and tooth "
+                           "bodies", positive=True)
+    fe_disc: float = quantity(1.0, "-", "with model = fe and A: scales the finite-element "
+                              "discs' stiffness", positive=True)
+    fe_crank: float = quantity(1.0, "-", "with model = fe: scales the finite-element "
+                               "crankshafts' stiffness", positive=True)
+    support_bearings: float = quantity(1.0, "-", "scales the force laws of the crank support "
+                                       "bearings (bushings or tapered rollers)", positive=True)
+    fe_carrier: float = quantity(1.0, "-", "with model = fe: scales the finite-element carrier "
+                                 "and flange", positive=True)
+    output_pins: float = quantity(1.0, "-", "single-stage: scales the output pins in the "
+                                  "discs' holes", positive=True)
+
+
+@dataclasses.dataclass(frozen=True)
 class Reducer:
     """A complete RV reducer: geometry, materials, errors and operating point."""
 
@@ -439,6 +480,7 @@ class Reducer:
     layout: Layout = dataclasses.field(default_factory=Layout)
     friction: Friction = dataclasses.field(default_factory=Friction)
     bearings: Bearings = dataclasses.field(default_factory=Bearings)
+    stiffness: Stiffness = dataclasses.field(default_factory=Stiffness)
     #: per-part errors (issue 11; not in TOML / --set: a tolerance study draws them)
     parts: PartErrors = dataclasses.field(default_factory=PartErrors)
 

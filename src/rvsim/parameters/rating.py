@@ -14,7 +14,10 @@ import math
 
 from ..errors import ParameterError
 
-__all__ = ["check_torque", "check_rating", "peak_load"]
+__all__ = ["check_torque", "check_rating", "check_output_speed", "peak_load"]
+
+#: [rad/s] per rpm
+_RPM = 2.0 * math.pi / 60.0
 
 
 def peak_load(reducer) -> tuple[float, str]:
@@ -28,8 +31,9 @@ def peak_load(reducer) -> tuple[float, str]:
 
 
 def check_rating(reducer) -> None:
-    """The ratings in order: rated <= start/stop <= momentary (a set whose rated torque was
-    raised above its momentary maximum would refuse its own rated torque)."""
+    """The ratings in order: rated <= start/stop <= momentary torque, rated <= allowable
+    output speed (a set whose rated torque was raised above its momentary maximum would refuse
+    its own rated torque)."""
     g = reducer.rating
     if g.start_stop_torque < g.rated_torque:
         raise ParameterError("rating.start_stop_torque", f"must be at least the rated torque "
@@ -37,6 +41,10 @@ def check_rating(reducer) -> None:
     if g.momentary_torque < g.start_stop_torque:
         raise ParameterError("rating.momentary_torque", f"must be at least the start/stop "
                              f"torque {g.start_stop_torque:g} N*m (got {g.momentary_torque:g})")
+    if g.allowable_output_speed < g.rated_output_speed:
+        raise ParameterError("rating.allowable_output_speed", f"must be at least the rated "
+                             f"output speed {g.rated_output_speed / _RPM:g} rpm (got "
+                             f"{g.allowable_output_speed / _RPM:g})")
 
 
 def check_torque(reducer, torque: float, field: str) -> str | None:
@@ -59,3 +67,21 @@ def check_torque(reducer, torque: float, field: str) -> str | None:
         return (f"{field}: {load:g} N*m is above the rated torque of {reducer.name}, "
                 f"{g.rated_torque:g} N*m ({where}; rating.*)")
     return None
+
+
+def check_output_speed(reducer, speed: float, field: str, *, refuse: bool) -> str | None:
+    """An output speed [rad/s] (either sign) above the reducer's allowable output speed
+    (``rating.allowable_output_speed``, the catalogue's figure at 100 % duty): refused with
+    ``refuse`` (ParameterError naming ``field``: a rating life has no meaning beyond it), else
+    a warning text (the model runs, as above the rated torque); None within it.  A
+    non-finite speed is left to the caller's own check."""
+    check_rating(reducer)
+    rpm = abs(float(speed)) / _RPM
+    allowed = reducer.rating.allowable_output_speed / _RPM
+    if not math.isfinite(rpm) or rpm <= allowed:
+        return None
+    text = (f"{rpm:.4g} rpm at the output is above the allowable output speed of "
+            f"{reducer.name}, {allowed:g} rpm (rating.allowable_output_speed, 100 % duty)")
+    if refuse:
+        raise ParameterError(field, text)
+    return f"{field}: {text}"

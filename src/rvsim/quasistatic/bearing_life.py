@@ -18,7 +18,8 @@ from ..errors import ParameterError
 from ..parameters import Reducer
 
 __all__ = ["life", "LifeResult", "BearingLife", "crank_speed", "check_life_inputs",
-           "dynamic_ratings", "main_bearing_rows", "DEFAULT_POSITIONS"]
+           "dynamic_ratings", "main_bearing_rows", "DEFAULT_POSITIONS",
+           "check_static_capacity"]
 
 #: input positions over the output revolution whose loads are averaged (ltca's default)
 DEFAULT_POSITIONS = 360
@@ -128,8 +129,9 @@ def crank_speed(reducer: Reducer, output_speed: float) -> float:
 def check_life_inputs(reducer: Reducer, torque: float, output_speed: float,
                       **external: float) -> None:
     """Refuse what has no rating life: a single-stage drive, bushings only, a torque or an
-    output speed that is not positive, an ``external`` main-bearing load (name=value) that is
-    negative or not finite (ParameterError)."""
+    output speed that is not positive, an output speed above ``rating.allowable_output_speed``,
+    an ``external`` main-bearing load (name=value) that is negative or not finite
+    (ParameterError)."""
     if reducer.layout.single_stage:
         raise ParameterError("layout.stages", "rating life is modelled for the RV reducer's "
                              "crank bearings (layout.stages = 2) only")
@@ -143,6 +145,9 @@ def check_life_inputs(reducer: Reducer, torque: float, output_speed: float,
         if not math.isfinite(value) or value <= 0.0:
             raise ParameterError(name, f"must be a positive finite number (got {value:g} "
                                  f"{unit})")
+    from ..parameters.rating import check_output_speed
+
+    check_output_speed(reducer, output_speed, "output_speed", refuse=True)
     if b.support_rollers:      # before the quasi-static run: ISO 281 needs alpha > 0
         from ..physics.rating_life import tapered_factors
 
@@ -151,6 +156,34 @@ def check_life_inputs(reducer: Reducer, torque: float, output_speed: float,
         if not math.isfinite(value) or value < 0.0:
             raise ParameterError(name, f"must be zero or a positive finite number (got "
                                  f"{value:g})")
+
+
+def check_static_capacity(reducer: Reducer, radial_load: float, moment: float, thrust: float,
+                          names=("radial_load", "moment", "thrust")) -> None:
+    """Refuse external loads under which a main bearing row's equivalent load P (the life's
+    own, :func:`~rvsim.physics.rating_life.main_bearing_loads`) exceeds the row's basic static
+    load rating C_0 (ISO 76): the raceways deform permanently and a fatigue life says nothing
+    (``life --moment 1e12`` printed 1e-20 h as ok).  The ParameterError names the largest
+    of the three loads as a row force (``names``: radial, moment, thrust fields)."""
+    from ..physics import rating_life as iso
+
+    if not (radial_load or moment or thrust):
+        return
+    b = reducer.bearings
+    static = iso.ball_static_rating(b.main_ball_count, b.main_ball_diameter,
+                                    b.main_pitch_diameter, b.main_contact_angle,
+                                    field="bearings.main_ball_diameter")
+    load = max(max(iso.main_bearing_loads(radial_load, sign * moment, thrust, b.main_span,
+                                          b.main_contact_angle, "bearings.main_contact_angle"))
+               for sign in (1.0, -1.0))
+    if load <= static:
+        return
+    forces = (0.5 * abs(radial_load), abs(moment) / b.main_span, abs(thrust))
+    k = max(range(3), key=lambda i: forces[i])
+    given = (f"{radial_load:g} N", f"{moment:g} N*m", f"{thrust:g} N")[k]
+    raise ParameterError(names[k], f"{given}: a main bearing row's equivalent load {load:.4g} N "
+                         f"is above its basic static load rating C0 = {static:.4g} N (ISO 76): "
+                         "the raceways would deform permanently, a rating life says nothing")
 
 
 def main_bearing_rows(reducer: Reducer, rating: float, output_speed: float,
@@ -236,6 +269,7 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     if radial_load or moment or thrust:     # refused before the solve, not after
         iso.angular_contact_factors(reducer.bearings.main_contact_angle,
                                     "bearings.main_contact_angle")
+        check_static_capacity(reducer, radial_load, moment, thrust)
     start = time.perf_counter()
     running = dataclasses.replace(reducer, operating=dataclasses.replace(
         reducer.operating, input_speed=output_speed * abs(reducer.ratio)))

@@ -20,8 +20,8 @@ from ..parameters import Reducer, validate
 from ..units import from_si
 from .transmission import TOLERANCE
 
-__all__ = ["efficiency", "EfficiencyResult", "DEFAULT_SPEEDS_RPM", "DEFAULT_TORQUE_FRACTIONS",
-           "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM", "RESOLVED_TORQUE_FRACTION"]
+__all__ = ["efficiency", "efficiency_points", "EfficiencyResult", "DEFAULT_SPEEDS_RPM",
+           "DEFAULT_TORQUE_FRACTIONS", "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM", "RESOLVED_TORQUE_FRACTION"]
 
 RPM = 2.0 * math.pi / 60.0
 #: input speeds of the default map [rpm] (RV-40E, i = 121: output 4 to 25 rpm)
@@ -142,6 +142,61 @@ def _mean_input_torque(reducer, speed, torque, angles):
     return path.input_torque
 
 
+def _point_efficiency(reducer, speed, torque, angles) -> tuple[float, float]:
+    """(efficiency, mean input torque [N*m]) at input ``speed`` [rad/s], output ``torque``."""
+    mean = float(np.mean(_mean_input_torque(reducer, speed, torque, angles)))
+    return torque / (reducer.ratio * mean), mean
+
+
+def _angles(reducer: Reducer, positions: int) -> np.ndarray:
+    """Input angles of one point's sweep, forwards (the input turns in the sense that turns
+    the output forwards), ``positions`` over one crank revolution relative to the carrier."""
+    if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
+            or positions < 2:
+        raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
+    return math.copysign(1.0, reducer.ratio) * np.arange(positions) \
+        * _crank_period(reducer) / positions
+
+
+def _check_loads(reducer: Reducer, loads: np.ndarray, field: str) -> None:
+    """Output torques from the resolved floor up to what the reducer may carry."""
+    from ..parameters.rating import check_torque
+
+    rated = reducer.rating.rated_torque
+    floor = RESOLVED_TORQUE_FRACTION * rated
+    if np.any(loads < floor * (1.0 - 1e-9)):     # the floor itself, as printed, is in
+        raise ParameterError(field, f"output torques from {floor:.3g} N*m, "
+                             f"{RESOLVED_TORQUE_FRACTION:g} of the rated {rated:g} N*m (got "
+                             f"{loads.min():g}): below it the solver's tolerance is more than "
+                             "0.1 % of the input torque")
+    check_torque(reducer, float(np.max(loads)), field)
+
+
+def efficiency_points(reducer: Reducer, speeds_rpm, torques, *,
+                      positions: int = POSITIONS) -> np.ndarray:
+    """Efficiency at each (input speed [rpm], output torque [N*m]) pair, the map's formula
+    point by point (a calibration's points are not a grid); 1 for a reducer without
+    friction.  Raises as :func:`efficiency`."""
+    validate(reducer)
+    speeds = np.asarray(speeds_rpm, dtype=float).ravel()
+    loads = np.asarray(torques, dtype=float).ravel()
+    if speeds.shape != loads.shape or speeds.size == 0:
+        raise ParameterError("speeds", "one input speed per output torque, at least one")
+    if not (np.all(np.isfinite(speeds)) and np.all(speeds > 0)
+            and np.all(speeds <= MAX_SPEED_RPM)):
+        raise ParameterError("speeds", f"input speeds must be positive, up to "
+                             f"{MAX_SPEED_RPM:g} rpm")
+    _check_loads(reducer, loads, "torques")
+    from ..friction import has_friction, lubricant_viscosity
+
+    lubricant_viscosity(reducer)                  # refuses a temperature outside its law
+    if not has_friction(reducer):
+        return np.ones(speeds.size)
+    angles = _angles(reducer, positions)
+    return np.array([_point_efficiency(reducer, n * RPM, t, angles)[0]
+                     for n, t in zip(speeds, loads)])
+
+
 def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
                positions: int = POSITIONS) -> EfficiencyResult:
     """Efficiency map at the input ``speeds_rpm`` [rpm] and output ``torques`` [N*m]
@@ -161,35 +216,21 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
     rated = reducer.rating.rated_torque
     loads = _values("torques", np.array(DEFAULT_TORQUE_FRACTIONS) * rated if torques is None
                     else torques, allow_zero=False)
-    floor = RESOLVED_TORQUE_FRACTION * rated
-    if np.any(loads < floor * (1.0 - 1e-9)):     # the floor itself, as printed, is in
-        raise ParameterError("torques", f"output torques from {floor:.3g} N*m, "
-                             f"{RESOLVED_TORQUE_FRACTION:g} of the rated {rated:g} N*m (got "
-                             f"{loads.min():g}): below it the solver's tolerance is more than "
-                             "0.1 % of the input torque")
-    if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
-            or positions < 2:
-        raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
+    _check_loads(reducer, loads, "torques")
+    angles = _angles(reducer, positions)
     from ..friction import has_friction, lubricant_viscosity, seal_torques
-    from ..parameters.rating import check_torque
 
-    check_torque(reducer, float(np.max(loads)), "torques")
     viscosity = lubricant_viscosity(reducer)      # refuses a temperature outside its law
     seal_in, seal_out = seal_torques(reducer)
 
     clock = RunClock()      # the map's wall time, without numba compiling the solver
     ratio = reducer.ratio
-    # input angles forwards (the input turns in the sense that turns the output forwards)
-    angles = math.copysign(1.0, ratio) * np.arange(positions) * _crank_period(reducer) \
-        / positions
     eff = np.ones((len(speeds), len(loads)))
     t_in = np.zeros((len(speeds), len(loads)))
     no_load = np.zeros(len(speeds))
     for i, speed in enumerate(speeds):
         for j, load in enumerate(loads):
-            mean = float(np.mean(_mean_input_torque(reducer, speed, load, angles)))
-            t_in[i, j] = mean
-            eff[i, j] = load / (ratio * mean)
+            eff[i, j], t_in[i, j] = _point_efficiency(reducer, speed, load, angles)
         no_load[i] = float(np.mean(_mean_input_torque(reducer, speed, 0.0, angles)))
     starting = float(np.max(np.abs(_mean_input_torque(reducer, STARTING_SPEED_RPM * RPM, 0.0,
                                                       angles))))

@@ -92,7 +92,7 @@ def sweep_torques(rated: float, points_per_branch: int) -> tuple[np.ndarray, np.
 
 def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
                points_per_branch: int = 50, raise_on_failure: bool = True,
-               stiffen=None) -> HysteresisResult:
+               stiffen=None, torques=None) -> HysteresisResult:
     """Torque-reversal test with the input locked at 0 (rated torque default:
     reducer.rating.rated_torque).  ``torque`` is the torque applied to the output (positive
     turns it in the positive sense; the output load of the dynamic model and of :func:`ltca`
@@ -104,7 +104,15 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
 
     ``stiffen`` (element name -> factor, :mod:`rvsim.physics.stiffening`): the test of the
     model with those elements stiffer (the compliance budget, :mod:`rvsim.quasistatic.budget`).
+
+    ``torques`` [N*m]: the torque history of a recording to follow instead of the standard
+    sweep (a calibration to a measured loop, :mod:`rvsim.testrig.curves`), each sample's
+    branch from the sweep itself (:func:`rvsim.analysis.catalogue.sweep_branches`); its
+    largest magnitude is the test's rated torque and ``rated_torque`` and
+    ``points_per_branch`` are not used.
     """
+    if torques is not None:
+        return _follow(reducer, torques, stiffen, raise_on_failure)
     rated = _finite("rated_torque", reducer.rating.rated_torque if rated_torque is None
                     else rated_torque)
     if rated <= 0:
@@ -117,9 +125,35 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
             or points_per_branch < 2:
         raise ParameterError("points_per_branch",
                              f"must be an integer >= 2 (got {points_per_branch!r})")
-    from ..physics import _layout as L
 
     torque, branch = sweep_torques(rated, points_per_branch)
+    return _solve(reducer, torque, branch, rated, stiffen, raise_on_failure)
+
+
+def _follow(reducer: Reducer, torques, stiffen, raise_on_failure: bool) -> HysteresisResult:
+    """The test along the torque history ``torques`` (:func:`hysteresis`)."""
+    from ..analysis.catalogue import CurveError, sweep_branches
+    from ..parameters.rating import check_torque
+
+    torque = np.asarray(torques, dtype=float).ravel()
+    if not np.all(np.isfinite(torque)):
+        raise ParameterError("torques", "every torque must be a finite number")
+    try:
+        branch = sweep_branches(torque).astype(int)
+    except CurveError as exc:
+        raise ParameterError("torques", str(exc)) from None
+    rated = float(np.max(np.abs(torque)))
+    if rated <= 0:
+        raise ParameterError("torques", "the torques are all zero")
+    check_torque(reducer, rated, "torques")
+    return _solve(reducer, torque, branch, rated, stiffen, raise_on_failure)
+
+
+def _solve(reducer, torque, branch, rated, stiffen, raise_on_failure) -> HysteresisResult:
+    """Equilibrium along ``torque`` (applied to the output, input locked), friction following
+    ``branch``."""
+    from ..physics import _layout as L
+
     # the model's output load resists the motion: a load of -T is a torque T applied
     # friction follows the output's motion: turning with the torque's change (the first point
     # belongs to the first, decreasing quarter)

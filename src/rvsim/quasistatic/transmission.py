@@ -83,8 +83,10 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
 
     ``stiffen`` (element name -> factor; :func:`rvsim.physics.stiffening.stiffen`): those
     elements give that many times their force at every approach, for the compliance budget
-    (None: the model as it is, P untouched).  The contact stresses stay those of the
-    unstiffened pin contact law at the solved forces."""
+    (None: the model as it is, P untouched).  A point of such a path that does not converge
+    is solved again by continuation in the factor (:func:`_continued`) and the path goes on
+    from there.  The contact stresses stay those of the unstiffened pin contact law at the
+    solved forces."""
     from ..physics import _layout as L
     from ..physics.compliance import effective_modulus
     from ..dynamics.model import build_model
@@ -100,11 +102,8 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
     if not (np.all(np.isfinite(angle)) and np.all(np.isfinite(load))):
         raise ParameterError("torque", "the input angles and torques must be finite")
     model = build_model(reducer, 1e-5)
-    P, fe_tables = model.P, model.fe
-    if stiffen:
-        from ..physics.stiffening import stiffen as stiffened
-
-        P, fe_tables = stiffened(P, fe_tables, dict(stiffen))
+    factors = dict(stiffen or {})
+    P = model.P
     n, zp = len(angle), reducer.cycloid.pin_count
     scale = np.ones(L.N_DOF)
     # rotations times a length of their body: the crank circle and planet base radius (RV),
@@ -118,55 +117,153 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
                                                     else P[L.RB2])
     for d in range(2):
         scale[L.DISC0 + L.DISC_STRIDE * d + 2] = P[L.RG]
-    tol = TOLERANCE * reducer.rating.rated_torque / scale[L.CARRIER]
     m = reducer.materials
-    hertz = np.array([effective_modulus(m.cycloid_disc, m.pin), reducer.cycloid.disc_width])
-    if q_start is None:
-        q_start = np.zeros(L.N_DOF)
-        S.kinematic_pose(P, angle[0], model.holes, q_start)
-    out = PathSolution(q=np.zeros((n, L.N_DOF)), pin_forces=np.zeros((n, 2, zp)),
-                       contact_stress=np.zeros((n, 2, zp)),
-                       channels=np.zeros((n, L.N_CHANNELS)), mesh_state=np.zeros((n, 2, 2)),
-                       torsional_stiffness=np.full(n, np.nan),
-                       iterations=np.zeros(n, dtype=np.int64), input_torque=np.zeros(n),
-                       status_codes=np.full(n, -1, dtype=np.int64), status="ok", wall_s=0.0,
-                       output_pin_forces=np.zeros((n, 2, int(P[L.OUT_COUNT]))))
     from ..friction import has_friction
 
     moving = np.zeros(n) if input_speed is None else np.broadcast_to(
         np.asarray(input_speed, dtype=float), (n,)).copy()
     turning = np.zeros(n) if carrier_rate is None else np.broadcast_to(
         np.asarray(carrier_rate, dtype=float), (n,)).copy()
-    P_fric = np.zeros(0)                  # frictionless (S.sweep)
-    friction = np.zeros((n, L.N_DOF))
-    if has_friction(reducer) and (moving.any() or turning.any()):
-        P_fric = P.copy()
-        P_fric[L.ZETA] = 0.0
-        P_fric[L.V_FRIC] = QS_FRICTION_VELOCITY
-        out.friction_forces = friction
+    problem = _Problem(model=model, scale=scale,
+                       tol=TOLERANCE * reducer.rating.rated_torque / scale[L.CARRIER],
+                       hertz=np.array([effective_modulus(m.cycloid_disc, m.pin),
+                                       reducer.cycloid.disc_width]),
+                       angle=angle, load=load, moving=moving, turning=turning,
+                       friction=has_friction(reducer) and bool(moving.any() or turning.any()))
+    if q_start is None:
+        q_start = np.zeros(L.N_DOF)
+        S.kinematic_pose(P, angle[0], model.holes, q_start)
+    out = _new_solution(n, zp, int(P[L.OUT_COUNT]))
+    if problem.friction:
+        out.friction_forces = np.zeros((n, L.N_DOF))
+    constants = _constants(model, factors, 1.0, problem.friction)
     clock = RunClock()      # the solve's wall time, without numba compiling the solver
     q0 = np.asarray(q_start, dtype=float)
-    solved = 0
+    solved, continued = 0, {}
     while solved < n:
         part = slice(solved, min(solved + CHUNK, n))
-        done = S.sweep(P, hertz, q0, angle[part], load[part], scale, tol, MAX_ITERATIONS,
-                       model.pins, model.holes, model.crank_angles, model.mesh_phase,
-                       out.q[part], out.pin_forces[part], out.contact_stress[part],
-                       out.channels[part], out.mesh_state[part],
-                       out.torsional_stiffness[part], out.status_codes[part],
-                       out.iterations[part], out.input_torque[part],
-                       out.output_pin_forces[part], P_fric, moving[part], turning[part],
-                       friction[part], fe_tables)
+        done = _sweep(problem, constants, q0, part, out, part)
         solved += done
         check_stop()        # a Ctrl-C or SIGTERM whose exception was swallowed on its way
-        if done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK:
+        failed = done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK
+        k = solved - 1
+        if failed and factors and k not in continued:
+            q, iterations = _continued(problem, factors, out.q[k - 1] if k else q0, k)
+            continued[k] = iterations
+            if q is not None:
+                solved, q0 = k, q
+                continue
+        if failed:
             break
         q0 = out.q[solved - 1].copy()
+    for k, iterations in continued.items():
+        out.iterations[k] += iterations
     out.wall_s, _ = clock.split()
-    out.force_resolution = tol
+    out.force_resolution = problem.tol
     worst = int(out.status_codes[solved - 1]) if solved else S.STATUS_NOT_CONVERGED
     out.status = S.STATUS_TEXT[worst]
     return out
+
+
+@dataclasses.dataclass
+class _Problem:
+    """What every part of one path solves: the model, the coordinates' scales, the force
+    tolerance [N], (E*, disc width) for the Hertz pressures and the path's points."""
+
+    model: object
+    scale: np.ndarray
+    tol: float
+    hertz: np.ndarray
+    angle: np.ndarray
+    load: np.ndarray
+    moving: np.ndarray             # input speed of each point [rad/s]
+    turning: np.ndarray            # output speed of each point [rad/s]
+    friction: bool                 # the friction follows the direction of travel
+
+
+def _new_solution(n: int, zp: int, n_out: int) -> PathSolution:
+    """An unsolved path of ``n`` points (every status -1)."""
+    from ..physics import _layout as L
+
+    return PathSolution(q=np.zeros((n, L.N_DOF)), pin_forces=np.zeros((n, 2, zp)),
+                        contact_stress=np.zeros((n, 2, zp)),
+                        channels=np.zeros((n, L.N_CHANNELS)), mesh_state=np.zeros((n, 2, 2)),
+                        torsional_stiffness=np.full(n, np.nan),
+                        iterations=np.zeros(n, dtype=np.int64), input_torque=np.zeros(n),
+                        status_codes=np.full(n, -1, dtype=np.int64), status="ok", wall_s=0.0,
+                        output_pin_forces=np.zeros((n, 2, n_out)))
+
+
+def _constants(model, factors: dict, power: float, friction: bool) -> tuple:
+    """(P, FE disc tables, friction constants) of ``model`` with each element of ``factors``
+    stiffened factor ** ``power`` times (``factors`` empty: the model's own arrays, not
+    copied); the friction constants are an empty vector for the frictionless model."""
+    from ..physics import _layout as L
+
+    P, fe_tables = model.P, model.fe
+    if factors:
+        from ..physics.stiffening import stiffen as stiffened
+
+        P, fe_tables = stiffened(P, fe_tables, {name: s if power == 1.0 else s ** power
+                                                for name, s in factors.items()})
+    P_fric = np.zeros(0)                  # frictionless (S.sweep)
+    if friction:
+        P_fric = P.copy()
+        P_fric[L.ZETA] = 0.0
+        P_fric[L.V_FRIC] = QS_FRICTION_VELOCITY
+    return P, fe_tables, P_fric
+
+
+def _sweep(problem: _Problem, constants: tuple, q0: np.ndarray, points: slice,
+           out: PathSolution, rows: slice) -> int:
+    """The compiled sweep of the path's ``points`` from ``q0`` into ``out``'s ``rows`` with
+    the model's ``constants`` (:func:`_constants`); returns the number of points solved."""
+    from . import _solver as S
+
+    P, fe_tables, P_fric = constants
+    model, p = problem.model, points
+    friction = (out.friction_forces[rows] if out.friction_forces is not None
+                else np.zeros((rows.stop - rows.start, len(q0))))
+    return S.sweep(P, problem.hertz, q0, problem.angle[p], problem.load[p], problem.scale,
+                   problem.tol, MAX_ITERATIONS, model.pins, model.holes, model.crank_angles,
+                   model.mesh_phase, out.q[rows], out.pin_forces[rows],
+                   out.contact_stress[rows], out.channels[rows], out.mesh_state[rows],
+                   out.torsional_stiffness[rows], out.status_codes[rows],
+                   out.iterations[rows], out.input_torque[rows], out.output_pin_forces[rows],
+                   P_fric, problem.moving[p], problem.turning[p], friction, fe_tables)
+
+
+#: stiffening factor gained per step of the continuation of :func:`_continued` (a decade: one
+#: step of it moves an equilibrium by a few trust radii, docs/model.md section 12)
+CONTINUATION_STEP = 10.0
+
+
+def _continued(problem: _Problem, factors: dict, q_before: np.ndarray, k: int):
+    """(equilibrium of point ``k`` with the elements stiffened by ``factors``, iterations), or
+    (None, iterations) where a step fails, by continuation in the factor: the point solved
+    first with the model's own laws from the previous point's equilibrium ``q_before``, then
+    with the factors raised a decade at a time (:data:`CONTINUATION_STEP`), each from the
+    last.  Where the point's equilibrium lies across a clearance from ``q_before`` (the
+    torque-reversal test's first point past zero torque), a stiffened element turns the
+    crossing into hundreds of rejected trust-region steps against its contact; the model's own
+    laws cross it as every test does, and each decade then moves the bodies by a fraction of
+    their deflection (docs/decisions.md, issue 30/32 fourth session)."""
+    decades = max(abs(math.log(s) / math.log(CONTINUATION_STEP)) for s in factors.values())
+    steps = max(1, math.ceil(decades - 1e-9))
+    from ..physics import _layout as L
+
+    scratch = _new_solution(1, problem.model.pins.shape[0], int(problem.model.P[L.OUT_COUNT]))
+    if problem.friction:
+        scratch.friction_forces = np.zeros((1, len(q_before)))
+    q, iterations = np.array(q_before, dtype=float), 0
+    for step in range(steps + 1):
+        constants = _constants(problem.model, factors, step / steps, problem.friction)
+        _sweep(problem, constants, q, slice(k, k + 1), scratch, slice(0, 1))
+        iterations += int(scratch.iterations[0])
+        if scratch.status_codes[0] != 0:
+            return None, iterations
+        q = scratch.q[0].copy()
+    return q, iterations
 
 
 @dataclasses.dataclass

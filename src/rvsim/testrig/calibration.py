@@ -7,7 +7,16 @@ encoder zero makes the mean arbitrary):
   at the model's nodes (``positions`` per output revolution; the model is the quasi-static
   TE at the point's torque, :func:`rvsim.testrig.model.model_te`);
 * every torque-reversal loop: the angle of each branch at 24 torques on each side of zero
-  (2 % to 98 % of the test torque), read by :func:`rvsim.analysis.catalogue.angle_at`.
+  (2 % to 98 % of the test torque), read by :func:`rvsim.analysis.catalogue.angle_at`;
+* every sample of a loop curve (``loops``, :func:`rvsim.testrig.curves.read_loop`): its
+  angle against the model's, the torque-reversal test run along the curve's own torque
+  history (:func:`rvsim.quasistatic.hysteresis` with ``torques``: the path friction follows).
+
+Efficiency points (``efficiency``, :func:`rvsim.testrig.curves.read_efficiency`) are fitted
+on their own, residuals in percentage points and no mean removed: measured minus
+:func:`rvsim.quasistatic.efficiency_points` at each point's speed, torque and lubricant
+temperature (angles and efficiencies have different units and noise: one fit weights
+one kind).
 
 scipy.optimize.least_squares (trust-region reflective, bounds from the parameters' lower
 limits) on the parameters in user units divided by a scale; covariance s^2 (J^T J)^-1 with
@@ -31,7 +40,10 @@ from .bench import check_model_ratio
 from .model import model_loop, model_te
 
 __all__ = ["calibrate", "Calibration", "CalibrationError", "residuals", "CORRELATION_LIMIT",
-           "NOT_FITTED", "fitted_names"]
+           "NOT_FITTED", "fitted_names", "PERCENT"]
+
+#: efficiency residuals in percentage points
+PERCENT = 0.01
 
 #: |correlation| above which two fitted parameters are reported as hardly separable
 CORRELATION_LIMIT = 0.95
@@ -76,12 +88,13 @@ class Calibration:
     ci_high: np.ndarray
     correlation: np.ndarray
     notes: list
-    rms_start_arcsec: float
-    rms_arcsec: float
+    rms_start_arcsec: float          # RMS of the residuals at the start, in ``unit``
+    rms_arcsec: float                # and at the estimate (the names of the angle fits)
     residuals: int
     evaluations: int
     status: str
     reducer: object = None
+    unit: str = "arcsec"             # of the residuals: "arcsec", or "%" (efficiency points)
 
     def to_dict(self) -> dict:
         def num(v):
@@ -96,18 +109,30 @@ class Calibration:
             "correlation": {"names": self.names,
                             "matrix": [[num(v) for v in row] for row in self.correlation]},
             "notes": self.notes,
-            "rms_start_arcsec": self.rms_start_arcsec, "rms_arcsec": self.rms_arcsec,
+            # the RMS of the residuals, in their unit (the two keys of issue 30 keep their
+            # arcsec name; an efficiency fit gives percentage points)
+            **({"rms_start_arcsec": self.rms_start_arcsec, "rms_arcsec": self.rms_arcsec}
+               if self.unit == "arcsec" else {"rms_start_percent": self.rms_start_arcsec,
+                                              "rms_percent": self.rms_arcsec}),
+            "residual_unit": self.unit,
             "residuals": self.residuals, "evaluations": self.evaluations,
             "status": self.status,
         }
 
 
-def _targets(points, reducer, positions: int):
+def _targets(points, reducer, positions: int, loops=(), efficiency=None):
     """What the residuals compare: [("te", torque, direction, measured values at the model's
-    nodes)] and [("loop", measured angles at the torque levels)]."""
+    nodes)], [("loop", reach, None, measured angles at the torque levels)], [("curve", None,
+    None, LoopCurve)] and [("efficiency", None, None, EfficiencyPoints)]."""
     step = 2.0 * math.pi / positions
     nodes = np.arange(positions) * step
-    targets = []
+    targets = [("curve", None, None, loop) for loop in loops]
+    if efficiency is not None:
+        if points or loops:
+            raise ParameterError("--efficiency", "is fitted on its own, not with angle "
+                                 "recordings or loops (different units and noise): fit the "
+                                 "friction to it, then the angles with --params fitted.toml")
+        targets.append(("efficiency", None, None, efficiency))
     for point in points:
         check_model_ratio(point, reducer)
         torque = float(point.point.get("torque_nm", 0.0))
@@ -127,6 +152,42 @@ def _targets(points, reducer, positions: int):
     return targets
 
 
+def _measured_values(targets) -> int:
+    """How many values the targets measure independently (a group whose mean is removed
+    gives one fewer): what must exceed the number of fitted parameters."""
+    count = 0
+    for kind, _, _, measured in targets:
+        if kind == "efficiency":
+            count += measured.efficiency.size
+        else:
+            count += (measured.torque.size if kind == "curve" else measured.size) - 1
+    return count
+
+
+def _curve_residuals(loop, reducer) -> np.ndarray:
+    """Measured minus model angle [rad] of a loop curve, the model along its torques."""
+    from ..quasistatic import hysteresis
+
+    return loop.angle - hysteresis(reducer, torques=loop.torque).angle
+
+
+def _efficiency_residuals(points, reducer) -> np.ndarray:
+    """Measured minus model efficiency [-] at each point, the model at the point's
+    lubricant temperature where the file gives one."""
+    from ..parameters import with_values
+    from ..quasistatic.efficiency import efficiency_points
+
+    model = np.empty(points.efficiency.size)
+    groups = ([(None, np.arange(model.size))] if points.temperature is None else
+              [(t, np.flatnonzero(points.temperature == t))
+               for t in np.unique(points.temperature)])
+    for temperature, rows in groups:
+        at = reducer if temperature is None else with_values(
+            reducer, {"operating.temperature": float(temperature)})
+        model[rows] = efficiency_points(at, points.speed_rpm[rows], points.torque[rows])
+    return points.efficiency - model
+
+
 def _loop_angles(loop, reach: float) -> np.ndarray:
     """Angles of both branches at +-_LEVELS * ``reach`` [N*m], each side read from its own
     samples."""
@@ -137,14 +198,20 @@ def _loop_angles(loop, reach: float) -> np.ndarray:
 
 
 def residuals(targets, reducer, positions: int) -> np.ndarray:
-    """Measured minus model [arcsec] of every target, each with its mean removed."""
+    """Measured minus model of every target: angles [arcsec], each group with its mean
+    removed; efficiency points [percentage points] as they are."""
     parts = []
     for kind, torque, direction, measured in targets:
+        if kind == "efficiency":
+            parts.append(_efficiency_residuals(measured, reducer) / PERCENT)
+            continue
         if kind == "te":
-            model = model_te(reducer, torque, direction, positions)[0].curve
+            diff = measured - model_te(reducer, torque, direction, positions)[0].curve
+        elif kind == "curve":
+            diff = _curve_residuals(measured, reducer)
         else:
-            model = _loop_angles(model_loop(reducer, reducer.rating.rated_torque), torque)
-        diff = measured - model
+            diff = measured - _loop_angles(model_loop(reducer, reducer.rating.rated_torque),
+                                           torque)
         parts.append((diff - diff.mean()) / A.ARCSEC)
     return np.concatenate(parts)
 
@@ -180,9 +247,11 @@ def fitted_names(fit: list[str]) -> list[str]:
 
 
 def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
-              max_evaluations: int = 200) -> Calibration:
+              max_evaluations: int = 200, loops=(), efficiency=None) -> Calibration:
     """Fit the parameters ``fit`` (dotted names or factor letters, as ``--set`` takes) of
-    ``reducer`` to the analysed recordings ``points`` (:func:`rvsim.testrig.analyse_path`)."""
+    ``reducer`` to the analysed recordings ``points`` (:func:`rvsim.testrig.analyse_path`),
+    the loop curves ``loops`` and, on their own, the ``efficiency`` points
+    (:mod:`rvsim.testrig.curves`)."""
     from scipy import optimize, stats
 
     from ..analysis.sampling import check_positions
@@ -196,7 +265,15 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
                       for s in specs]) / scale
     upper = np.array([np.inf if s.maximum is None else s.maximum / TO_SI[s.unit]
                       for s in specs]) / scale
-    targets = _targets(points, reducer, positions)
+    targets = _targets(points, reducer, positions, loops, efficiency)
+    measured = _measured_values(targets)
+    if measured <= len(names):
+        field = ("--efficiency" if efficiency is not None else "--loop" if loops and not points
+                 else "recordings")
+        raise ParameterError(field, f"{measured} measured values (after removing each "
+                             f"curve's mean) cannot fit {len(names)} parameters: record more "
+                             "points or fit fewer parameters")
+    unit = "%" if efficiency is not None else "arcsec"
     evaluations = [0]
     failed = [None]
 
@@ -331,7 +408,7 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
                        high, corr, notes,
                        float(np.sqrt(np.mean(r0 ** 2))),
                        float(np.sqrt(np.mean(result.fun ** 2))), m, evaluations[0], status,
-                       fitted)
+                       fitted, unit)
 
 
 def _not_fixed(J, scale, low, high, lower, upper, names, specs, unfixed, blocked):
