@@ -81,6 +81,9 @@ def test_sobol_indices_wider_than_their_interval_flagged_with_advice():
                                                "interval wider than the index; S1 < 0: "
                                                "sampling error")
     assert table.loc["pin_radius", "flag"] == ""
+    # an error the metric does not depend on: exactly 0, no interval, not flagged
+    zero = sobol_table({"k": {"S1": 0.0, "S1_conf": 0.0, "ST": 0.0, "ST_conf": 0.0}})
+    assert zero.loc["k", "flag"] == ""
     # ST 0.3 +- 0.5 at base 2: (2 * 0.5 / 0.3)^2 = 11.1 times the base, 22.2 -> 32; ST 0.01
     # is below 0.05 and read as about zero
     assert sobol_advice(indices, base=2, errors=3) == (

@@ -42,8 +42,10 @@ def distribution_figure(name: str, x: np.ndarray, stats: dict):
 
 
 def _unresolved(index: float, conf: float) -> bool:
-    """An index whose 95 % interval is wider than the index: zero is inside it."""
-    return not conf < abs(index)
+    """An index whose 95 % interval is wider than the index: zero is inside it (an index of
+    exactly 0 with no interval, an error the metric does not depend on, is resolved; a NaN
+    interval is not)."""
+    return not conf <= abs(index)
 
 
 def sobol_figure(metric: str, indices: dict):
@@ -171,8 +173,11 @@ def write_tolerance_report(folder: Path, summary: dict, values: dict, status) ->
                 body.append(f"<p class='miss'>{html.escape(advice)}</p>")
             body.append("<div class='wide'>" + _table(sobol_table(indices)) + "</div>")
             top = summary["sobol_second_order"][metric][:5]
-            pairs = pd.DataFrame([{"pair": " x ".join(p["pair"]), "S2": p["S2"],
-                                   "S2_conf": p["S2_conf"]} for p in top])
+            pairs = pd.DataFrame([{"pair": " x ".join(p["pair"]), "S2 [-]": round(p["S2"], 3),
+                                   "S2 +-95 % [-]": round(p["S2_conf"], 3),
+                                   "flag": ("interval wider than the index"
+                                            if _unresolved(p["S2"], p["S2_conf"]) else "")}
+                                  for p in top])
             body.append(f"<p>strongest interactions of {html.escape(metric)}:</p>"
                         + _table(pairs, index=False))
     path = Path(folder) / "report.html"
