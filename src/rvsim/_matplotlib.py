@@ -10,11 +10,17 @@ __all__ = ["pyplot", "plain"]
 
 
 def pyplot():
-    """matplotlib.pyplot with the non-interactive Agg backend (unless one is already chosen),
-    imported on first use."""
+    """matplotlib.pyplot, imported on first use, with the non-interactive Agg backend unless
+    one is already chosen: pyplot imported before (a notebook's ``import matplotlib.pyplot``)
+    or ``MPLBACKEND`` set (Jupyter's kernel sets its inline backend so), so that a notebook's
+    ``result.plot()`` shows and its other figures keep showing (issue 34 item 5)."""
+    import os
+    import sys
+
     import matplotlib
 
-    matplotlib.use("Agg", force=False)
+    if "matplotlib.pyplot" not in sys.modules and not os.environ.get("MPLBACKEND"):
+        matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     return plt

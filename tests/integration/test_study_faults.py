@@ -127,20 +127,27 @@ def disturbed(tmp_path_factory):
     """One study that meets three faults it should ride out: run as under ``nohup`` (SIGHUP
     ignored) in a session of its own, it gets the terminal's SIGHUP (to the whole group) once
     its first run is stored; then one of its workers is SIGKILLed; then another process takes
-    the store's lock until the next finished run says that it waits for it."""
+    the store's lock until the next finished run says that it waits for it.  The lock holder
+    is started beforehand and takes the lock on demand, within milliseconds of the worker's
+    kill (under load, all four runs were once stored before a holder started only then could
+    take it, 2026-11-28)."""
     tmp_path = tmp_path_factory.mktemp("disturbed")
     path = _study(tmp_path)
     out = tmp_path / "out"
     proc = _start(path, out, session=True, ignored=(signal.SIGHUP,))
+    waiting = _lock_holder(out / "results.sqlite")
     try:
         workers = _wait_rows(proc, out, 1)
         os.killpg(proc.pid, signal.SIGHUP)
         workers[0].kill()
-        holder = _hold_lock(out / "results.sqlite")
+        holder = _take_lock(waiting)
         notice = proc.stderr.readline()           # the next finished run waits for the lock
         holder.communicate("release\n", timeout=HANG)
         _, err = proc.communicate(timeout=HANG)
     finally:
+        if waiting.poll() is None:
+            waiting.kill()
+            waiting.wait()
         if proc.poll() is None:
             proc.kill()
             proc.wait()
@@ -356,6 +363,9 @@ def test_a_damaged_store_is_one_line(tmp_path, small_study, cli, damage):
 
 _HOLD_LOCK = """
 import sqlite3, sys, time
+if len(sys.argv) > 2:                # on demand: started beforehand, locks when told
+    print("ready", flush=True)
+    sys.stdin.readline()
 db = sqlite3.connect(sys.argv[1], isolation_level=None)
 db.execute("BEGIN EXCLUSIVE")
 print("locked", flush=True)
@@ -368,6 +378,22 @@ def _hold_lock(path):
     """A process holding an exclusive lock on the store until a line is written to its stdin."""
     holder = subprocess.Popen([sys.executable, "-c", _HOLD_LOCK, str(path)],
                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    assert holder.stdout.readline().strip() == "locked"
+    return holder
+
+
+def _lock_holder(path):
+    """A process started (and its Python loaded) beforehand, that locks the store on demand
+    (:func:`_take_lock`) within milliseconds."""
+    holder = subprocess.Popen([sys.executable, "-c", _HOLD_LOCK, str(path), "on-demand"],
+                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    assert holder.stdout.readline().strip() == "ready"
+    return holder
+
+
+def _take_lock(holder):
+    holder.stdin.write("lock\n")
+    holder.stdin.flush()
     assert holder.stdout.readline().strip() == "locked"
     return holder
 

@@ -44,3 +44,19 @@ def test_a_design_without_the_degrees_of_freedom_is_refused():
     assert interaction_degrees(table, list("ABC"))[1] == 8
     with pytest.raises(InputFileError, match="degrees of freedom"):
         interaction_anova(table, "y", ["A", "B"] + ["C"])
+
+
+def test_runs_that_alias_terms_are_refused_in_one_line_without_a_warning():
+    """A study stopped part-way: its finished runs may leave enough degrees of freedom by
+    count and still alias terms (here A and B always equal).  statsmodels warned
+    (SingularMatrixWarning) on the stopped study's stderr; now one InputFileError."""
+    rows = [dict(zip("ABC", (a, a, c))) for a, c in itertools.product((1, 2), repeat=2)] * 2
+    table = pd.DataFrame(rows)
+    table["y"] = np.arange(len(table), dtype=float)
+    need, have = interaction_degrees(table, list("ABC"))
+    assert need < have                            # the count alone lets it through
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(InputFileError, match=r"do not separate .*\(rank 4 of 7 terms"):
+            interaction_anova(table, "y", list("ABC"))

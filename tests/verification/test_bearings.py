@@ -14,6 +14,11 @@ Measured (2026-11-22) and the tolerance of each test:
   equals the integral of F d(delta) within 1.2e-8, the quadrature's error at the logarithmic
   end (tolerance 1e-7); stiffness factor s scales
   the force exactly (1e-12);
+* conforming law against Johnson's approach of two cylinders with Hertz's width of the
+  conforming pair, written independently: 4.4e-16 (tolerance 1e-13); its wrap at b = R within
+  dR / 2R; its neat-fit limit 2.29 times stiffer than Johnson's approach at b = R (2026-11-28);
+* the paper's RV-40E across the roughness-sourced floors (2.5 / 5 / 10 um): rigidity and lost
+  motion of real runs pinned to 1e-9 (a finding of issue 32 item 2, not a tuning);
 * the stiffness matrix of the bearing set (cage terms included) gives the local torsional
   stiffness within 1.8e-5 of the finite-difference derivative (tolerance 1e-4);
 * the dynamic steady mean TE at a quarter of the paper's speed equals the quasi-static mean
@@ -33,9 +38,9 @@ from rvsim.physics._bearings import (WRAP_RATIO, conforming_approach, conforming
                                      roller_set)
 from rvsim.physics.compliance import PALMGREN_REFERENCE
 from rvsim.errors import ParameterError
-from rvsim.parameters import paper_run_values, with_values
+from rvsim.parameters import RV40E as RV40E_PAPER, paper_run_values, with_values
 from rvsim.parameters.rv40e_bearings import RV40E_ROLLING
-from rvsim.quasistatic import solve_path
+from rvsim.quasistatic import hysteresis, solve_path
 
 #: the compiled laws are called with the engine's own argument types (float64 counts, the shift
 #: given: NaN is "computed here"), so they load from numba's cache instead of compiling a
@@ -211,3 +216,55 @@ def test_bearing_clearances_are_validated(values, field):
     with pytest.raises(ParameterError) as info:
         with_values(BEARINGS, values)
     assert info.value.field == field
+
+
+def test_conforming_law_is_johnsons_approach_with_the_hertz_width():
+    """Issue 32 item 2: the law against its closed forms, written independently.
+
+    Hertz's half-width of the conforming pair (journal R, bore R + dR: relative radius R (R +
+    dR) / dR) in Johnson's approach of two cylinders (Contact Mechanics, Sec. 5.6, one term
+    2 ln(4 R_i / b) - 1 per body) is the law to round-off (measured 4.4e-16, tolerance 1e-13);
+    the law's wrap force a / 16 is where b reaches R, within sqrt(1 + dR / R) - 1 (2.0e-4 at
+    5 um on 12.5 mm; bound dR / 2R), so b / R = 4 sqrt(F / a) (docs/model.md section 16).
+    For dR -> 0 the law is its linear continuation, compliance j (ln 16 - 2) per interface
+    (1e-12), while Johnson's approach with the width of a neat fit held at b = R (the
+    90-degree arc of a zero-clearance pin) has j (ln 16 - 1): 2.29 times as compliant
+    (docs/decisions.md, issue 32 item 2: a finding, not changed)."""
+    length, radius, e_star = 0.015, 0.0125, STEEL.elastic_modulus / (2 * (1 - 0.09))
+    for dr in (1e-6, 5e-6, 20e-6):
+        j, a = conforming_constants(length, STEEL, STEEL, dr)
+        relative = radius * (radius + dr) / dr
+        for f in (10.0, 1e3, 0.9 * a / WRAP_RATIO):
+            b = math.sqrt(4.0 * f * relative / (math.pi * length * e_star))
+            johnson = f / (math.pi * length * e_star) * (
+                2.0 * math.log(4.0 * radius / b) - 1.0
+                + 2.0 * math.log(4.0 * (radius + dr) / b) - 1.0) / 2.0
+            assert conforming_approach(f, j, a, 0.0, 1.0, 0.0)[0] == pytest.approx(
+                johnson, rel=1e-13)
+        b_wrap = math.sqrt(4.0 * a / WRAP_RATIO * relative / (math.pi * length * e_star))
+        assert b_wrap / radius - 1.0 == pytest.approx(math.sqrt(1 + dr / radius) - 1.0,
+                                                      rel=1e-9)
+        assert 0.0 < b_wrap / radius - 1.0 <= 0.5 * dr / radius
+    j, a = conforming_constants(length, STEEL, STEEL, 1e-12)
+    f = 3e3
+    _, compliance, _ = conforming_approach(f, j, a, 0.0, 1.0, 0.0)
+    assert compliance == pytest.approx(j * (math.log(16.0) - 2.0), rel=1e-12)
+    neat_fit = j * (2.0 * math.log(4.0) - 1.0)
+    assert neat_fit / compliance == pytest.approx(2.294, abs=5e-4)
+
+
+@pytest.mark.parametrize("floor, rigidity, lost_motion", [
+    (0.0025, 1589.1827288210375, 0.06726488041357453),   # two N4 surfaces: Rz 1.25 + 1.25 um
+    (0.005, 1049.6354240463436, 0.07569187314818702),    # N5 (Ra 0.4 um): the default
+    (0.01, 772.6740381077581, 0.08411626822324729),      # N6 (Ra 0.8 um): Rz 5 + 5 um
+])
+def test_bushing_floor_moves_the_paper_set_across_the_ground_roughness(floor, rigidity,
+                                                                       lost_motion):
+    """Issue 32 item 2, a finding pinned (not a knob): the floor of the conforming law's radial
+    difference is the summed Rz of the two ground surfaces of an interface (docs/model.md
+    section 16); over the sourced range of ground seats the paper's RV-40E moves by +51 / -26 %
+    in rigidity (rvsim hysteresis, 2026-11-28)."""
+    summary = hysteresis(with_values(RV40E_PAPER, {
+        "bearings.bushing_min_radial_difference": floor})).summary()
+    assert summary["torsional_rigidity_nm_per_arcmin"] == pytest.approx(rigidity, rel=1e-9)
+    assert summary["lost_motion_arcmin"] == pytest.approx(lost_motion, rel=1e-9)

@@ -166,17 +166,17 @@ def test_seals_in_the_dynamic_engine():
     # energy balance of the sealed run (measured -2.8e-6, as without seals)
     assert abs(b.energy["relative_residual"]) < 2e-5
     frame_a, frame_b = a.to_frame(), b.to_frame()
-    steady_a = frame_a[frame_a["time"] >= 0.3]
-    steady_b = frame_b[frame_b["time"] >= 0.3]
+    steady_a = frame_a[frame_a["time_s"] >= 0.3]
+    steady_b = frame_b[frame_b["time_s"] >= 0.3]
     # the seals' work over the steady window, T_in dtheta_in + T_out dtheta_out, is what the
     # sealed run dissipates more (measured 6e-5: the histories are sampled, the energy is
     # integrated at every step)
-    turn_in = steady_b["theta_in"].iloc[-1] - steady_b["theta_in"].iloc[0]
-    turn_out = steady_b["theta_out"].iloc[-1] - steady_b["theta_out"].iloc[0]
+    turn_in = steady_b["theta_in_rad"].iloc[-1] - steady_b["theta_in_rad"].iloc[0]
+    turn_out = steady_b["theta_out_rad"].iloc[-1] - steady_b["theta_out_rad"].iloc[0]
     work = seal_torque(0.025) * turn_in + seal_torque(0.150) * turn_out
     assert b.energy["dissipated"] - a.energy["dissipated"] == pytest.approx(work, rel=3e-4)
     # frictionless mechanism: the input pays the input seal and the output seal / ratio
     # (mean over the window; measured 1.3 % below, the carrier's speed still settling)
-    rise = steady_b["torque_in"].mean() - steady_a["torque_in"].mean()
+    rise = steady_b["torque_in_nm"].mean() - steady_a["torque_in_nm"].mean()
     expected = seal_torque(0.025) + seal_torque(0.150) / abs(base.ratio)
     assert rise == pytest.approx(expected, rel=0.03)

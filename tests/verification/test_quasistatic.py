@@ -194,7 +194,7 @@ def test_result_tables_and_summary_keys():
     assert summary["positions"] == 12 and summary["status"] == "ok"
     assert 0 < summary["pins_in_contact_min"] <= summary["pins_in_contact_max"] <= 40
     frame = result.to_frame()
-    assert len(frame) == 12 and np.allclose(frame["te"], result.te)
+    assert len(frame) == 12 and np.allclose(frame["te_rad"], result.te)
     assert np.allclose(result.te_relative.mean(), 0.0, atol=1e-15)
     curve = hysteresis(RV40E, points_per_branch=4).to_frame()
     assert list(curve["branch"][:5]) == [-1, -1, -1, -1, -1] and len(curve) == 21

@@ -7,6 +7,8 @@ needs do not import pandas.
 
 import lazy_loader
 
+from .._display import Headline
+
 __getattr__, __dir__, _ = lazy_loader.attach(__name__, submodules=["catalogue"], submod_attrs={
     "anova": ["AnovaTable", "anova", "predict_optimum", "signal_to_noise_smaller",
               "sn_response_table"],
@@ -14,15 +16,93 @@ __getattr__, __dir__, _ = lazy_loader.attach(__name__, submodules=["catalogue"],
 })
 
 __all__ = ["RangeAnalysis", "range_analysis", "AnovaTable", "anova", "predict_optimum",
-           "signal_to_noise_smaller", "sn_response_table", "analyze_table", "catalogue"]
+           "signal_to_noise_smaller", "sn_response_table", "analyze_table", "StudyAnalysis",
+           "unit_suffix", "UNIT_SUFFIXES", "catalogue"]
 
 
-def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
-                  alpha: float = 0.1) -> dict:
+#: the unit suffixes of rvsim's column names and the units they stand for (longest first)
+UNIT_SUFFIXES = {"_nm_per_arcmin": "N*m/arcmin", "_nm_per_rad": "N*m/rad", "_n_per_m": "N/m",
+                 "_rad_per_s": "rad/s", "_arcmin": "arcmin", "_arcsec": "arcsec",
+                 "_rad": "rad", "_mpa": "MPa", "_pa": "Pa", "_nm": "N*m", "_n": "N",
+                 "_hours": "h", "_rpm": "rpm", "_s": "s", "_sn": "dB"}
+
+
+def unit_suffix(column: str) -> tuple[str, str]:
+    """(suffix, unit) of a column's name ("te_mean_arcmin" -> ("_arcmin", "arcmin"), an S/N
+    ratio "_sn" -> dB); ("", "") when it names no unit."""
+    for suffix, unit in UNIT_SUFFIXES.items():
+        if str(column).endswith(suffix):
+            return suffix, unit
+    return "", ""
+
+
+class StudyAnalysis(Headline, dict):
+    """What :func:`analyze_table` returns: the dict ``rvsim analyze --json`` prints (its keys
+    as before), and the same as pandas DataFrames with the unit in each column name:
+    ``ranges`` (level means k<level>, range R, rank, optimal level), ``anova`` (DF, adjusted
+    sums and mean squares in the response's unit squared, F, P), ``sn`` (S/N ratio per
+    level [dB], or None).  Shown as its answer (factor order, significant factors, optimum,
+    prediction); ``plot()`` draws the main effects."""
+
+    def __init__(self, out: dict, ranges, anova_frame, sn):
+        super().__init__(out)
+        self.ranges, self.anova, self.sn = ranges, anova_frame, sn
+        self._range_analysis = None
+
+    def headline(self) -> tuple[str, list[tuple]]:
+        """The response, the factor order, the significant factors and the prediction."""
+        from .._display import number
+
+        unit = unit_suffix(self.response)[1]
+        prediction = self.get("prediction") or {}
+        optimum = ", ".join(f"{f}{level}" for f, level in self["optimum"].items())
+        return (f"Analysis of {self.response} ({len(self.ranges)} factors)",
+                [("factor order (by range)", self.get("order") or "none: constant response"),
+                 ("significant (alpha " + f"{self['alpha']:g})",
+                  ", ".join(self["significant"]) or "none"),
+                 ("optimum levels", optimum),
+                 ("predicted at the optimum", number(prediction.get("predicted"), unit))])
+
+    @property
+    def response(self) -> str:
+        return self.ranges.attrs["response"]
+
+    def plot(self, ax=None):
+        """Main effects: level means of each factor (:func:`rvsim.analysis.figures.
+        main_effects_plot`); returns the first panel's Axes."""
+        from .figures import main_effects_plot
+
+        fig = main_effects_plot(self._range_analysis, ax=ax)
+        return ax if ax is not None else fig.axes[0]
+
+
+def _frames(ra, table_anova, sn, response: str):
+    """The range, ANOVA and S/N tables with the unit in each column name."""
+    suffix = unit_suffix(response)[0] or ""
+    ranges = ra.to_df().rename(columns=lambda c: f"{c}{suffix}" if c.startswith("k")
+                               or c == "R" else c)
+    ranges.attrs["response"] = response
+    squared = f"{suffix}2" if suffix else ""
+    anova_frame = table_anova.to_df().rename(columns={"adj_ss": f"adj_ss{squared}",
+                                                      "adj_ms": f"adj_ms{squared}"})
+    if sn is not None:
+        sn = sn.rename(columns=lambda c: f"{c.replace(' ', '')}_dB" if c.startswith("level")
+                       or c == "delta" else c)
+    return ranges, anova_frame, sn
+
+
+def analyze_table(table, response: str | None = None, factors=None, *, pool=(),
+                  alpha: float = 0.1) -> StudyAnalysis:
     """Everything ``rvsim analyze --json`` prints, as one dict (``order`` is None, and
-    ``constant_response`` true, when the response is constant to round-off)."""
+    ``constant_response`` true, when the response is constant to round-off), with the same
+    tables as DataFrames (:class:`StudyAnalysis`).  ``response`` None: the study's default
+    (the first of :data:`rvsim.analysis.indices.DEFAULT_RESPONSES` the table has)."""
     from .anova import anova, predict_optimum, sn_response_table
+    from .indices import check_response
     from .range_analysis import range_analysis
+
+    if response is None:
+        response = check_response(table, None, factors=factors or (), option="response")
 
     ra = range_analysis(table, response, factors)
     table_anova = anova(table, response, factors, pool=pool)
@@ -62,4 +142,6 @@ def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
                               for f, row in sn.iterrows()}
     if notes:
         out["notes"] = notes
-    return out
+    result = StudyAnalysis(out, *_frames(ra, table_anova, sn, response))
+    result._range_analysis = ra
+    return result

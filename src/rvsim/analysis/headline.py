@@ -72,7 +72,8 @@ def hysteresis_rows(summary: dict) -> list[tuple]:
     """``rvsim hysteresis``: the catalogue quantities against the class."""
     rigidity = summary.get("torsional_rigidity_nm_per_arcmin")
     c = catalogue_figure("rigidity")
-    ratio = (f"{rigidity / c['low']:.2f} x the class (stiffer)" if _finite(rigidity)
+    ratio = (f"{rigidity / c['low']:.2f} x the class "
+             f"({'stiffer' if rigidity >= c['low'] else 'softer'})" if _finite(rigidity)
              else "-")
     rows = [("torsional rigidity", _num(rigidity, 4, "N*m/arcmin"), c["published"], ratio)]
     for key, name in (("lost_motion", "lost_motion_arcmin"),

@@ -5,13 +5,15 @@ The model is y = mean + main effects + every two-factor interaction (all categor
 with statsmodels; sums of squares are type II (for a balanced full factorial they equal the
 sequential ones).  The design must leave degrees of freedom for the error after the main
 effects and the interactions (a full factorial, or a resolution V fraction): otherwise
-:func:`interaction_anova` raises InputFileError saying how many are missing.
+:func:`interaction_anova` raises InputFileError saying how many are missing, or that the runs
+alias some terms (rank-deficient: a design interrupted part-way, its finished runs only).
 """
 
 from __future__ import annotations
 
 import itertools
 import math
+import warnings
 
 import numpy as np
 import pandas as pd
@@ -47,8 +49,17 @@ def interaction_anova(table: pd.DataFrame, response: str, factors: list[str]) ->
     data = table[factors + [response]].rename(columns=names | {response: "y"})
     terms = [f"C({names[f]})" for f in factors]
     pairs = [f"C({names[a]}):C({names[b]})" for a, b in itertools.combinations(factors, 2)]
-    model = ols("y ~ " + " + ".join(terms + pairs), data=data).fit()
-    frame = sm.stats.anova_lm(model, typ=2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")     # a singular design is refused below, in one line
+        model = ols("y ~ " + " + ".join(terms + pairs), data=data).fit()
+        rank, terms = np.linalg.matrix_rank(model.model.exog), model.model.exog.shape[1]
+        if rank < terms:
+            raise InputFileError(
+                f"the {len(data)} runs do not separate the main effects and two-factor "
+                f"interactions of {len(factors)} factors (rank {rank} of {terms} terms: some "
+                "are aliased; run a full factorial or a resolution V design, all its runs "
+                "finished)")
+        frame = sm.stats.anova_lm(model, typ=2)
     back = {f"C({v})": k for k, v in names.items()}
 
     def label(term: str) -> str:

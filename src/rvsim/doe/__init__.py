@@ -9,6 +9,7 @@ __getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
     "designs": ["ORTHOGONAL_ARRAYS", "assign_columns", "full_factorial",
                 "is_strength2_balanced", "latin_hypercube", "orthogonal_array", "sobol"],
     "outputs": ["write_study_outputs"],
+    "result": ["StudyResult", "run_study"],
     "runner": ["evaluate", "run"],
     "store": ["ResultStore", "run_key"],
     "study": ["BUILT_IN_STUDIES", "Study", "StudyFactor", "load_study", "paper_l36"],

@@ -102,7 +102,10 @@ def _interactions(ok: pd.DataFrame, factors: list[str], analysis: dict,
     need, have = interaction_degrees(ok, factors)
     if need >= have:
         return None
-    table = interaction_anova(ok, response, factors)
+    try:
+        table = interaction_anova(ok, response, factors)
+    except InputFileError:          # the finished runs alias some terms (a stopped study)
+        return None
     analysis["interactions"] = {name: {k: (None if v != v else float(v)) for k, v in row.items()}
                                 for name, row in table.iterrows()}
     pairs = [tuple(name.split(" x ")) for name in table.index if " x " in name][:6]

@@ -8,12 +8,14 @@ from pathlib import Path
 
 import numpy as np
 
+from .._display import Headline, draw, figure, number, without_status
 from .._files import atomic_write
 from ..errors import InputFileError
 from ..units import ARCMIN
 from ..physics import _layout as L
 
-__all__ = ["Result", "te_metrics", "te_spectrum", "crank_frequency", "ate_note"]
+__all__ = ["Result", "te_metrics", "te_spectrum", "crank_frequency", "ate_note",
+           "channel_unit", "CHANNEL_UNITS"]
 
 
 def crank_frequency(time: np.ndarray, omega_out: np.ndarray, steady_start: float,
@@ -67,6 +69,15 @@ def te_metrics(time: np.ndarray, te: np.ndarray, omega_in: np.ndarray, omega_out
     }
 
 
+#: the unit suffix of each kind of channel (by its name's first word); forces the rest [N]
+CHANNEL_UNITS = {"time": "s", "theta": "rad", "omega": "rad_per_s", "torque": "nm"}
+
+
+def channel_unit(name: str) -> str:
+    """The unit suffix of the channel ``name`` in a frame's column name."""
+    return CHANNEL_UNITS.get(name.split("_")[0], "n")
+
+
 def ate_note(revolutions: float) -> str:
     """Why a run has no ATE: its steady window covers ``revolutions`` (< 1) of an output
     revolution."""
@@ -74,11 +85,12 @@ def ate_note(revolutions: float) -> str:
             "(the ATE needs one); te_pp_arcmin is the peak-to-peak over that part of one")
 
 
-@dataclasses.dataclass
-class Result:
+@dataclasses.dataclass(repr=False)
+class Result(Headline):
     """Histories (SI) sampled at ``time`` and the summary of one run.
 
-    ``te`` is theta_in / i - theta_out (Eq. 22) [rad]; metrics are in arcmin.
+    ``te`` is theta_in / i - theta_out (Eq. 22) [rad]; metrics are in arcmin.  Shown as its
+    headline figures (:meth:`headline`); ``plot()`` draws the TE over time.
     """
 
     time: np.ndarray
@@ -182,6 +194,25 @@ class Result:
             out["ate_note"] = ate_note(out["te_window_revolutions"])
         return out
 
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, time simulated and the report's opening rows
+        (:func:`rvsim.analysis.headline.run_rows`): the repr."""
+        from ..analysis.headline import run_rows
+
+        m = self.summary()
+        rows = without_status(run_rows(m))
+        rows.append(("energy residual", number(m["energy_residual"], "of the input work", 2)))
+        if "ate_note" in m:
+            rows.append(("note", m["ate_note"]))
+        return (f"Result of {self.reducer_name}: {m['status']}, {number(m['sim_time_s'], 's')} "
+                f"simulated ({m['steps']} steps, {number(m['wall_s'], 's', 3)} wall)", rows)
+
+    def plot(self, ax=None):
+        """TE [arcmin] over time, the steady window shaded (:func:`rvsim.plots.te_plot`);
+        returns the Axes."""
+        return draw(figure("rvsim.plots", "te_plot"), ax, {self.reducer_name: self},
+                    self.steady_start)
+
     def spectrum(self, pin_count: int | None = None):
         """Steady-window TE spectrum: DataFrame of ``order`` (crank rotation relative to the
         carrier) and ``amplitude_arcmin``; ``pin_count`` defaults to the run's own (it was a
@@ -195,10 +226,14 @@ class Result:
         return pd.DataFrame({"order": orders, "amplitude_arcmin": amplitude})
 
     def to_frame(self):
-        """Time histories as a pandas DataFrame (SI units, TE also in arcmin)."""
+        """Time histories as a pandas DataFrame, SI with the unit in each column name
+        (``time_s``, ``theta_in_rad``, ``omega_out_rad_per_s``, ``torque_in_nm``,
+        ``mesh_f0_n`` ...; TE in rad and arcmin).  The .npz of :meth:`save` keeps the
+        channels' plain names."""
         import pandas as pd
 
-        data = {name: self.channels[:, i] for i, name in enumerate(L.CHANNEL_NAMES)}
+        data = {f"{name}_{channel_unit(name)}": self.channels[:, i]
+                for i, name in enumerate(L.CHANNEL_NAMES)}
         data["te_rad"] = self.te
         data["te_arcmin"] = self.te / ARCMIN
         return pd.DataFrame(data)

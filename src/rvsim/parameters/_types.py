@@ -11,6 +11,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from .._display import Headline, number
 from ._parts import PartErrors
 from ._schema import choice, count, flag, quantity
 
@@ -256,8 +257,8 @@ class ContactModel:
     friction_coefficient: float = quantity(0.0, "-", "Coulomb friction at pin contacts "
                                            "(paper: none)", maximum=1.0)
     bushing_stiffness_factor: float = quantity(1.0, "-", "multiplies the stiffness of every "
-                                               "bushing contact (1: Palmgren law; large: rigid "
-                                               "bearings)", positive=True)
+                                               "bushing contact (1: the conforming law; "
+                                               "large: rigid bearings)", positive=True)
     friction_velocity: float = quantity(1e-3, "mm/s", "sliding speed at which the "
                                         "regularised friction is fully developed", positive=True)
 
@@ -397,7 +398,8 @@ class Bearings:
     bushing_min_radial_difference: float = quantity(0.005 * _MM, "mm", "smallest radial "
                                                     "difference of a bushing's conforming "
                                                     "surfaces used by the contact law (a "
-                                                    "smaller clearance is conforming to this)",
+                                                    "smaller clearance is conforming to this): "
+                                                    "the two surfaces' summed roughness Rz",
                                                     positive=True)
     needle_count: int = count(20, "needle rollers per eccentric", minimum=3)
     needle_diameter: float = quantity(3.0 * _MM, "mm", "needle roller diameter", positive=True)
@@ -461,9 +463,12 @@ class Stiffness:
                                   "discs' holes", positive=True)
 
 
-@dataclasses.dataclass(frozen=True)
-class Reducer:
-    """A complete RV reducer: geometry, materials, errors and operating point."""
+@dataclasses.dataclass(frozen=True, repr=False)
+class Reducer(Headline):
+    """A complete RV reducer: geometry, materials, errors and operating point.
+
+    Shown as its name and main dimensions in mm (:meth:`headline`); every value with
+    ``rvsim.parameters.parameter_table(reducer)`` or ``rvsim params``."""
 
     name: str = "RV-40E"
     citation: str = ""
@@ -502,6 +507,32 @@ class Reducer:
             return -c.disc_teeth / (c.pin_count - c.disc_teeth)
         g = self.gears
         return 1.0 + g.planet_teeth / g.sun_teeth * self.cycloid.pin_count
+
+    def headline(self) -> tuple[str, list[tuple[str, str]]]:
+        """Name, drive, main dimensions [mm], rating and operating point (its repr)."""
+        c, g, r, o = self.cycloid, self.gears, self.rating, self.operating
+        rpm = 60.0 / (2.0 * math.pi)
+        kind = ("single-stage cycloid drive" if self.layout.single_stage else "RV reducer")
+        rows = [("cycloid stage", f"{c.pin_count} pins r {number(c.pin_radius * 1e3, 'mm')} "
+                 f"on r {number(c.pin_circle_radius * 1e3, 'mm')}, {c.disc_teeth} teeth, "
+                 f"eccentricity {number(c.eccentricity * 1e3, 'mm')}, width "
+                 f"{number(c.disc_width * 1e3, 'mm')}, {self.layout.disc_count} discs")]
+        if not self.layout.single_stage:
+            rows.append(("gear stage", f"{g.sun_teeth}/{g.planet_teeth} teeth, module "
+                         f"{number(g.module * 1e3, 'mm')}, {g.planet_count} planets"))
+        rows += [("rating", f"{number(r.rated_torque, 'N*m')} rated, "
+                  f"{number(r.momentary_torque, 'N*m')} momentary, at "
+                  f"{number(r.rated_output_speed * rpm, 'rpm')} output"),
+                 ("operating", f"{number(o.input_speed * rpm, 'rpm')} input, "
+                  f"{number(o.load_torque, 'N*m')} load"),
+                 ("flexibility", f"{self.flexibility.model}"
+                  f"{'' if self.layout.single_stage else ', ' + self._bearing_kinds()}")]
+        return f"Reducer {self.name!r}: {kind}, ratio {self.ratio:.6g}", rows
+
+    def _bearing_kinds(self) -> str:
+        b = self.bearings
+        return (f"{'needle' if b.arm_needles else 'bushing'} arm bearings, "
+                f"{'tapered roller' if b.support_rollers else 'bushing'} supports")
 
     @property
     def curtate_ratio(self) -> float:

@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+from .._display import Headline, number
 from ..errors import ParameterError
 from ..parameters import Reducer
 
@@ -51,9 +52,10 @@ class BearingLife:
                 "l10_million_revolutions": self.l10 / 1e6, "l10_hours": self.l10_hours}
 
 
-@dataclasses.dataclass
-class LifeResult:
-    """Rating life of the reducer's bearings at one output torque and output speed (SI)."""
+@dataclasses.dataclass(repr=False)
+class LifeResult(Headline):
+    """Rating life of the reducer's bearings at one output torque and output speed (SI).
+    Shown as its headline figures (:meth:`headline`)."""
 
     name: str
     torque: float                  # [N*m]
@@ -97,6 +99,17 @@ class LifeResult:
     def limiting(self) -> str:
         rated = self.rated_bearings
         return min(rated, key=lambda b: b.l10_hours).name if rated else ""
+
+    def headline(self) -> tuple[str, list[tuple[str, str]]]:
+        """Status, operating point and the lives in hours (the repr)."""
+        m = self.summary()
+        return (f"Rating life of {m['reducer']} at {number(m['torque_nm'], 'N*m')}, "
+                f"{number(m['output_speed_rpm'], 'rpm')} output: {m['status']}",
+                [("life (shortest bearing)", f"{number(m['life_hours'], 'h')} "
+                                             f"({m['limiting_bearing'] or 'none rated'})"),
+                 ("system life (all bearings)", number(m["system_life_hours"], "h")),
+                 ("crank bearings", number(m["crank_life_hours"], "h")),
+                 ("catalogue rule", number(m["catalogue_life_hours"], "h"))])
 
     def summary(self) -> dict:
         """The JSON keys: the life in hours, the limiting bearing, the crank bearings' life

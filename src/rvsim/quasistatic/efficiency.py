@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from .._cache_guard import RunClock
+from .._display import Headline, draw, figure, number, without_status
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..units import from_si
@@ -43,9 +44,10 @@ RESOLVED_TORQUE_FRACTION = 1e-4
 STARTING_SPEED_RPM = 1.0
 
 
-@dataclasses.dataclass
-class EfficiencyResult:
-    """Efficiency over input speed and output torque (SI)."""
+@dataclasses.dataclass(repr=False)
+class EfficiencyResult(Headline):
+    """Efficiency over input speed and output torque (SI).  Shown as its headline figures
+    (:meth:`headline`); ``plot()`` draws the map."""
 
     input_speed: np.ndarray        # (s,) [rad/s]
     output_torque: np.ndarray      # (t,) [N*m]
@@ -62,6 +64,7 @@ class EfficiencyResult:
     oil_viscosity: float = 0.0     # [m^2/s] its kinematic viscosity there (ASTM D341)
     seal_torque_input: float = 0.0   # [N*m] input seals' drag torque
     seal_torque_output: float = 0.0  # [N*m] output seals' drag torque
+    rated_torque: float = math.nan   # [N*m] the reducer's (reducer.rating.rated_torque)
     torque_resolution: float = 0.0   # [N*m] input torques below it were round-off: shown as 0
 
     def speeds_rpm(self) -> np.ndarray:
@@ -94,6 +97,26 @@ class EfficiencyResult:
             "wall_s": self.wall_s,
             "status": self.status,
         }
+
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, the map's size and the report's opening rows
+        (:func:`rvsim.analysis.headline.efficiency_rows`): the repr."""
+        from ..analysis.headline import efficiency_rows
+
+        rated = self.rated_torque if math.isfinite(self.rated_torque) \
+            else float(np.max(self.output_torque))
+        rows = without_status(efficiency_rows(self.to_frame(), self.summary(), rated))
+        if not self.friction:            # the report's note: 1 by construction, not a figure
+            rows.insert(0, ("friction", "none in this parameter set: efficiency 1, no running "
+                            "or starting torque (set contact.friction_coefficient, friction.*)"))
+        return (f"Efficiency map: {self.status}, {len(self.input_speed)} speeds x "
+                f"{len(self.output_torque)} torques ({number(self.wall_s, 's', 3)} wall)", rows)
+
+    def plot(self, ax=None):
+        """The efficiency map (:func:`rvsim._efficiency_report.efficiency_plot`); returns the
+        first panel's Axes."""
+        return draw(figure("rvsim._efficiency_report", "efficiency_plot"), ax, self,
+                    panels=True)
 
     def to_frame(self):
         """One row per (input speed, output torque) point."""
@@ -252,4 +275,5 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
                             wall_s=clock.split()[0],
                             temperature=reducer.operating.temperature, oil_viscosity=viscosity,
                             seal_torque_input=seal_in, seal_torque_output=seal_out,
+                            rated_torque=reducer.rating.rated_torque,
                             torque_resolution=resolution)

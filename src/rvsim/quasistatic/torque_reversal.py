@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from .._display import Headline, draw, figure, number, without_status
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer
 from ..units import ARCMIN
@@ -24,9 +25,10 @@ __all__ = ["hysteresis", "HysteresisResult", "sweep_torques", "TEST_OUTPUT_SPEED
 TEST_OUTPUT_SPEED = 0.01
 
 
-@dataclasses.dataclass
-class HysteresisResult:
-    """Output angle against output torque, input locked (SI; contract of issue 9)."""
+@dataclasses.dataclass(repr=False)
+class HysteresisResult(Headline):
+    """Output angle against output torque, input locked (SI; contract of issue 9).  Shown as
+    its catalogue quantities (:meth:`headline`); ``plot()`` draws the loop."""
 
     torque: np.ndarray             # (m,) [N*m] applied to the output (turns it positive)
     angle: np.ndarray              # (m,) [rad] output angle
@@ -69,12 +71,29 @@ class HysteresisResult:
             "status": self.status,
         }
 
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, rated torque and the report's opening rows, the catalogue quantities
+        against the class (:func:`rvsim.analysis.headline.hysteresis_rows`): the repr."""
+        from ..analysis.headline import hysteresis_rows
+
+        m = self.summary()
+        return (f"Torque reversal to +-{number(m['rated_torque_nm'], 'N*m')}: {m['status']}, "
+                f"{m['points']} points ({number(m['wall_s'], 's', 3)} wall)",
+                without_status(hysteresis_rows(m)))
+
+    def plot(self, ax=None):
+        """Output angle [arcmin] against output torque [N*m], the catalogue quantities marked
+        (:func:`rvsim.plots.hysteresis_plot`); returns the first panel's Axes."""
+        return draw(figure("rvsim.plots", "hysteresis_plot"), ax, self, self.rated_torque,
+                    panels=True)
+
     def to_frame(self):
+        """One row per point, SI with the unit in each column name (angle also in arcmin)."""
         import pandas as pd
 
-        return pd.DataFrame({"torque": self.torque, "angle": self.angle,
+        return pd.DataFrame({"torque_nm": self.torque, "angle_rad": self.angle,
                              "angle_arcmin": self.angle / ARCMIN, "branch": self.branch,
-                             "torsional_stiffness": self.torsional_stiffness,
+                             "torsional_stiffness_nm_per_rad": self.torsional_stiffness,
                              "converged": self.converged})
 
 

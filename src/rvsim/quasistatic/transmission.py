@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from .._cache_guard import RunClock
+from .._display import Headline, draw, figure, number, without_status
 from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
@@ -266,9 +267,11 @@ def _continued(problem: _Problem, factors: dict, q_before: np.ndarray, k: int):
     return q, iterations
 
 
-@dataclasses.dataclass
-class LtcaResult:
-    """Loaded tooth contact analysis over an output revolution (SI; contract of issue 9)."""
+@dataclasses.dataclass(repr=False)
+class LtcaResult(Headline):
+    """Loaded tooth contact analysis over an output revolution (SI; contract of issue 9).
+    Shown as its headline figures (:meth:`headline`); ``plot()`` draws the TE over the
+    revolution."""
 
     input_angle: np.ndarray        # (n,) [rad]
     output_angle: np.ndarray       # (n,) [rad] carrier at equilibrium
@@ -291,6 +294,7 @@ class LtcaResult:
     force_resolution: float = 0.0  # [N] pin forces up to this are below the solver's tolerance
     #: (n, discs, n_w) [N] output pins in the discs' holes (single-stage drive; n_w = 0: RV)
     output_pin_forces: np.ndarray = None
+    rated_torque: float | None = None  # [N*m] the reducer's (reducer.rating.rated_torque)
 
     @property
     def te_relative(self) -> np.ndarray:
@@ -333,6 +337,27 @@ class LtcaResult:
             "status": self.status,
         }
 
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, torque and the report's opening rows
+        (:func:`rvsim.analysis.headline.ltca_rows`), stiffness and contacts: the repr."""
+        from ..analysis.headline import ltca_rows
+
+        m = self.summary()
+        rows = without_status(ltca_rows(m, self.rated_torque))
+        rows += [("torsional stiffness (mean)", number(m["torsional_stiffness_nm_per_arcmin"],
+                                                       "N*m/arcmin")),
+                 ("largest pin force", number(m["max_pin_force_n"], "N")),
+                 ("pins in contact per disc", f"{m['pins_in_contact_min']} to "
+                                              f"{m['pins_in_contact_max']}"
+                  if m["pins_in_contact_min"] >= 0 else number(None))]
+        return (f"LTCA at {number(m['torque_nm'], 'N*m')}: {m['status']}, {m['positions']} "
+                f"positions ({number(m['wall_s'], 's', 3)} wall)", rows)
+
+    def plot(self, ax=None):
+        """TE [arcmin] over the output revolution, absolute and minus its mean
+        (:func:`rvsim.plots.te_revolution_plot`); returns the first panel's Axes."""
+        return draw(figure("rvsim.plots", "te_revolution_plot"), ax, self, panels=True)
+
     def ate(self) -> tuple[float, float]:
         """(ATE [arcmin], output revolutions covered): the angular transmission error, the
         peak-to-peak TE over one output revolution (the largest over complete ones,
@@ -346,27 +371,29 @@ class LtcaResult:
         return (ate if self.converged.all() else float("nan")), revolutions
 
     def to_frame(self):
-        """One row per position: angles [rad], TE [rad and arcmin], stiffness, forces."""
+        """One row per position, SI with the unit in each column name: angles [rad], TE
+        [rad and arcmin], stiffness [N*m/rad], forces [N], stress [Pa]."""
         import pandas as pd
 
         frame = {
-            "input_angle": self.input_angle, "output_angle": self.output_angle, "te": self.te,
-            "te_arcmin": self.te / ARCMIN, "te_relative_arcmin": self.te_relative / ARCMIN,
-            "torsional_stiffness": self.torsional_stiffness,
+            "input_angle_rad": self.input_angle, "output_angle_rad": self.output_angle,
+            "te_rad": self.te, "te_arcmin": self.te / ARCMIN,
+            "te_relative_arcmin": self.te_relative / ARCMIN,
+            "torsional_stiffness_nm_per_rad": self.torsional_stiffness,
         }
         for d in range(self.pin_forces.shape[1]):
             frame[f"pins_in_contact_disc{d + 1}"] = self.pins_in_contact[:, d]
-        frame["max_pin_force"] = self.pin_forces.max(axis=(1, 2))
-        frame["max_contact_stress"] = self.contact_stress.max(axis=(1, 2))
+        frame["max_pin_force_n"] = self.pin_forces.max(axis=(1, 2))
+        frame["max_contact_stress_pa"] = self.contact_stress.max(axis=(1, 2))
         if self.output_pin_forces is not None and self.output_pin_forces.shape[2]:
-            frame["max_output_pin_force"] = self.output_pin_forces.max(axis=(1, 2))
+            frame["max_output_pin_force_n"] = self.output_pin_forces.max(axis=(1, 2))
         for j in range(2):
-            frame[f"mesh_force_{j + 1}"] = self.mesh_forces[:, j]
-            frame[f"mesh_stiffness_{j + 1}"] = self.mesh_stiffness[:, j]
+            frame[f"mesh_force_{j + 1}_n"] = self.mesh_forces[:, j]
+            frame[f"mesh_stiffness_{j + 1}_n_per_m"] = self.mesh_stiffness[:, j]
             for d in range(2):
-                frame[f"arm_force_{j + 1}{d + 1}"] = self.arm_forces[:, j, d]
+                frame[f"arm_force_{j + 1}{d + 1}_n"] = self.arm_forces[:, j, d]
             for s, name in enumerate(("lower", "upper")):
-                frame[f"support_force_{j + 1}_{name}"] = self.support_forces[:, j, s]
+                frame[f"support_force_{j + 1}_{name}_n"] = self.support_forces[:, j, s]
         frame["converged"] = self.converged
         return pd.DataFrame(frame)
 
@@ -427,7 +454,8 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         torsional_stiffness=path.torsional_stiffness, status=path.status, wall_s=path.wall_s,
         converged=converged, iterations=path.iterations,
         force_resolution=path.force_resolution,
-        output_pin_forces=path.output_pin_forces[:, :discs])
+        output_pin_forces=path.output_pin_forces[:, :discs],
+        rated_torque=reducer.rating.rated_torque)
     result.te[~converged] = np.nan
     if path.status != "ok" and raise_on_failure:
         k = int(np.argmax(path.status_codes != 0))

@@ -31,6 +31,7 @@ import math
 
 import numpy as np
 
+from .._display import Headline, number
 from ..analysis import catalogue
 from ..errors import ParameterError, RvsimError, SimulationError
 from ..parameters import SPECS, get_value, resolve_name, with_values
@@ -75,9 +76,10 @@ class CalibrationError(RvsimError):
     """The data or the chosen parameters cannot be fitted (message says why)."""
 
 
-@dataclasses.dataclass
-class Calibration:
-    """Result of :func:`calibrate` (values in the parameters' user units)."""
+@dataclasses.dataclass(repr=False)
+class Calibration(Headline):
+    """Result of :func:`calibrate` (values in the parameters' user units).  Shown as each
+    fitted value with its 95 % interval and the residual before and after (:meth:`headline`)."""
 
     names: list
     units: list
@@ -95,6 +97,18 @@ class Calibration:
     status: str
     reducer: object = None
     unit: str = "arcsec"             # of the residuals: "arcsec", or "%" (efficiency points)
+
+    def headline(self) -> tuple[str, list[tuple]]:
+        """Status, the fit's residual and each parameter's estimate (the repr)."""
+        rows = [("RMS residual", f"{number(self.rms_arcsec, self.unit, 4)} (at the start "
+                                 f"{number(self.rms_start_arcsec, self.unit, 4)})")]
+        for name, unit, start, estimate, low, high in zip(self.names, self.units, self.start,
+                                                          self.estimate, self.ci_low,
+                                                          self.ci_high):
+            rows.append((name, f"{number(float(estimate), unit)} (95 %: {number(float(low))} "
+                               f"to {number(float(high))}; start {number(float(start))})"))
+        return (f"Calibration: {self.status}, {self.residuals} residuals, {self.evaluations} "
+                "model evaluations", rows + [("note", n) for n in self.notes])
 
     def to_dict(self) -> dict:
         def num(v):

@@ -9,13 +9,56 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from .._display import Headline, draw, number, without_status
 from ..errors import InputFileError
 from .montecarlo import (collect, study_torque, monte_carlo_units, run_samples, summarise,
                          write_json, write_results_csv)
 from .sensitivity import check_base, check_groups, sobol_count, sobol_indices, sobol_units
 from .spec import ToleranceStudy, check_samples
 
-__all__ = ["tolerance_analysis"]
+__all__ = ["tolerance_analysis", "ToleranceSummary"]
+
+
+class ToleranceSummary(Headline, dict):
+    """What :func:`tolerance_analysis` returns: the dict of summary.json (its keys as before),
+    shown as the report's opening rows (:func:`rvsim.analysis.headline.tolerance_rows`);
+    ``values`` holds each metric's value per Monte Carlo reducer (NaN where none),
+    ``to_frame()`` them as a DataFrame, ``plot(metric=...)`` one metric's distribution."""
+
+    def __init__(self, summary: dict, values: dict):
+        super().__init__(summary)
+        self.values = values
+
+    def headline(self) -> tuple[str, list[tuple]]:
+        from ..analysis.headline import tolerance_rows
+
+        rows = without_status(tolerance_rows(self))
+        mean = self["metrics"].get("te_mean_arcmin")     # the paper's index, not in the rows
+        if mean:
+            rows.insert(1, ("mean TE p5 / p50 / p95", " / ".join(
+                number(mean.get(k)) for k in ("p5", "p50", "p95")) + " arcmin"))
+        return (f"Tolerance study {self['study']}: {self['samples']} reducers, {self['ok']} "
+                f"analysed, {self['binds']} bind, {self['failed']} failed", rows)
+
+    def to_frame(self):
+        """One row per Monte Carlo reducer, one column per metric (unit-suffixed names)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.values)
+
+    def plot(self, ax=None, *, metric: str = "ate_arcmin"):
+        """Histogram and cumulative distribution of ``metric`` with p5, p50 and p95
+        (:func:`rvsim.tolerance.report.distribution_figure`); returns the first panel's
+        Axes."""
+        from .report import distribution_figure
+
+        if metric not in self.values:
+            from ..errors import ParameterError
+
+            raise ParameterError("metric", f"not a metric of this study (it has "
+                                 f"{', '.join(self.values)})")
+        return draw(distribution_figure, ax, metric, self.values[metric],
+                    self["metrics"][metric], panels=True)
 
 
 def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: int | None = None,
@@ -77,4 +120,4 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
             from .report import write_tolerance_report
 
             write_tolerance_report(folder, summary, values, status)
-    return summary
+    return ToleranceSummary(summary, values)

@@ -17,12 +17,14 @@ __all__ = ["write_tolerance_report", "distribution_figure", "sobol_figure", "sob
            "sobol_advice", "write_allocation_report"]
 
 
-def distribution_figure(name: str, x: np.ndarray, stats: dict):
-    """Histogram and empirical cumulative distribution of one metric, p5/p50/p95 marked."""
+def distribution_figure(name: str, x: np.ndarray, stats: dict, fig=None):
+    """Histogram and empirical cumulative distribution of one metric, p5/p50/p95 marked
+    (on ``fig``, a new figure if None)."""
     from ..plots import pyplot
 
-    plt = pyplot()
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 3.4))
+    if fig is None:
+        fig = pyplot().figure(figsize=(10, 3.4))
+    left, right = fig.subplots(1, 2)
     x = np.sort(x[np.isfinite(x)])
     if x.size:
         left.hist(x, bins=min(50, max(5, x.size // 10)), color="#4477aa")
