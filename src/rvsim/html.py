@@ -27,7 +27,8 @@ CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Roboto,sans-serif;margin:2em auto;
 max-width:1100px;color:#222;padding:0 1em}
 h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em;
-margin-top:2em}table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
+margin-top:2em}table{border-collapse:collapse;font-size:.85em;margin:.5em 0;
+display:block;overflow-x:auto;max-width:100%}.wide{overflow-x:auto}
 th,td{border:1px solid #ccc;padding:.2em .5em;text-align:right}th{background:#f3f3f3}
 td.l,th.l{text-align:left}.sig{font-weight:bold;background:#fff3cd}img{max-width:100%}
 .note{color:#555;font-size:.9em}.summary td{text-align:left}
@@ -61,7 +62,9 @@ def table(frame: pd.DataFrame, *, index: bool = True, highlight=None) -> str:
     rows.append("<tr>" + "".join(head) + "</tr>")
     for idx, row in frame.iterrows():
         cls = ' class="sig"' if highlight and idx in highlight else ""
-        cells = [f'<td class="l">{html.escape(str(idx))}</td>'] if index else []
+        # a number in the index as it reads (1500, not 1500.0)
+        label = f"{idx:g}" if isinstance(idx, (float, np.floating)) else str(idx)
+        cells = [f'<td class="l">{html.escape(label)}</td>'] if index else []
         for value in row:
             numeric = isinstance(value, (int, float, np.number)) and not isinstance(value, bool)
             if isinstance(value, float):

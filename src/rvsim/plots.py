@@ -12,7 +12,7 @@ from .analysis.figures import main_effects_plot   # public here too (issue 31 st
 
 __all__ = ["pyplot", "plain", "main_effects_plot", "speed_plot", "te_plot", "spectrum_plot",
            "figure_to_png", "pin_load_map", "te_revolution_plot", "order_spectrum_plot",
-           "hysteresis_plot"]
+           "hysteresis_plot", "mark_orders", "headroom"]
 
 _ARCMIN = math.pi / 10800.0
 
@@ -20,36 +20,118 @@ _ARCMIN = math.pi / 10800.0
 _pyplot = pyplot
 
 
-def speed_plot(result, ax=None):
-    """Input and output speed against time (paper Fig. 4)."""
+def speed_plot(result, ax=None, *, fig=None):
+    """Input and output speed against time (paper Fig. 4), each on its own scale: drawn on
+    one axis with the output multiplied by the ratio, the output's ripple hid the input
+    (issue 34 item 2).  By default (or into ``fig``) two panels sharing the time axis [deg/s,
+    rpm on the right]; into a given ``ax``, the input on it and the output on a twin y-axis."""
     plt = pyplot()
-    fig, ax = (plt.subplots(figsize=(7, 3.2)) if ax is None else (ax.figure, ax))
     deg = 180.0 / math.pi
-    ax.plot(result.time, result.omega_in * deg, label="input shaft")
-    ax.plot(result.time, result.omega_out * deg * result.ratio, label=f"output x {result.ratio:g}")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("speed [deg/s]")
-    ax.legend(loc="lower right")
-    ax.grid(alpha=0.3)
+    if ax is not None:
+        ax.plot(result.time, result.omega_in * deg, color="C0", lw=0.8, label="input shaft")
+        ax.set_ylabel("input shaft [deg/s]", color="C0")
+        twin = ax.twinx()
+        twin.plot(result.time, result.omega_out * deg, color="C1", lw=0.8, label="output")
+        twin.set_ylabel("output (carrier) [deg/s]", color="C1")
+        ax.set_xlabel("time [s]")
+        ax.grid(alpha=0.3)
+        return ax.figure
+    if fig is None:
+        fig = plt.figure(figsize=(7, 4.4))
+    top, bottom = fig.subplots(2, 1, sharex=True)
+    rpm = deg / 6.0                       # deg/s per rpm
+    for panel, omega, name, color in ((top, result.omega_in, "input shaft", "C0"),
+                                      (bottom, result.omega_out, "output (carrier)", "C1")):
+        panel.plot(result.time, omega * deg, color=color, lw=0.8)
+        panel.set_ylabel(f"{name}\n[deg/s]")
+        panel.secondary_yaxis("right", functions=(lambda v: v / rpm, lambda v: v * rpm)
+                              ).set_ylabel("[rpm]")
+        panel.grid(alpha=0.3)
+    bottom.set_xlabel("time [s]")
     fig.tight_layout()
     return fig
 
 
 def te_plot(results: dict, steady_start: float, ax=None):
-    """Transmission error against time for several runs, steady window shaded (Fig. 5)."""
+    """Transmission error against time for several runs (Fig. 5): the main axis zoomed on the
+    steady window (t >= ``steady_start``), the whole run with its start-up transient in an
+    inset, the window shaded there (the transient's +-15 arcmin set the scale and squashed
+    the steady differences: issue 34 item 2)."""
     plt = pyplot()
-    fig, ax = (plt.subplots(figsize=(7, 3.4)) if ax is None else (ax.figure, ax))
+    import numpy as np
+
+    fig, ax = (plt.subplots(figsize=(7, 3.6)) if ax is None else (ax.figure, ax))
     arcmin = 180.0 * 60.0 / math.pi
+    end = max(r.time[-1] for r in results.values())
+    steady = [r.te[r.time >= steady_start] * arcmin for r in results.values()]
+    steady = [v for v in steady if v.size]
     for label, result in results.items():
-        ax.plot(result.time, result.te * arcmin, lw=0.8, label=plain(label))
-    ax.axvspan(steady_start, max(r.time[-1] for r in results.values()), color="0.9",
-               label="steady window")
-    ax.set_xlabel("time [s]")
+        window = result.time >= steady_start
+        ax.plot(result.time[window], result.te[window] * arcmin, lw=0.8, label=plain(label))
+    if steady:
+        lo, hi = min(float(v.min()) for v in steady), max(float(v.max()) for v in steady)
+        pad = 0.08 * max(hi - lo, 1e-6 * max(abs(hi), 1.0))
+        ax.set_ylim(lo - pad, hi + 0.9 * (hi - lo) + 2 * pad)   # room above for the inset
+        ax.set_xlim(steady_start, end)
+    ax.set_xlabel("time [s] (steady window)")
     ax.set_ylabel("transmission error [arcmin]")
-    ax.legend(fontsize="small", ncol=2)
     ax.grid(alpha=0.3)
+    if len(results) > 1:
+        ax.legend(fontsize="x-small", ncol=min(len(results), 5), loc="lower left",
+                  bbox_to_anchor=(0.0, 1.0), frameon=False)     # above the axes, off the data
+    inset = ax.inset_axes([0.56, 0.58, 0.42, 0.38])
+    for result in results.values():
+        inset.plot(result.time, result.te * arcmin, lw=0.5)
+    inset.axvspan(steady_start, end, color="0.85", zorder=0)
+    inset.set_title("whole run, steady window shaded", fontsize=7)
+    inset.tick_params(labelsize=6)
+    inset.set_facecolor((1, 1, 1, 0.9))
     fig.tight_layout()
     return fig
+
+
+def mark_orders(ax, marks: dict, *, limit: float, color: str = "C3", style: str = "--"):
+    """Dashed lines at the ``marks`` (name -> order) up to ``limit`` on an order axis
+    (log-scaled here, from 0.8), names that coincide on one line, each label written
+    horizontally in the first row at the top of the axes where it overlaps no other label
+    (the vertical labels of a linear axis overlapped each other and the lines: issue 34
+    item 2).  Returns the number of label rows; the caller leaves that much room above its
+    data (:func:`headroom`)."""
+    from matplotlib.transforms import blended_transform_factory
+
+    ax.set_xscale("log")
+    ax.set_xlim(0.8, 1.25 * limit)
+    grouped: dict[float, list[str]] = {}
+    for name, order in marks.items():
+        if 0 < float(order) <= limit:
+            grouped.setdefault(float(order), []).append(name)
+    ax.figure.tight_layout()                       # the final axes box, before measuring
+    renderer = ax.figure.canvas.get_renderer()
+    right = ax.get_window_extent(renderer).x1
+    where = blended_transform_factory(ax.transData, ax.transAxes)
+    placed: list = []
+    rows = 0
+    for order in sorted(grouped):
+        ax.axvline(order, color=color, lw=0.7, ls=style)
+        for row in range(12):
+            text = ax.text(order, 0.97 - 0.075 * row, " " + ", ".join(grouped[order]) + " ",
+                           transform=where, color=color, fontsize=7, va="top", ha="left",
+                           bbox=dict(facecolor="white", edgecolor="none", alpha=0.8, pad=0.5))
+            box = text.get_window_extent(renderer)
+            if box.x1 > right:
+                text.set_ha("right")
+                box = text.get_window_extent(renderer)
+            if not any(box.overlaps(other) for other in placed) or row == 11:
+                placed.append(box.expanded(1.02, 1.1))
+                rows = max(rows, row + 1)
+                break
+            text.remove()
+    return rows
+
+
+def headroom(ax, top: float, rows: int) -> None:
+    """y from 0 to above ``top`` with room for ``rows`` label rows of :func:`mark_orders`."""
+    ax.set_ylim(0.0, (top or 1.0) / max(0.2, 0.95 - 0.075 * rows))
 
 
 def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int | None = 54,
@@ -64,22 +146,21 @@ def spectrum_plot(result, ax=None, *, pin_count: int = 40, planet_teeth: int | N
 
     orders, amplitude = te_spectrum(result.time, result.te, result.omega_out,
                                     result.steady_start, pin_count)
-    ax.plot(orders, amplitude, lw=0.8)
-    top = ax.get_ylim()[1]
-    marks = [(1, "crank"), (pin_count - 1, "zc"), (pin_count, "zp, pin passing")]
+    keep = orders > 0
+    ax.plot(orders[keep], amplitude[keep], lw=0.8)
+    marks = {"crank": 1, "zc": pin_count - 1, "zp, pin passing": pin_count}
     if planet_teeth is not None:
-        marks.append((planet_teeth, "sun-planet mesh"))
+        marks["sun-planet mesh"] = planet_teeth
     crank_hz = crank_frequency(result.time, result.omega_out, result.steady_start, pin_count)
     if fluctuation_frequency and crank_hz > 0:
-        marks.insert(1, (fluctuation_frequency / crank_hz,
-                         f"load fluctuation {fluctuation_frequency:g} Hz"))
-    for i, (order, name) in enumerate(marks):
-        ax.axvline(order, color="C3", lw=0.7, ls="--")
-        ax.text(order, top * (0.92 - 0.08 * i), f" {name}", color="C3", fontsize=7)
-    ax.set_xlim(0, 100)
+        marks[f"load fluctuation {fluctuation_frequency:g} Hz"] = (fluctuation_frequency
+                                                                  / crank_hz)
     ax.set_xlabel("order of crank rotation relative to the carrier [-]")
     ax.set_ylabel("TE amplitude [arcmin]")
-    ax.grid(alpha=0.3)
+    ax.grid(alpha=0.3, which="both")
+    rows = mark_orders(ax, marks, limit=100.0)
+    shown = keep & (orders <= 125.0)
+    headroom(ax, float(amplitude[shown].max(initial=0.0)), rows)
     fig.tight_layout()
     return fig
 
@@ -141,24 +222,14 @@ def order_spectrum_plot(orders, amplitude_arcmin, marks: dict, ax=None):
     fig, ax = (plt.subplots(figsize=(8, 3.4)) if ax is None else (ax.figure, ax))
     orders = np.asarray(orders)
     amplitude = np.asarray(amplitude_arcmin)
-    ax.vlines(orders[1:], 0.0, amplitude[1:], lw=1.0)
     limit = min(float(orders[-1]), 1.15 * max(marks.values()))
-    ax.set_xlim(0, limit)
-    top = float(amplitude[1:][orders[1:] <= limit].max(initial=0.0)) or 1.0
-    ax.set_ylim(0, 1.35 * top)
-    grouped: dict[float, list[str]] = {}
-    for name, order in marks.items():
-        grouped.setdefault(float(order), []).append(name)
-    placed = sorted(o for o in grouped if o <= limit)
-    for order in placed:
-        ax.axvline(order, color="C3", lw=0.7, ls="--")
-        # vertical labels right of their line, left of it when a close neighbour follows
-        crowded = any(0 < other - order <= 0.04 * limit for other in placed)
-        ax.text(order, 1.33 * top, ", ".join(grouped[order]), color="C3", fontsize=7,
-                rotation=90, va="top", ha="right" if crowded else "left")
+    keep = (orders > 0) & (orders <= 1.25 * limit)
+    ax.vlines(orders[keep], 0.0, amplitude[keep], lw=1.0)
     ax.set_xlabel("order of the output revolution [-]")
     ax.set_ylabel("TE amplitude [arcmin]")
-    ax.grid(alpha=0.3)
+    ax.grid(alpha=0.3, which="both")
+    rows = mark_orders(ax, marks, limit=limit)
+    headroom(ax, float(amplitude[keep].max(initial=0.0)), rows)
     fig.tight_layout()
     return fig
 

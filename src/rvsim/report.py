@@ -281,8 +281,9 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
     if histories:
         first = next(iter(histories.values()))
         body += ["<h2>Input and output speed (Fig. 4)</h2>",
-                 f"<p class='note'>{html.escape(next(iter(histories)))}; output speed "
-                 f"multiplied by the ratio {first.ratio:g}.</p>", _png(speed_plot(first)),
+                 f"<p class='note'>{html.escape(next(iter(histories)))}: input (upper panel) and "
+                 f"output (lower panel, the ratio {first.ratio:g} slower), each on its own "
+                 "scale.</p>", _png(speed_plot(first)),
                  "<h2>Transmission error of the first runs (Fig. 5)</h2>",
                  _png(te_plot(histories, first.steady_start)),
                  "<h2>TE spectrum</h2>",
@@ -378,17 +379,18 @@ def _speed_note(result, reducer) -> str:
     """What the speed curve of Fig. 4 shows, in words, with this run's figures."""
     op = reducer.operating
     deg = 180.0 / np.pi
-    out = result.omega_out * deg * result.ratio
+    out = result.omega_out * deg
     steady_in = op.input_speed * deg
+    rigid = steady_in / result.ratio          # the output speed of a rigid, backlash-free drive
 
     def span(lo, hi):
         m = (result.time >= lo) & (result.time < hi)
         return (out[m].min(), out[m].max()) if m.any() else None
 
     text = [f"The input follows the STEP ramp to {steady_in:.0f} deg/s over "
-            f"{op.speed_ramp_time:g} s (Eq. 19); the output speed is shown multiplied by the "
-            f"ratio {result.ratio:g}, so a rigid, backlash-free drive would overlay the two "
-            f"curves.  The carrier drives a load of {op.load_inertia:g} kg*m^2 "
+            f"{op.speed_ramp_time:g} s (Eq. 19) (upper panel); a rigid, backlash-free drive "
+            f"would turn the output (lower panel) at that speed / {result.ratio:g} = "
+            f"{rigid:.2f} deg/s.  The carrier drives a load of {op.load_inertia:g} kg*m^2 "
             "(operating.load_inertia)."]
     before = span(0.0, op.load_start)
     if before is not None:
@@ -402,16 +404,16 @@ def _speed_note(result, reducer) -> str:
             cause = ("without load the carrier is only dragged along; start-up vibration and "
                      "the play of clearances and errors show as deviations")
         text.append(f"Before the load is applied (t < {op.load_start:g} s) the output "
-                    f"speed x {result.ratio:g} ranges from {lo:.0f} to {hi:.0f} deg/s: "
+                    f"speed ranges from {lo:.3g} to {hi:.3g} deg/s: "
                     f"{cause}.")
     steady = span(op.steady_start, float("inf"))
     if steady is not None:
         lo, hi = steady
         text.append(f"Once the {op.load_torque:g} N*m load has taken up the play (t >= "
-                    f"{op.steady_start:g} s) it stays between {lo:.0f} and {hi:.0f} deg/s "
-                    f"({100 * (lo / steady_in - 1):+.1f} % to {100 * (hi / steady_in - 1):+.1f} "
-                    f"% of the input): what remains is the torsional vibration of the loaded "
-                    f"drive{_speed_peaks(result, reducer)}.")
+                    f"{op.steady_start:g} s) it stays between {lo:.3g} and {hi:.3g} deg/s "
+                    f"({100 * (lo / rigid - 1):+.1f} % to {100 * (hi / rigid - 1):+.1f} "
+                    f"% from the rigid drive's): what remains is the torsional vibration of the "
+                    f"loaded drive{_speed_peaks(result, reducer)}.")
     return "<p class='note'>" + html.escape(" ".join(text)) + "</p>"
 
 
@@ -508,7 +510,8 @@ def write_ltca_report(result, reducer, path: str | Path) -> Path:
     lines = pd.DataFrame({"order": orders, "amplitude [arcmin]": amplitude / ARCMIN})
     floor = 1e-9 * max(float(lines["amplitude [arcmin]"].max()), 1e-300)  # round-off lines
     lines = lines[(lines["order"] > 0) & (lines["amplitude [arcmin]"] > floor)]
-    lines = lines.nlargest(10, "amplitude [arcmin]").set_index("order")
+    lines = lines.nlargest(10, "amplitude [arcmin]").rename(columns={"order": "order [-]"}
+                                                            ).set_index("order [-]")
     names = {}
     for name, order in marks.items():
         names.setdefault(order, []).append(name)

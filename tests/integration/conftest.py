@@ -22,6 +22,39 @@ SHORT = """
 """
 
 
+#: a small tolerance study (tests/integration/test_tolerance_cli.py and the browser test)
+SMALL = """name = "small"
+samples = 6
+seed = 3
+positions = 81
+[set]
+"operating.load_torque" = 412
+"errors.equidistant_modification" = 0.010
+"clearances.crank_arm_bushing" = 0.005
+[tolerances.pin_radius]
+tolerance = 0.002
+distribution = "normal"
+[tolerances.disc_holes]
+tolerance = 0.004
+[tolerances."clearances.crank_arm_bushing"]
+tolerance = 0.003
+"""
+
+
+@pytest.fixture(scope="session")
+def small_run(tmp_path_factory):
+    """One tolerance study of SMALL with Sobol indices and its report, run once for the test
+    session (the tolerance tests and the browser test read it): (the command's result, its
+    folder); tests work on a copy of the folder."""
+    from tests.conftest import run_cli
+
+    root = tmp_path_factory.mktemp("small-run")
+    (root / "small.toml").write_text(SMALL)
+    res = run_cli("tolerance", str(root / "small.toml"), "--out", str(root / "o"),
+                  "--workers", "1", "--sobol", "2")
+    return res, root / "o"
+
+
 def factors(**specs):
     """TOML [factors.X] tables: ``X=(parameter, levels)`` or ``X=(parameter, "range", [lo, hi])``."""
     blocks = []

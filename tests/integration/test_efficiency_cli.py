@@ -20,8 +20,10 @@ def test_json_contract_and_report(cli, tmp_path):
     assert KEYS <= set(data) and data["status"] == "ok" and data["friction"] is True
     assert len(data["efficiency"]) == 4
     for point in data["efficiency"]:
-        assert set(point) == {"input_speed_rpm", "output_torque_nm", "efficiency"}
+        assert set(point) == {"input_speed_rpm", "output_torque_nm", "efficiency",
+                              "efficiency_pct"}          # the fraction kept, % beside it
         assert 0.8 < point["efficiency"] < 1.0
+        assert point["efficiency_pct"] == pytest.approx(100 * point["efficiency"], rel=1e-15)
     assert data["no_load_running_torque_nm"] > 0 and data["starting_torque_nm"] > 0
     assert "Efficiency map" in page.read_text()
     rows = answer(page.read_text())       # the answer first (issue 34 item 2)
@@ -29,6 +31,18 @@ def test_json_contract_and_report(cli, tmp_path):
         assert rows[f"efficiency at 412 N*m, {point['input_speed_rpm']:g} rpm input"] == [
             f"{100 * point['efficiency']:.4g} %", "NF", "no catalogue figure to compare"]
     assert rows["starting torque at the input"][0] == f"{data['starting_torque_nm']:.3g} N*m"
+
+
+def test_speeds_as_given_and_round_off_as_zero(cli):
+    """1500 rpm comes back as 1500 (not 1500.0000000000002), and with mesh friction only the
+    no-load running torque, 1.95e-11 N*m of round-off before, is 0 (issue 34 item 2)."""
+    res = cli("efficiency", "--set", "friction.mesh_coefficient=0.05", "--speeds", "1500",
+              "--torques", "412", "--json")
+    assert res.code == 0, res.err
+    data = json.loads(res.out)
+    assert data["efficiency"][0]["input_speed_rpm"] == 1500.0
+    assert data["no_load_running_torque_nm"] == 0.0 and data["starting_torque_nm"] == 0.0
+    assert data["input_torque_resolution_nm"] == pytest.approx(1e-7 * 412 / 121, rel=1e-12)
 
 
 def test_zero_friction_says_so(cli):

@@ -37,9 +37,25 @@ def browser():
             chromium.close()
 
 
+#: the widths every report is read at (issue 34 item 2: a desktop and a narrow window)
+WIDTHS = (1280, 800)
+
+#: at each width: the page's own width, the right edge of its widest image and table, and
+#: the tables that do not scroll inside their own box
+LAYOUT = """() => [document.documentElement.scrollWidth,
+  Math.max(0, ...Array.from(document.querySelectorAll('img, table'))
+                      .map(e => e.getBoundingClientRect().right)),
+  Array.from(document.querySelectorAll('table'))
+       .filter(t => getComputedStyle(t).overflowX !== 'auto').length]"""
+
+
 def _open(browser, path: Path, screenshot: Path) -> dict:
-    seen = {"console": [], "errors": [], "requests": []}
-    page = browser.new_page(viewport={"width": 1200, "height": 900})
+    """``path`` in one page of ``browser``, read at each of :data:`WIDTHS` (the page resized,
+    not a new browser); the screenshot of the first width to ``screenshot`` (of every width
+    when RVSIM_SCREENSHOTS names a folder)."""
+    seen = {"console": [], "errors": [], "requests": [], "layout": {}}
+    page = browser.new_page(viewport={"width": WIDTHS[0], "height": 900})
+    extra = os.environ.get("RVSIM_SCREENSHOTS")
     try:
         page.on("console", lambda m: seen["console"].append(f"{m.type}: {m.text}"))
         page.on("pageerror", lambda e: seen["errors"].append(str(e)))
@@ -51,12 +67,17 @@ def _open(browser, path: Path, screenshot: Path) -> dict:
             "Array.from(document.images).filter(i => !(i.complete && i.naturalWidth > 0))"
             ".length")
         seen["text"] = page.inner_text("body")
-        page.screenshot(path=str(screenshot), full_page=True)
+        for width in WIDTHS:
+            page.set_viewport_size({"width": width, "height": 900})
+            seen["layout"][width] = page.evaluate(LAYOUT)
+            if width == WIDTHS[0]:
+                page.screenshot(path=str(screenshot), full_page=True)
+            if extra:
+                name = f"{screenshot.stem}_{width}{screenshot.suffix}"
+                page.screenshot(path=str(Path(extra) / name), full_page=True)
     finally:
         page.close()
-    extra = os.environ.get("RVSIM_SCREENSHOTS")
-    if extra:
-        shutil.copy(screenshot, Path(extra) / screenshot.name)
+    seen["bytes"] = path.stat().st_size
     return seen
 
 
@@ -66,6 +87,10 @@ def _check(seen: dict, min_images: int) -> None:
     assert seen["broken"] == 0 and seen["images"] >= min_images
     assert [r for r in seen["requests"] if not r.startswith(("file:", "data:"))] == []
     assert len(seen["text"]) > 500
+    for width, (page_width, right, fixed) in seen["layout"].items():
+        # nothing scrolls the page sideways: images shrink, tables scroll in their own box
+        assert page_width <= width and right <= width and fixed == 0, (width, seen["layout"])
+    assert seen["bytes"] < 1_000_000                    # self-contained and under 1 MB
 
 
 def test_study_report_in_browser(tmp_path, small_study, browser):
@@ -119,4 +144,38 @@ def test_quasistatic_pages_in_browser(tmp_path, cli, browser, command, headings)
     seen = _open(browser, page, tmp_path / f"{command}.png")
     _check(seen, min_images=1 if command == "hysteresis" else 3)
     for heading in headings:
+        assert heading in seen["text"]
+
+
+def test_efficiency_tolerance_and_allocation_reports_in_browser(tmp_path, cli, browser,
+                                                                small_run):
+    """The reports of issue 34 item 2's other commands: the efficiency heat map, the
+    tolerance report's flagged Sobol indices, the allocation's before/after and convergence
+    plots (from docs/validation_data's allocation of the RV-40E tolerances, written by an
+    older version: no status_text, SciPy's message as its status)."""
+    import json
+
+    from rvsim.tolerance.report import write_allocation_report
+    page = tmp_path / "efficiency.html"
+    res = cli("efficiency", "--params", "RV-40E-bearings", "--speeds", "500,1500",
+              "--torques", "206,412", "--report", str(page))
+    assert res.code == 0, res.err
+    seen = _open(browser, page, tmp_path / "efficiency.png")
+    _check(seen, min_images=1)
+    assert "Efficiency [%]" in seen["text"] and "1500 rpm" in seen["text"]
+
+    res, folder = small_run            # conftest.py: SMALL's tolerance study, --sobol 2
+    assert res.code == 0, res.err
+    seen = _open(browser, folder / "report.html", tmp_path / "tolerance.png")
+    _check(seen, min_images=4)
+    # two base samples: intervals far wider than the indices, flagged, with advice
+    assert "interval wider than the index" in seen["text"] and "--sobol " in seen["text"]
+    assert "unit" in seen["text"] and "N*m/arcmin" in seen["text"]
+
+    result = json.loads((Path(__file__).resolve().parents[2] / "docs" / "validation_data"
+                         / "rv40e_allocation_example.json").read_text())
+    report = write_allocation_report(tmp_path, result)
+    seen = _open(browser, report, tmp_path / "allocation.png")
+    _check(seen, min_images=2)
+    for heading in ("Before and after", "Convergence", "Tolerances", "Targets"):
         assert heading in seen["text"]

@@ -7,22 +7,9 @@ import pytest
 
 from tests.integration.answer_block import answer
 
-SMALL = """name = "small"
-samples = 6
-seed = 3
-positions = 81
-[set]
-"operating.load_torque" = 412
-"errors.equidistant_modification" = 0.010
-"clearances.crank_arm_bushing" = 0.005
-[tolerances.pin_radius]
-tolerance = 0.002
-distribution = "normal"
-[tolerances.disc_holes]
-tolerance = 0.004
-[tolerances."clearances.crank_arm_bushing"]
-tolerance = 0.003
-"""
+# SMALL, and the small_run fixture (its study run once with its report, read by the browser
+# test too), live in conftest.py
+from tests.integration.conftest import SMALL
 
 
 @pytest.fixture
@@ -30,19 +17,6 @@ def small(tmp_path):
     path = tmp_path / "small.toml"
     path.write_text(SMALL)
     return path
-
-
-@pytest.fixture(scope="module")
-def small_run(tmp_path_factory):
-    """One tolerance study of SMALL with Sobol indices and its report, run once for the module:
-    (the command's result, its folder); tests work on a copy of the folder."""
-    from tests.conftest import run_cli
-
-    root = tmp_path_factory.mktemp("small-run")
-    (root / "small.toml").write_text(SMALL)
-    res = run_cli("tolerance", str(root / "small.toml"), "--out", str(root / "o"),
-                  "--workers", "1", "--sobol", "2")
-    return res, root / "o"
 
 
 def test_tolerance_writes_summary_results_and_report(tmp_path, small, cli, small_run):

@@ -96,9 +96,12 @@ def _efficiency(args: argparse.Namespace) -> int:
           f"{len(result.output_torque)} torques ({summary['wall_s']:.2f} s"
           f"{compile_time_text()}), status "
           f"{summary['status']}")
-    table = frame.pivot(index="output_torque_nm", columns="input_speed_rpm", values="efficiency")
-    print("output torque [N*m] \\ input speed [rpm]")
-    print((100.0 * table).round(2).to_string())
+    table = (100.0 * frame.pivot(index="output_torque_nm", columns="input_speed_rpm",
+                                 values="efficiency")).round(2)
+    table.columns = [f"{c:g} rpm" for c in table.columns]
+    table.index = [f"{t:g} N*m" for t in table.index]
+    print("efficiency [%]: output torque \\ input speed")
+    print(table.to_string())
     running = ", ".join(f"{r['torque_nm']:.4g} N*m at {r['input_speed_rpm']:g} rpm"
                         for r in summary["no_load_running_torque"])
     print(f"no-load running torque (input): {running}")

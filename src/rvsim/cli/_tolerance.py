@@ -110,6 +110,7 @@ def _allocate(args: argparse.Namespace) -> int:
     print(f"{study.name}: {result['status']}, relative cost {result['cost']:.4g} (as given "
           f"{result['cost_start']:.4g}), {result['evaluations']} evaluations of {samples} "
           f"reducers -> {folder}/allocation.json, report.html")
+    print(f"  {result['status_text']}")
     for t in result["tolerances"]:
         print(f"  {t['name']}: {t['given']:g} -> {t['allocated']:.4g} {t['unit']}")
     for t in result["targets"]:

@@ -208,8 +208,8 @@ class Result(Headline):
                 f"simulated ({m['steps']} steps, {number(m['wall_s'], 's', 3)} wall)", rows)
 
     def plot(self, ax=None):
-        """TE [arcmin] over time, the steady window shaded (:func:`rvsim.plots.te_plot`);
-        returns the Axes."""
+        """TE [arcmin] over the steady window, the whole run with its start-up in an inset
+        (:func:`rvsim.plots.te_plot`); returns the Axes."""
         return draw(figure("rvsim.plots", "te_plot"), ax, {self.reducer_name: self},
                     self.steady_start)
 

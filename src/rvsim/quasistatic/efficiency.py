@@ -19,6 +19,7 @@ from .._display import Headline, draw, figure, number, without_status
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..units import from_si
+from .transmission import TOLERANCE
 
 __all__ = ["efficiency", "efficiency_points", "EfficiencyResult", "DEFAULT_SPEEDS_RPM",
            "DEFAULT_TORQUE_FRACTIONS", "POSITIONS", "STARTING_SPEED_RPM", "MAX_SPEED_RPM", "RESOLVED_TORQUE_FRACTION"]
@@ -64,13 +65,21 @@ class EfficiencyResult(Headline):
     seal_torque_input: float = 0.0   # [N*m] input seals' drag torque
     seal_torque_output: float = 0.0  # [N*m] output seals' drag torque
     rated_torque: float = math.nan   # [N*m] the reducer's (reducer.rating.rated_torque)
+    torque_resolution: float = 0.0   # [N*m] input torques below it were round-off: shown as 0
+
+    def speeds_rpm(self) -> np.ndarray:
+        """The input speeds [rpm] as given (the rad/s round trip left 1500.0000000000002)."""
+        return np.array([float(f"{n:.12g}") for n in self.input_speed / RPM])
 
     def summary(self) -> dict:
-        """The JSON keys of ``rvsim efficiency`` (speeds in rpm, torques in N*m)."""
-        rpm = self.input_speed / RPM
+        """The JSON keys of ``rvsim efficiency`` (speeds in rpm, torques in N*m; efficiency a
+        fraction under ``efficiency``, as since its first version, and in % under
+        ``efficiency_pct``, the unit of the console and the report)."""
+        rpm = self.speeds_rpm()
         return {
             "efficiency": [{"input_speed_rpm": float(n), "output_torque_nm": float(t),
-                            "efficiency": float(self.efficiency[i, j])}
+                            "efficiency": float(self.efficiency[i, j]),
+                            "efficiency_pct": 100.0 * float(self.efficiency[i, j])}
                            for i, n in enumerate(rpm) for j, t in enumerate(self.output_torque)],
             "no_load_running_torque_nm": float(self.no_load_running_torque[0]),
             "no_load_running_torque": [{"input_speed_rpm": float(n), "torque_nm": float(t)}
@@ -84,6 +93,7 @@ class EfficiencyResult(Headline):
             "oil_viscosity_mm2_s": from_si(self.oil_viscosity, "mm^2/s"),
             "seal_torque_input_nm": self.seal_torque_input,
             "seal_torque_output_nm": self.seal_torque_output,
+            "input_torque_resolution_nm": self.torque_resolution,
             "wall_s": self.wall_s,
             "status": self.status,
         }
@@ -112,7 +122,8 @@ class EfficiencyResult(Headline):
         """One row per (input speed, output torque) point."""
         import pandas as pd
 
-        rows = [{"input_speed_rpm": self.input_speed[i] / RPM,
+        rpm = self.speeds_rpm()
+        rows = [{"input_speed_rpm": rpm[i],
                  "output_torque_nm": self.output_torque[j],
                  "input_torque_nm": self.input_torque[i, j],
                  "efficiency": self.efficiency[i, j]}
@@ -252,6 +263,11 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
         eff[:] = 1.0
         no_load[:] = 0.0
         starting = 0.0
+    # the solver's residual (TOLERANCE of the rated torque on the output) seen on the input:
+    # a running torque below it is round-off (1.95e-11 N*m with mesh friction only), not a result
+    resolution = TOLERANCE * rated / abs(ratio)
+    no_load[np.abs(no_load) < resolution] = 0.0
+    starting = 0.0 if abs(starting) < resolution else starting
     return EfficiencyResult(input_speed=speeds, output_torque=loads, efficiency=eff,
                             input_torque=t_in, no_load_running_torque=no_load,
                             starting_torque=starting, ratio=ratio, positions=positions,
@@ -259,4 +275,5 @@ def efficiency(reducer: Reducer, *, speeds_rpm=None, torques=None,
                             wall_s=clock.split()[0],
                             temperature=reducer.operating.temperature, oil_viscosity=viscosity,
                             seal_torque_input=seal_in, seal_torque_output=seal_out,
-                            rated_torque=reducer.rating.rated_torque)
+                            rated_torque=reducer.rating.rated_torque,
+                            torque_resolution=resolution)

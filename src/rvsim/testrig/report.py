@@ -47,7 +47,7 @@ def _te_figure(measured, simulated):
 
 
 def _spectrum_figure(measured, simulated, marks):
-    from ..plots import pyplot
+    from ..plots import headroom, mark_orders, pyplot
 
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 3.4))
@@ -59,12 +59,14 @@ def _spectrum_figure(measured, simulated, marks):
     leading = [] if lines[0] is None else list(
         lines[0][0][np.argsort(lines[0][1][1:])[::-1][:3] + 1])
     limit = 1.2 * max(leading + [2.0 * max(o for o in marks.values() if o < 100)])
+    top = 0.0
     for (source, color, style), line in zip((("measured", "C0", "-"), ("model", "C1", "o")),
                                             lines):
         if line is None:
             continue
         orders, amplitude = line
-        keep = (orders > 0) & (orders <= limit)
+        keep = (orders > 0) & (orders <= 1.25 * limit)
+        top = max(top, float(amplitude[keep].max(initial=0.0)) / ARCSEC)
         if style == "-":
             ax.vlines(orders[keep], 0.0, amplitude[keep] / ARCSEC, color=color, lw=1.0,
                       label=source)
@@ -72,20 +74,12 @@ def _spectrum_figure(measured, simulated, marks):
             shown = keep & (amplitude > 0.01 * amplitude[keep].max())
             ax.plot(orders[shown], amplitude[shown] / ARCSEC, "o", mfc="none", color=color,
                     ms=5, label=source)
-    top = ax.get_ylim()[1]
-    grouped: dict = {}
-    for name, order in marks.items():
-        grouped.setdefault(float(order), []).append(name)
-    for order, names in grouped.items():
-        if order <= limit:
-            ax.axvline(order, color="C3", lw=0.5, ls=":")
-            ax.text(order, top, ", ".join(names), rotation=90, fontsize=6, va="top",
-                    color="C3")
-    ax.set_xlim(0, limit)
     ax.set_xlabel("order of the output revolution [-]")
     ax.set_ylabel("TE amplitude [arcsec]")
+    ax.grid(alpha=0.3, which="both")
+    rows = mark_orders(ax, marks, limit=limit, style=":")
+    headroom(ax, top, rows)
     ax.legend(fontsize="small", loc="center right")
-    ax.grid(alpha=0.3)
     fig.tight_layout()
     return fig
 

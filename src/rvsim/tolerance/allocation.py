@@ -34,7 +34,7 @@ from ..parameters import plain_number
 from .engine import METRICS
 from .spec import FEATURES, ToleranceStudy, largest_tolerance
 
-__all__ = ["CostModel", "cost_table", "parse_targets", "allocate", "Target"]
+__all__ = ["status_text", "CostModel", "cost_table", "parse_targets", "allocate", "Target"]
 
 #: the optimiser's targets are this much (relative) tighter than the user's (see allocate)
 MARGIN = 0.01
@@ -210,6 +210,23 @@ def _evaluate(study, store, folder, samples, tolerances, targets, workers, sched
     return achieved, share, failed
 
 
+def status_text(success: bool, calls: int, limit: int | None, evaluations: int) -> str:
+    """The allocation's end in plain words (SciPy's COBYLA message is kept beside it as
+    ``optimizer_message``): converged, or stopped at the --max-evaluations limit, or stopped
+    otherwise; the tolerances reported are the cheapest that met every target."""
+    done = f"{evaluations} Monte Carlo evaluations"
+    if success:
+        return (f"converged: the search's steps fell below its tolerance after {done}; the "
+                "cheapest tolerances that met every target are reported")
+    if limit is None or calls >= limit:
+        given = "" if limit is None else f" {limit}"
+        return (f"stopped at the evaluation limit (--max-evaluations{given}) before "
+                f"converging, after {done}: the cheapest tolerances found so far that meet "
+                "every target are reported; a larger --max-evaluations may loosen them further")
+    return (f"stopped before converging after {done} (see optimizer_message): the cheapest "
+            "tolerances found that meet every target are reported")
+
+
 def allocate(study: ToleranceStudy, targets: list[Target], folder, *, samples: int = 200,
              cost: CostModel | None = None, workers: int | None = None,
              scheduler: str | None = None, max_evaluations: int = 60) -> dict:
@@ -350,7 +367,10 @@ def _allocate(study, targets, folder, samples, cost, workers, scheduler, max_eva
             store.close()
     return {
         "study": study.name, "samples": samples, "evaluations": len(history),
-        "status": "ok" if result.success else f"stopped: {result.message}",
+        "status": "ok" if result.success else "stopped",
+        "status_text": status_text(result.success, int(result.nfev), max_evaluations,
+                                   len(history)),
+        "optimizer_message": str(result.message),
         # the cost of the tolerances as given, not of the start moved into the cost bounds
         "cost": best["cost"], "cost_start": cost.cost(dict(cost.reference)),
         "notes": notes,
