@@ -18,7 +18,7 @@ import pytest
 
 from rvsim.cli import main
 from rvsim.parameters import RV40E
-from tests._warmup import CHAINS, SECONDS, chains_for
+from tests._warmup import CHAINS, COMPILE_LOCKS, SECONDS, chains_for
 
 try:
     import fcntl
@@ -135,6 +135,7 @@ def _compile_kernels_once(config) -> None:
     sys.stderr.write("rvsim tests: compiling the numba kernels in the background (a few "
                      "seconds when cached); the tests that need them wait\n")
     folder = Path(tempfile.mkdtemp(prefix="rvsim-test-warmup-"))
+    env[COMPILE_LOCKS] = str(folder)                 # the chains compile each function once
     chains, locks = [], []
     for chain in CHAINS:
         lock = folder / f"{chain}.lock"
