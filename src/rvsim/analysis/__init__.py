@@ -18,19 +18,27 @@ __all__ = ["RangeAnalysis", "range_analysis", "AnovaTable", "anova", "predict_op
 
 
 def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
-                  alpha: float = 0.1) -> dict:
+                  alpha: float = 0.1, sn: str | None = None) -> dict:
     """Everything ``rvsim analyze --json`` prints, as one dict (``order`` is None, and
-    ``constant_response`` true, when the response is constant to round-off)."""
+    ``constant_response`` true, when the response is constant to round-off).  ``sn``: the S/N
+    kind of the response table ("smaller", "larger"; None: the response's own sense,
+    :func:`rvsim.analysis.signal_noise.table_kind`); a larger-the-better response's optimum
+    is its largest level mean.  ``sn_kind`` says which (None for an S/N column)."""
     from .anova import anova, predict_optimum, sn_response_table
     from .range_analysis import range_analysis
+    from .signal_noise import table_kind
 
-    ra = range_analysis(table, response, factors)
+    kind = table_kind(response, sn)
+    larger = None if kind is None else kind == "larger"
+    ra = range_analysis(table, response, factors, larger=larger)
     table_anova = anova(table, response, factors, pool=pool)
     out = ra.to_dict()
     out["anova"] = table_anova.to_dict()
     out["significant"] = table_anova.significant(alpha)
     out["alpha"] = alpha
-    out["prediction"] = predict_optimum(table, table_anova, response, alpha=alpha)
+    out["prediction"] = predict_optimum(table, table_anova, response, alpha=alpha,
+                                        larger=larger)
+    out["sn_kind"] = kind
     from .anova import CONSTANT_NOTE
 
     if CONSTANT_NOTE in table_anova.notes:
@@ -48,7 +56,10 @@ def analyze_table(table, response: str = "te_arcmin", factors=None, *, pool=(),
     from .range_analysis import larger_is_better
 
     # the response is itself an S/N ratio (a robust study's): no S/N of it (issue 33)
-    sn = None if larger_is_better(response) else sn_response_table(table, response, factors)
+    sn = None if kind is None else sn_response_table(table, response, factors, kind)
+    if kind == "larger":
+        notes.append(f"{response} is larger-the-better: S/N = -10 log10(1/y^2) and the "
+                     "optimum takes the largest level mean")
     if larger_is_better(response):
         out["sn_response"] = None
         notes.append(f"{response} is an S/N ratio: larger is better (the optimum maximises "
