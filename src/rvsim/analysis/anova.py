@@ -17,6 +17,7 @@ import pandas as pd
 
 from ..errors import InputFileError
 from ._table import UNBALANCED_NOTE, check_design_table, factor_columns, is_balanced
+from .signal_noise import signal_to_noise, signal_to_noise_smaller
 
 __all__ = ["AnovaTable", "anova", "signal_to_noise_smaller", "sn_response_table",
            "ZERO_RESPONSE_NOTE",
@@ -130,12 +131,6 @@ def _p_value(f_value: float, df1: float, df2: float) -> float:
     return float(f_dist.sf(f_value, df1, df2))
 
 
-def signal_to_noise_smaller(values) -> float:
-    """Taguchi smaller-is-better S/N ratio: -10 log10(mean(y^2)) [dB]."""
-    y = np.asarray(values, dtype=float)
-    return float(-10.0 * np.log10(np.mean(y * y)))
-
-
 def check_alpha(alpha) -> float:
     """A significance level strictly between 0 and 1 (ParameterError): alpha = 5, a percent
     typed as a number, made every factor significant."""
@@ -157,8 +152,6 @@ def sn_response_table(table: pd.DataFrame, response: str = "te_arcmin", factors=
     ``kind`` "smaller" (-10 log10(y^2)) or "larger" (-10 log10(1/y^2)) the better
     (:func:`rvsim.analysis.signal_noise.signal_to_noise`); None when a run's response is 0
     (:data:`ZERO_RESPONSE_NOTE`).  The best level is the largest mean either way."""
-    from .signal_noise import signal_to_noise
-
     factors = factor_columns(table, response, factors)
     data = check_design_table(table, response, factors)
     ratios = [signal_to_noise([v], kind) for v in data[response]]

@@ -24,9 +24,7 @@ import math
 
 import numpy as np
 
-from .anova import signal_to_noise_smaller
-
-__all__ = ["signal_to_noise", "KINDS", "sense", "robust_columns", "STATISTICS", "table_kind"]
+__all__ = ["signal_to_noise", "signal_to_noise_smaller", "KINDS", "sense", "robust_columns", "STATISTICS", "table_kind"]
 
 #: the S/N kinds and their column suffixes
 KINDS = ("smaller", "nominal", "larger")
@@ -36,6 +34,13 @@ STATISTICS = ("mean", "std", "p5", "p50", "p95")
 _LARGER_IS_BETTER = ("torsional_stiffness_nm_per_arcmin", "torsional_rigidity_nm_per_arcmin",
                      "rated_torque_nm", "pins_in_contact_min", "pins_in_contact_max",
                      "efficiency")
+
+
+def signal_to_noise_smaller(values) -> float:
+    """Taguchi smaller-is-better S/N ratio: -10 log10(mean(y^2)) [dB] (the paper's Table 3
+    analysis; :mod:`rvsim.analysis.anova` takes it from here)."""
+    y = np.asarray(values, dtype=float)
+    return float(-10.0 * np.log10(np.mean(y * y)))
 
 
 def signal_to_noise(values, kind: str) -> float | None:
