@@ -198,7 +198,8 @@ def test_a_table_whose_runs_have_no_ate_is_refused_with_the_reason(tmp_path, cli
 
 def _sn_line(res, *words):
     assert res.code == 2, (res.out, res.err)
-    assert res.err.count("\n") == 1 and res.err.startswith("rvsim: error: parameter '--sn': "), res.err
+    assert res.err.count("\n") == 1, res.err
+    assert res.err.startswith("rvsim: error: parameter '--sn': "), res.err
     assert "Traceback" not in res.err and res.out == ""
     for w in words:
         assert w in res.err, res.err

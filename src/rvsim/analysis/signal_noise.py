@@ -24,7 +24,8 @@ import math
 
 import numpy as np
 
-__all__ = ["signal_to_noise", "signal_to_noise_smaller", "KINDS", "sense", "robust_columns", "STATISTICS", "table_kind"]
+__all__ = ["signal_to_noise", "signal_to_noise_smaller", "KINDS", "sense", "robust_columns",
+           "STATISTICS", "table_kind"]
 
 #: the S/N kinds and their column suffixes
 KINDS = ("smaller", "nominal", "larger")
