@@ -131,8 +131,9 @@ def dynamic_table(results: dict) -> str:
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--samples", type=int, default=400, help="reducers per band (default 400)")
-    p.add_argument("--subsets", default="100,200",
-                   help="also give the bands of the first n reducers (comma list)")
+    p.add_argument("--subsets", default=None,
+                   help="also give the bands of the first n reducers (comma list; default "
+                        "those of 100,200 below --samples)")
     p.add_argument("--out", type=Path, required=True, help="output folder")
     p.add_argument("--workers", type=int, default=None, help="worker processes")
     p.add_argument("--prototypes", default="1,2,3", help="which prototypes (comma list)")
@@ -140,7 +141,9 @@ def main(argv: list[str] | None = None) -> int:
                    help="also simulate the first K assembling reducers of each band on the "
                         "dynamic engine over one output revolution (about 20 s CPU each)")
     args = p.parse_args(argv)
-    subsets = sorted({int(n) for n in args.subsets.split(",") if n} | {args.samples})
+    given = ([int(n) for n in args.subsets.split(",") if n] if args.subsets is not None
+             else [n for n in (100, 200) if n < args.samples])
+    subsets = sorted(set(given) | {args.samples})
     if subsets[0] < 2 or subsets[-1] > args.samples:
         p.error(f"--subsets: each n from 2 to --samples ({args.samples})")
     from rvsim.parameters import load_toml

@@ -80,22 +80,26 @@ def _results_layout(results: pd.DataFrame, factors: list[str], analysis: dict,
 
 
 def _response_analysis(results: pd.DataFrame, analysis: dict, factors: list[str],
-                       response: str | None) -> tuple[str, dict]:
+                       response: str | None, sn: str | None = None) -> tuple[str, dict]:
     """(response, its analysis): analysis.json's when it analysed ``response`` (default: the
-    one it analysed, else the paper's mean TE), else the analysis of ``response`` computed
-    from the finished runs.  A response the table cannot give raises ParameterError
-    (--response)."""
+    one it analysed, else the paper's mean TE) with the S/N kind ``sn`` (default: the one it
+    took), else the analysis of ``response`` computed from the finished runs.  A response the
+    table cannot give raises ParameterError (--response), a kind it cannot take (--sn)."""
+    from .analysis.signal_noise import table_kind
+
     from .analysis import analyze_table
     from .analysis._table import drop_failed_runs
     from .analysis.indices import check_response
 
     stored = analysis.get("response", "te_mean_arcmin")
-    if response is None or response == stored:
+    if (response is None or response == stored) and (
+            sn is None or table_kind(stored, sn) == analysis.get("sn_kind", "smaller")):
         return stored, analysis
+    response = stored if response is None else response
     ok, _ = drop_failed_runs(results)
     check_response(ok, response, factors=factors)
     try:
-        fresh = analyze_table(ok, response, factors, alpha=analysis.get("alpha", 0.1))
+        fresh = analyze_table(ok, response, factors, alpha=analysis.get("alpha", 0.1), sn=sn)
     except InputFileError as exc:
         fresh = {"error": f"analysis not possible: {exc}"}
     fresh.update(runs_ok=int(len(ok)), runs_total=int(len(results)), response=response,
@@ -104,15 +108,16 @@ def _response_analysis(results: pd.DataFrame, analysis: dict, factors: list[str]
 
 
 def write_study_report(folder: str | Path, *, study=None, alpha: float | None = None,
-                       response: str | None = None) -> Path:
+                       response: str | None = None, sn: str | None = None) -> Path:
     """Write ``folder/report.html`` from a finished study folder (nothing if it is damaged),
-    analysing ``response`` (default: the column analysis.json analysed)."""
+    analysing ``response`` (default: the column analysis.json analysed) with the S/N kind
+    ``sn`` (default: analysis.json's)."""
     folder = Path(folder)
     results, analysis, definition = _read_study_folder(folder)
     factors = [f["label"] for f in definition["factors"]]
     if alpha is not None and not 0.0 < alpha < 1.0:
         raise InputFileError(f"alpha: must be between 0 and 1, exclusive (got {alpha})")
-    response, analysis = _response_analysis(results, analysis, factors, response)
+    response, analysis = _response_analysis(results, analysis, factors, response, sn)
     try:
         page = _study_page(folder, results, analysis, definition, factors, alpha, response)
     except (KeyError, TypeError, ValueError, IndexError, AttributeError) as exc:
@@ -299,12 +304,15 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
         body.append(f"<h2>Analysis</h2><p>{html.escape(analysis['error'])}</p>")
     else:
         ok = results[results["status"] == "ok"]
+        # analysis.json of an earlier version has no sn_kind: its table was smaller-the-better
+        kind = analysis.get("sn_kind", None if larger_is_better(response) else "smaller")
         body += ["<h2>Results and range analysis (Table 3 layout)</h2>",
                  _table(_results_layout(ok, factors, analysis, response)),
                  "<p>Factor order by range: <b>"
                  + html.escape(analysis["order"] or "none (the response is constant)")
                  + "</b>. "
                  + ("Optimum (larger is better: an S/N ratio): " if larger_is_better(response)
+                    else "Optimum (larger is better): " if kind == "larger"
                     else "Optimum (smaller is better): ") + html.escape(" ".join(
                      f"{f}{lvl}" for f, lvl in analysis["optimum"].items())) + "</p>"]
         anova = pd.DataFrame(analysis["anova"]).T.astype(float)   # null -> NaN
@@ -332,11 +340,12 @@ def _study_page(folder: Path, results: pd.DataFrame, analysis: dict, definition:
                  if effects.is_file() and not analysis.get("fresh") else
                  _png(main_effects_plot(range_analysis(ok, response, factors),
                                         ylabel=response_label(response))),
-                 "<h2>Signal-to-noise ratios (smaller is better)</h2>"]
-        sn = None if larger_is_better(response) else sn_response_table(ok, response, factors)
+                 f"<h2>Signal-to-noise ratios ({kind or 'larger'} is better"
+                 + (", -10 log10(1/y^2)" if kind == "larger" else "") + ")</h2>"]
+        sn = None if kind is None else sn_response_table(ok, response, factors, kind)
         body.append(_table(sn.round(4)) if sn is not None else
                     f"<p class='note'>{html.escape(ZERO_RESPONSE_NOTE)}</p>"
-                    if not larger_is_better(response) else
+                    if kind is not None else
                     f"<p class='note'>{html.escape(response)} is itself an S/N ratio over the "
                     "noise replicates (see the range analysis above)</p>")
         for column, other in analysis.get("also", {}).items():   # a robust study's mean

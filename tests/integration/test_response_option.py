@@ -192,3 +192,61 @@ def test_a_table_whose_runs_have_no_ate_is_refused_with_the_reason(tmp_path, cli
     res = cli("analyze", str(path), "--response", "ate_arcmin")
     _one_line(res, "holds no number", "te_window_revolutions", "te_mean_arcmin")
     assert cli("analyze", str(path), "--json").code == 0       # the default: the paper's index
+
+
+# --- the S/N kind: the response's own sense, or --sn (issue 33) -------------------------------
+
+def _sn_line(res, *words):
+    assert res.code == 2, (res.out, res.err)
+    assert res.err.count("\n") == 1, res.err
+    assert res.err.startswith("rvsim: error: parameter '--sn': "), res.err
+    assert "Traceback" not in res.err and res.out == ""
+    for w in words:
+        assert w in res.err, res.err
+
+
+def test_a_stiffness_is_analysed_larger_the_better(qs_folder, cli, tmp_path):
+    folder, _ = qs_folder
+    column = "torsional_stiffness_nm_per_arcmin"
+    rows = pd.read_csv(folder / "results.csv")
+    res = cli("analyze", str(folder / "results.csv"), "--response", column, "--json")
+    assert res.code == 0, res.err
+    out = json.loads(res.out)
+    assert out["sn_kind"] == "larger"
+    sn1 = {}
+    for f in ("H", "I"):                     # the optimum: the stiffer level, by hand
+        means = rows.groupby(f)[column].mean()
+        assert out["optimum"][f] == int(means.idxmax())
+        # larger-the-better of one value per run: mean of 20 log10(y) over the level's rows
+        sn1[f] = (20 * rows.loc[rows[f] == 1, column].map(math.log10)).mean()
+        assert out["sn_response"][f]["levels"][0] == pytest.approx(sn1[f], rel=1e-12)
+    res = cli("analyze", str(folder / "results.csv"), "--response", column, "--sn",
+              "smaller", "--json")
+    forced = json.loads(res.out)
+    assert forced["sn_kind"] == "smaller"
+    assert forced["sn_response"]["H"]["levels"][0] == pytest.approx(-sn1["H"], rel=1e-12)
+    assert forced["optimum"]["H"] == int(rows.groupby("H")[column].mean().idxmin())
+    copy = tmp_path / "copy"
+    shutil.copytree(folder, copy)
+    assert cli("report", str(copy), "--response", column).code == 0
+    html = (copy / "report.html").read_text()
+    assert "Signal-to-noise ratios (larger is better" in html
+    assert "Optimum (larger is better)" in html
+
+
+def test_sn_kinds_a_table_cannot_take_are_refused(qs_folder, cli, tmp_path):
+    folder, _ = qs_folder
+    res = cli("analyze", str(folder / "results.csv"), "--response", "ate_arcmin", "--sn",
+              "nominal")
+    _sn_line(res, "nominal-the-best", "replicates", "m_sn_nominal")
+    before = (folder / "report.html").read_bytes()
+    _sn_line(cli("report", str(folder), "--sn", "nominal"), "replicates")
+    assert (folder / "report.html").read_bytes() == before
+    path = tmp_path / "qs.toml"
+    path.write_text(textwrap.dedent(QS_STUDY))
+    out = tmp_path / "out"
+    _sn_line(cli("study", str(path), "--out", str(out), "--sn", "nominal"), "replicates")
+    assert not out.exists()
+    _sn_line(cli("study", "rv40e-tolerances", "--out", str(out), "--sn", "larger"),
+             "tolerance study")
+    assert not out.exists()

@@ -201,3 +201,16 @@ def test_report_names_the_noise_and_maximises_the_sn(robust):
     assert "Noise factors: every run built 3 times (seed 1)" in page
     assert "Optimum (larger is better: an S/N ratio)" in page
     assert "Factor order by range of ate_arcmin_mean" in page
+
+
+def test_runs_times_replicates_beyond_the_bound_is_refused(tmp_path):
+    """Replicates beyond memory: 200 LHS runs x 10 000 replicates, over the 1 000 000
+    evaluations a study may hold (tolerance.robust.MAX_EVALUATIONS)."""
+    study = ('name = "big"\ndesign = "lhs"\nsamples = 200\nengine = "quasi-static"\n'
+             '[factors.F]\nparameter = "errors.pin_radius"\nrange = [0.01, 0.03]\n')
+    path = _write(tmp_path, NOISE.replace("samples = 3", "samples = 10000"), study=study)
+    res = run_cli("study", str(path), "--out", str(tmp_path / "out"))
+    assert res.code == 2 and res.err.count("\n") == 1, res.err
+    assert res.err == ("rvsim: error: parameter 'noise.samples': 200 runs x 10000 replicates = "
+                       "2000000 evaluations, more than the 1000000 a study may have\n")
+    assert not (tmp_path / "out").exists()

@@ -342,3 +342,15 @@ def test_a_given_ratio_takes_the_parameter_sets_sense(tmp_path, capsys):
         summary = json.loads(capsys.readouterr().out)
         assert summary["ratio_measured"] == pytest.approx(29.0, rel=1e-4)
         assert summary["ate_pp_arcmin"] == pytest.approx(2e-5 / (np.pi / 10800), rel=1e-3)
+
+
+def test_calibrate_refuses_a_recording_shorter_than_a_revolution(tmp_path, capsys):
+    """Issue 33 item 6: a recording too short for a revolution, before any fit or output."""
+    path = tmp_path / "short.csv"
+    _frame().iloc[:2000].to_csv(path, index=False)
+    out = tmp_path / "cal"
+    assert main(["calibrate", str(path), "--fit", "errors.pin_radius", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err == (f"rvsim: error: {path}: shorter than one output revolution (the longest run "
+                   "in one direction covers 0.5498 of a revolution)\n")
+    assert not out.exists()

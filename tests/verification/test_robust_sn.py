@@ -164,3 +164,58 @@ def test_a_failed_replicate_fails_the_row_with_its_reason():
         assert "ate_arcmin_mean" not in row["metrics"]
     finally:
         del EVALUATORS["robust-test"]
+
+
+# --- a plain study's S/N table: one value per run, the response's own sense (issue 33) -----
+
+def _l4(response: str, values) -> "pd.DataFrame":
+    import pandas as pd
+
+    # L4: A = 1 1 2 2, B = 1 2 1 2
+    return pd.DataFrame({"A": [1, 1, 2, 2], "B": [1, 2, 1, 2], response: values})
+
+
+def test_a_plain_table_s_n_larger_the_better_by_hand():
+    from rvsim.analysis.anova import sn_response_table
+
+    # rigidity y = 10, 20, 40, 80 N*m/arcmin; larger-the-better one value: 20 log10(y)
+    table = _l4("torsional_rigidity_nm_per_arcmin", [10.0, 20.0, 40.0, 80.0])
+    sn = sn_response_table(table, "torsional_rigidity_nm_per_arcmin", ["A", "B"], "larger")
+    # A1: (20 + 20 log10 20) / 2 = 23.0103 dB; A2: (20 log10 40 + 20 log10 80) / 2 = 35.0515
+    assert sn.loc["A", "level 1"] == pytest.approx(23.010299957, abs=1e-9)
+    assert sn.loc["A", "level 2"] == pytest.approx(35.051499783, abs=1e-9)
+    # B1: (20 + 32.0412) / 2 = 26.0206; B2: (26.0206 + 38.0618) / 2 = 32.0412
+    assert sn.loc["B", "delta"] == pytest.approx(6.020599913, abs=1e-9)
+    assert list(sn["rank"]) == [1, 2]
+    # one value per run: larger-the-better is the smaller-the-better ratio negated, so the
+    # deltas and ranks agree and only the best level (the largest S/N) turns over
+    smaller = sn_response_table(table, "torsional_rigidity_nm_per_arcmin", ["A", "B"],
+                                "smaller")
+    assert np.allclose(smaller[["level 1", "level 2"]], -sn[["level 1", "level 2"]],
+                       atol=1e-12)
+
+
+def test_the_response_sense_chooses_the_table_and_the_optimum():
+    from rvsim.analysis import analyze_table
+    from rvsim.analysis.signal_noise import table_kind
+    from rvsim.errors import ParameterError
+
+    assert table_kind("ate_arcmin") == "smaller" and table_kind("te_mean_arcmin") == "smaller"
+    assert table_kind("torsional_rigidity_nm_per_arcmin") == "larger"
+    assert table_kind("efficiency") == "larger"
+    assert table_kind("torsional_stiffness_nm_per_arcmin_mean") == "larger"
+    assert table_kind("ate_arcmin_sn") is None           # an S/N ratio: no S/N of it
+    assert table_kind("ate_arcmin", "larger") == "larger"
+    for response, kind, words in (("ate_arcmin", "nominal", "replicates"),
+                                  ("ate_arcmin_sn", "larger", "ate_arcmin_sn_larger"),
+                                  ("ate_arcmin", "biggest", "expected one of")):
+        with pytest.raises(ParameterError) as err:
+            table_kind(response, kind)
+        assert err.value.field == "--sn" and words in err.value.reason
+    table = _l4("torsional_rigidity_nm_per_arcmin", [10.0, 20.0, 40.0, 80.0])
+    out = analyze_table(table, "torsional_rigidity_nm_per_arcmin", ["A", "B"])
+    assert out["sn_kind"] == "larger"
+    assert out["optimum"] == {"A": 2, "B": 2}            # the stiffest levels
+    assert out["sn_response"]["A"]["levels"][1] == pytest.approx(35.051499783, abs=1e-9)
+    forced = analyze_table(table, "torsional_rigidity_nm_per_arcmin", ["A", "B"], sn="smaller")
+    assert forced["sn_kind"] == "smaller" and forced["optimum"] == {"A": 1, "B": 1}

@@ -92,25 +92,33 @@ def _frames(ra, table_anova, sn, response: str):
 
 
 def analyze_table(table, response: str | None = None, factors=None, *, pool=(),
-                  alpha: float = 0.1) -> StudyAnalysis:
+                  alpha: float = 0.1, sn: str | None = None) -> StudyAnalysis:
     """Everything ``rvsim analyze --json`` prints, as one dict (``order`` is None, and
     ``constant_response`` true, when the response is constant to round-off), with the same
     tables as DataFrames (:class:`StudyAnalysis`).  ``response`` None: the study's default
-    (the first of :data:`rvsim.analysis.indices.DEFAULT_RESPONSES` the table has)."""
+    (the first of :data:`rvsim.analysis.indices.DEFAULT_RESPONSES` the table has).  ``sn``:
+    the S/N kind of the response table ("smaller", "larger"; None: the response's own sense,
+    :func:`rvsim.analysis.signal_noise.table_kind`); a larger-the-better response's optimum
+    is its largest level mean.  ``sn_kind`` says which (None for an S/N column)."""
     from .anova import anova, predict_optimum, sn_response_table
     from .indices import check_response
     from .range_analysis import range_analysis
+    from .signal_noise import table_kind
 
     if response is None:
         response = check_response(table, None, factors=factors or (), option="response")
 
-    ra = range_analysis(table, response, factors)
+    kind = table_kind(response, sn)
+    larger = None if kind is None else kind == "larger"
+    ra = range_analysis(table, response, factors, larger=larger)
     table_anova = anova(table, response, factors, pool=pool)
     out = ra.to_dict()
     out["anova"] = table_anova.to_dict()
     out["significant"] = table_anova.significant(alpha)
     out["alpha"] = alpha
-    out["prediction"] = predict_optimum(table, table_anova, response, alpha=alpha)
+    out["prediction"] = predict_optimum(table, table_anova, response, alpha=alpha,
+                                        larger=larger)
+    out["sn_kind"] = kind
     from .anova import CONSTANT_NOTE
 
     if CONSTANT_NOTE in table_anova.notes:
@@ -128,7 +136,10 @@ def analyze_table(table, response: str | None = None, factors=None, *, pool=(),
     from .range_analysis import larger_is_better
 
     # the response is itself an S/N ratio (a robust study's): no S/N of it (issue 33)
-    sn = None if larger_is_better(response) else sn_response_table(table, response, factors)
+    sn = None if kind is None else sn_response_table(table, response, factors, kind)
+    if kind == "larger":
+        notes.append(f"{response} is larger-the-better: S/N = -10 log10(1/y^2) and the "
+                     "optimum takes the largest level mean")
     if larger_is_better(response):
         out["sn_response"] = None
         notes.append(f"{response} is an S/N ratio: larger is better (the optimum maximises "

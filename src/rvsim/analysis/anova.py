@@ -17,6 +17,7 @@ import pandas as pd
 
 from ..errors import InputFileError
 from ._table import UNBALANCED_NOTE, check_design_table, factor_columns, is_balanced
+from .signal_noise import signal_to_noise, signal_to_noise_smaller
 
 __all__ = ["AnovaTable", "anova", "signal_to_noise_smaller", "sn_response_table",
            "ZERO_RESPONSE_NOTE",
@@ -130,12 +131,6 @@ def _p_value(f_value: float, df1: float, df2: float) -> float:
     return float(f_dist.sf(f_value, df1, df2))
 
 
-def signal_to_noise_smaller(values) -> float:
-    """Taguchi smaller-is-better S/N ratio: -10 log10(mean(y^2)) [dB]."""
-    y = np.asarray(values, dtype=float)
-    return float(-10.0 * np.log10(np.mean(y * y)))
-
-
 def check_alpha(alpha) -> float:
     """A significance level strictly between 0 and 1 (ParameterError): alpha = 5, a percent
     typed as a number, made every factor significant."""
@@ -147,19 +142,22 @@ def check_alpha(alpha) -> float:
 
 
 #: why a table has no S/N ratios
-ZERO_RESPONSE_NOTE = ("no S/N ratios: a run's response is exactly 0, where the smaller-is-"
-                      "better S/N ratio is infinite")
+ZERO_RESPONSE_NOTE = ("no S/N ratios: a run's response is exactly 0, where the S/N ratio "
+                      "(-10 log10(y^2), or -10 log10(1/y^2) larger-the-better) is infinite")
 
 
-def sn_response_table(table: pd.DataFrame, response: str = "te_arcmin", factors=None
-                      ) -> pd.DataFrame | None:
-    """Mean S/N ratio (smaller is better) per factor level, with Delta and Rank (Minitab);
-    None when a run's response is 0 (:data:`ZERO_RESPONSE_NOTE`)."""
+def sn_response_table(table: pd.DataFrame, response: str = "te_arcmin", factors=None,
+                      kind: str = "smaller") -> pd.DataFrame | None:
+    """Mean S/N ratio per factor level, with Delta and Rank (Minitab), one value per run:
+    ``kind`` "smaller" (-10 log10(y^2)) or "larger" (-10 log10(1/y^2)) the better
+    (:func:`rvsim.analysis.signal_noise.signal_to_noise`); None when a run's response is 0
+    (:data:`ZERO_RESPONSE_NOTE`).  The best level is the largest mean either way."""
     factors = factor_columns(table, response, factors)
     data = check_design_table(table, response, factors)
-    if (data[response] == 0).any():
+    ratios = [signal_to_noise([v], kind) for v in data[response]]
+    if any(r is None for r in ratios):
         return None
-    data = data.assign(sn=[signal_to_noise_smaller([v]) for v in data[response]])
+    data = data.assign(sn=ratios)
     every = sorted({int(lv) for f in factors for lv in data[f].unique()})
     out = {}
     for f in factors:
@@ -172,16 +170,17 @@ def sn_response_table(table: pd.DataFrame, response: str = "te_arcmin", factors=
 
 
 def predict_optimum(table: pd.DataFrame, anova_table: AnovaTable, response: str = "te_arcmin",
-                    *, alpha: float = 0.1) -> dict:
+                    *, alpha: float = 0.1, larger: bool | None = None) -> dict:
     """Predicted response at the optimum from the significant factors only (Taguchi).
 
-    y_opt = grand mean + sum over significant factors of (best level mean - grand mean).
+    y_opt = grand mean + sum over significant factors of (best level mean - grand mean);
+    the best level the largest mean when ``larger`` (None: :func:`larger_is_better`).
     """
     from .range_analysis import range_analysis
 
     ra = range_analysis(table, response, [f for f in anova_table.rows
                                           if f not in ("Error", "Total")] + list(
-        anova_table.pooled))
+        anova_table.pooled), larger=larger)
     significant = anova_table.significant(alpha)
     best = ra.optimum
     value = ra.grand_mean + sum(ra.mean_at(f, best[f]) - ra.grand_mean for f in significant)

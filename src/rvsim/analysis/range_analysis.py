@@ -36,6 +36,8 @@ class RangeAnalysis:
     grand_mean: float
     levels: dict[str, list[int]]
     notes: tuple[str, ...] = ()
+    #: whether the optimum is the largest level mean (None: :func:`larger_is_better`)
+    larger: bool | None = None
 
     @property
     def order(self) -> list[str]:
@@ -45,8 +47,9 @@ class RangeAnalysis:
     @property
     def optimum(self) -> dict[str, int]:
         """The level number (as written in the table) with the smallest mean, per factor (the
-        largest for an S/N ratio, :func:`larger_is_better`)."""
-        best = max if larger_is_better(self.response) else min
+        largest for an S/N ratio, :func:`larger_is_better`, or when ``larger``)."""
+        larger = larger_is_better(self.response) if self.larger is None else self.larger
+        best = max if larger else min
         return {f: self.levels[f][best(range(len(k)), key=k.__getitem__)]
                 for f, k in self.level_means.items()}
 
@@ -80,9 +83,10 @@ class RangeAnalysis:
         return main_effects_plot(self, ax=ax)
 
 
-def range_analysis(table: pd.DataFrame, response: str = "te_arcmin", factors=None
-                   ) -> RangeAnalysis:
-    """Level means and ranges of ``response`` for each factor column of ``table``."""
+def range_analysis(table: pd.DataFrame, response: str = "te_arcmin", factors=None,
+                   larger: bool | None = None) -> RangeAnalysis:
+    """Level means and ranges of ``response`` for each factor column of ``table`` (the optimum
+    the largest level mean when ``larger``; None: :func:`larger_is_better`)."""
     factors = factor_columns(table, response, factors)
     data = check_design_table(table, response, factors)
     groups = {f: data.groupby(f)[response].mean().sort_index() for f in factors}
@@ -90,4 +94,5 @@ def range_analysis(table: pd.DataFrame, response: str = "te_arcmin", factors=Non
     levels = {f: [int(lv) for lv in g.index] for f, g in groups.items()}
     ranges = {f: max(k) - min(k) for f, k in means.items()}
     notes = () if is_balanced(data, factors) else (UNBALANCED_NOTE,)
-    return RangeAnalysis(response, means, ranges, float(data[response].mean()), levels, notes)
+    return RangeAnalysis(response, means, ranges, float(data[response].mean()), levels, notes,
+                         larger)

@@ -128,7 +128,9 @@ def _summary(base, points, table, time_step: float, scheme: str) -> dict:
 
 
 def _print(table, summary: dict, folder: Path, report) -> None:
-    print(f"{summary['reducer']}: grid of {summary['points']} points, {summary['failed']} failed "
+    points = summary["points"]
+    print(f"{summary['reducer']}: grid of {points} point{'s' if points != 1 else ''}, "
+          f"{summary['failed']} failed "
           f"-> {folder}/grid.csv, grid.json" + (f", {report}" if report else ""))
     shown = table[["input_speed_rpm", "output_torque_nm", "temperature_c", "status",
                    "ate_arcmin", "te_mean_arcmin", "order1", "natural_frequency_hz",

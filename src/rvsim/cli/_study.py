@@ -67,6 +67,8 @@ def _study(args: argparse.Namespace) -> int:
                                  "engine, which takes no time step")
         if args.response is not None:
             raise ParameterError("--response", _TOLERANCE_RESPONSE)
+        if args.sn is not None:
+            raise ParameterError("--sn", _TOLERANCE_SN)
 
         return run_tolerance_command(load_any_tolerance_study(args.study), args)
     from ..tolerance.robust import BUILT_IN_ROBUST_STUDIES, is_robust_file, load_robust_study
@@ -97,6 +99,9 @@ def _study(args: argparse.Namespace) -> int:
             raise _as_option(exc, args) from None
     _check_loads(study)
     response = _study_response(study, args.response)
+    from ..analysis.signal_noise import table_kind
+
+    table_kind(response, args.sn)           # before any run (an unknown or nominal kind)
     check_output_folder(args.out, "--out")   # before the runs, not after them
     folder = Path(args.out)
     progress = not args.no_progress and sys.stderr.isatty()
@@ -111,7 +116,7 @@ def _study(args: argparse.Namespace) -> int:
             # a metric only some schemes give (the guard's counters): before any output
             check_response(drop_failed_runs(results)[0], response, factors=factors)
         summary["analysis"] = write_study_outputs(folder, results, factors, alpha=args.alpha,
-                                                  response=response,
+                                                  response=response, sn=args.sn,
                                                   also=_robust_also(study, response))
         if not args.no_report:
             from ..report import write_study_report
@@ -196,6 +201,16 @@ def _companion(response: str) -> tuple:
 _TOLERANCE_RESPONSE = ("a tolerance study reports the distribution of every metric "
                        "(summary.json: ate_arcmin, te_mean_arcmin, ...); --response chooses "
                        "the analysed column of a designed study")
+
+
+_TOLERANCE_SN = ("a tolerance study has no design to rank factors on; --sn chooses the S/N "
+                 "kind of a designed study's analysis")
+
+_SN_HELP = ("S/N ratio of the response table: smaller (-10 log10 y^2), larger (-10 log10 "
+            "1/y^2; its optimum the largest level mean); default the response's own sense "
+            "(larger for a stiffness, rigidity, rated torque, pins in contact, efficiency; "
+            "smaller for the rest); nominal needs replicates: a [noise] study's "
+            "m_sn_nominal column")
 
 
 def _study_response(study, response: str | None) -> str:
@@ -289,7 +304,7 @@ def _analyze(args: argparse.Namespace) -> int:
                                     else "te_mean_arcmin_sn", factors)
     else:
         response = _response_column(table, args.response, factors)
-    result = analyze_table(table, response, factors, pool=pool, alpha=args.alpha)
+    result = analyze_table(table, response, factors, pool=pool, alpha=args.alpha, sn=args.sn)
     if robust:
         also = _companion(response)[0]
         result["also"] = {also: analyze_table(table, _response_column(table, also, factors),
@@ -305,7 +320,9 @@ def _analyze(args: argparse.Namespace) -> int:
         print_json(result)
         return 0
     print(f"response {response_bench_note(response)}\n")
-    ra = range_analysis(table, response, factors)
+    kind = result["sn_kind"]
+    ra = range_analysis(table, response, factors,
+                        larger=None if kind is None else kind == "larger")
     print(ra.to_df().round(4).to_string())
     if result.get("constant_response"):
         print(f"\norder: none: the response '{response}' is constant (to round-off), so the "
@@ -348,9 +365,12 @@ def _report(args: argparse.Namespace) -> int:
 
         if args.response is not None:
             raise ParameterError("--response", _TOLERANCE_RESPONSE)
+        if args.sn is not None:
+            raise ParameterError("--sn", _TOLERANCE_SN)
         path = rebuild_tolerance_report(folder)
     else:
-        path = write_study_report(args.folder, alpha=args.alpha, response=args.response)
+        path = write_study_report(args.folder, alpha=args.alpha, response=args.response,
+                                  sn=args.sn)
     if args.json:
         print_json({"report": str(path)})
     else:
@@ -371,6 +391,7 @@ def register(sub) -> None:
                    "results.csv (default: the one the study analysed, te_mean_arcmin unless "
                    "'rvsim study --response' chose another; ate_arcmin is what a bench "
                    "measures)")
+    p.add_argument("--sn", choices=("smaller", "nominal", "larger"), help=_SN_HELP)
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_report)
 
@@ -410,6 +431,7 @@ def register(sub) -> None:
                    "analysis, ANOVA, report; default te_mean_arcmin, the paper's index, which "
                    "no bench can check; ate_arcmin: the peak-to-peak TE over one output "
                    "revolution a bench measures; docs/validation.md)")
+    p.add_argument("--sn", choices=("smaller", "nominal", "larger"), help=_SN_HELP)
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-report", action="store_true", help="skip report.html")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
@@ -417,7 +439,8 @@ def register(sub) -> None:
 
     p = add_command(sub, "analyze", "range analysis and ANOVA of a results table",
                     "Range analysis (k, R, order, optimum), a main-effects "
-                    "ANOVA as Minitab prints it, smaller-is-better S/N ratios and the "
+                    "ANOVA as Minitab prints it, S/N ratios (the response's sense, or --sn) and "
+                    "the "
                     "predicted optimum of a design table (factor columns A, B, ... with "
                     "level numbers, one response column).",
                     ["rvsim analyze study/results.csv --json",
@@ -426,6 +449,7 @@ def register(sub) -> None:
     p.add_argument("--response", metavar="COLUMN", help="numeric response column (default "
                    "te_mean_arcmin, the paper's index, or te_arcmin; e.g. ate_arcmin, the "
                    "bench's index)")
+    p.add_argument("--sn", choices=("smaller", "nominal", "larger"), help=_SN_HELP)
     p.add_argument("--factors", help="comma-separated factor columns (default: a study "
                    "folder's own factors, else the single-letter columns and the columns of "
                    "level codes)")

@@ -30,11 +30,12 @@ def prepare_outputs() -> None:
 
 def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
                         *, alpha: float = 0.1, response: str = "te_mean_arcmin",
-                        also: tuple = ()) -> dict:
+                        also: tuple = (), sn: str | None = None) -> dict:
     """results.csv, analysis.json and main_effects.png in ``folder``; returns the analysis
     of ``response`` (default the paper's mean TE; analysis.json names it).  ``also``: further
     columns analysed alike into ``analysis["also"][column]`` (a robust study's mean beside
-    its S/N ratio, issue 33).
+    its S/N ratio, issue 33).  ``sn``: the S/N kind of the response table (None: the
+    response's own sense; :func:`rvsim.analysis.analyze_table`).
 
     Everything is computed before the first file is written; each file is written atomically.
     """
@@ -45,7 +46,7 @@ def write_study_outputs(folder: Path, results: pd.DataFrame, factors: list[str],
     ok, _ = drop_failed_runs(results)
     figure = None
     try:
-        analysis = analyze_table(ok, response, factors, alpha=alpha)
+        analysis = analyze_table(ok, response, factors, alpha=alpha, sn=sn)
         analysis["runs_ok"] = int(len(ok))
         analysis["runs_total"] = int(len(results))
     except InputFileError as exc:
