@@ -48,6 +48,7 @@ _TEST_CACHE = "RVSIM_TEST_FE_CACHE"
 def pytest_configure(config):
     config.addinivalue_line("markers", "fe: needs the finite-element extra (skipped without it)")
     _default_signals()
+    _write_bytecode()
     _one_fe_cache(config)
     _compile_kernels_once(config)
 
@@ -97,6 +98,17 @@ def _one_fe_cache(config) -> None:
         os.environ[_TEST_CACHE] = folder
         config._rvsim_fe_cache = folder
     os.environ["RVSIM_CACHE_DIR"] = folder
+
+
+def _write_bytecode() -> None:
+    """Let the test run keep Python's bytecode caches (``__pycache__``, pytest's rewritten test
+    modules) when the environment says not to (``PYTHONDONTWRITEBYTECODE``, set on this project's
+    machines): otherwise every xdist worker rewrote all test modules' assertions (about 4.5 s of
+    CPU each, measured) and every rvsim process the tests start compiled
+    rvsim's sources anew.  The variable is dropped for this process's children too (xdist's
+    workers, the warm-up, the CLI processes the tests start)."""
+    if os.environ.pop("PYTHONDONTWRITEBYTECODE", None) is not None:
+        sys.dont_write_bytecode = False
 
 
 #: environment variable naming each warm-up chain's lock file, ``chain=path`` joined by
