@@ -32,8 +32,15 @@ def test_ltca_json(cli):
     assert res.code == 0, res.err
     data = json.loads(res.out)
     assert LTCA_KEYS <= set(data) and data["status"] == "ok" and data["positions"] == 720
-    res = cli("ltca", "--paper-run", "2")
+    # a stress above the static limit is a result: a verdict and one warning (issue 34 item 6)
+    res = cli("ltca", "--paper-run", "2", "--set", "rating.static_contact_stress=1000")
     assert res.code == 0 and "peak-to-peak" in res.out
+    assert res.out.splitlines()[-1] == ("largest contact stress 1032 MPa: above the static "
+                                        "limit (103 % of 1000 MPa): permanent deformation "
+                                        "expected")
+    assert res.err == ("rvsim: warning: largest contact stress 1032 MPa is above the static "
+                       "limit 1000 MPa (rating.static_contact_stress): permanent deformation "
+                       "expected\n")
 
 
 def test_hysteresis_json_and_text(cli):
@@ -70,7 +77,9 @@ def test_reports_and_export(cli, tmp_path):
     assert rows["lost motion"][0] == f"{summary['lost_motion_arcmin']:.3g} arcmin"
     rows = answer(ltca_page.read_text())
     assert rows["output torque"] == ["300 N*m", "412 N*m rated", "73 % of rated"]
-    assert rows["largest pin-disc contact stress (Hertz)"][0].endswith(" MPa")
+    assert rows["largest pin-disc contact stress (Hertz)"] == [
+        "532.1 MPa", "4000 MPa static limit (rating.static_contact_stress, ISO 76 by default)",
+        "below the static limit (13 % of 4000 MPa)"]
     arcmin = math.pi / 10800
     assert model["backlash_rad"] == pytest.approx(summary["backlash_arcmin"] * arcmin, rel=1e-12)
     jsonschema = pytest.importorskip("jsonschema")

@@ -46,6 +46,11 @@ def test_ltca_result_fields(ltca_run):
     assert np.allclose(spectrum["order"], orders)
     assert np.allclose(spectrum["amplitude_arcmin"], amplitude / ARCMIN)
     assert len(r.to_frame()) == n
+    # the largest contact stress against ISO 76's static limit (issue 34 item 6)
+    assert summary["max_contact_stress_mpa"] == pytest.approx(623.286, rel=1e-5)
+    assert summary["static_contact_stress_mpa"] == 4000.0
+    assert summary["contact_stress_verdict"] == "below the static limit (16 % of 4000 MPa)"
+    assert r.contact_stress_warning() is None
 
 
 def test_hysteresis_result_fields(loop):

@@ -51,6 +51,14 @@ def _torque_row(torque, rated) -> tuple:
     return ("output torque", _num(torque, 4, "N*m"), _num(rated, 4, "N*m") + " rated", share)
 
 
+def _static_limit(summary: dict) -> str:
+    """The static contact-stress limit of the run's reducer (``rating.static_contact_stress``,
+    ISO 76 by default), "-" when the summary has none."""
+    limit = summary.get("static_contact_stress_mpa")
+    return "-" if limit is None else (_num(limit, 4, "MPa") + " static limit "
+                                      "(rating.static_contact_stress, ISO 76 by default)")
+
+
 def ltca_rows(summary: dict, rated_torque: float | None) -> list[tuple]:
     """``rvsim ltca``: ATE and TE peak-to-peak, mean TE, largest contact stress."""
     ate = summary.get("ate_arcmin")
@@ -63,8 +71,8 @@ def ltca_rows(summary: dict, rated_torque: float | None) -> list[tuple]:
             ("mean TE (lost motion plus wind-up)", _num(summary.get("te_mean_arcmin"), 4,
                                                          "arcmin"), "-", "-"),
             ("largest pin-disc contact stress (Hertz)",
-             _num(summary.get("max_contact_stress_mpa"), 4, "MPa"),
-             "no allowable value with a source in rvsim yet", "-"),
+             _num(summary.get("max_contact_stress_mpa"), 4, "MPa"), _static_limit(summary),
+             summary.get("contact_stress_verdict", "-")),
             ("status", summary.get("status", NA), "ok", "")]
 
 

@@ -15,7 +15,8 @@ from ..errors import InputFileError, ParameterError
 from ..analysis.sampling import MAX_POSITIONS, check_positions
 from ..units import TO_SI
 from ._common import (number, add_command, add_reducer_options, check_load, check_output_file,
-                      compile_time_text, print_json, reducer_from_args, with_compile_time)
+                      compile_time_text, print_json, reducer_from_args, warn,
+                      with_compile_time)
 
 __all__ = ["register", "MIN_POSITIONS", "MAX_POSITIONS"]
 
@@ -116,6 +117,11 @@ def _ltca(args: argparse.Namespace) -> int:
               f"{summary['pins_in_contact_min']}..{summary['pins_in_contact_max']}; "
               f"torsional stiffness {summary['torsional_stiffness_nm_per_arcmin']:.2f} "
               "N*m/arcmin")
+        print(f"largest contact stress {summary['max_contact_stress_mpa']:.0f} MPa: "
+              f"{summary['contact_stress_verdict']}")
+    warning = result.contact_stress_warning()
+    if warning:
+        warn(warning)
     return 0
 
 

@@ -285,6 +285,12 @@ class Rating:
                                              "at 100 % duty (RV-40E class: 70 rpm): faster "
                                              "output speeds are refused by 'life' and "
                                              "warned of elsewhere", positive=True)
+    static_contact_stress: float = quantity(4000e6, "MPa", "static limit of the largest "
+                                            "Hertz contact stress of hardened bearing steel "
+                                            "in line contact (ISO 76: 4000 MPa at roller "
+                                            "bearings' C0; 4200 ball, 4600 self-aligning "
+                                            "ball): above it permanent deformation is "
+                                            "expected (warned, not refused)", positive=True)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -14,7 +14,8 @@ import math
 
 from ..errors import ParameterError
 
-__all__ = ["check_torque", "check_rating", "check_output_speed", "peak_load"]
+__all__ = ["check_torque", "check_rating", "check_output_speed", "peak_load",
+           "contact_stress_verdict"]
 
 #: [rad/s] per rpm
 _RPM = 2.0 * math.pi / 60.0
@@ -85,3 +86,22 @@ def check_output_speed(reducer, speed: float, field: str, *, refuse: bool) -> st
     if refuse:
         raise ParameterError(field, text)
     return f"{field}: {text}"
+
+
+def contact_stress_verdict(stress: float, limit: float) -> tuple[str, str | None]:
+    """(verdict, warning text or None) of the largest Hertz contact stress ``stress`` [Pa]
+    against the static limit ``limit`` [Pa] (``rating.static_contact_stress``, ISO 76's
+    4000 MPa for line contact of hardened bearing steel; docs/parameters.md, "Ratings").
+    Above it the run is still a result (not refused): permanent deformation of about 1e-4 of
+    the roller diameter is ISO 76's definition of the limit.  A non-finite stress: no
+    verdict ("not available", no warning)."""
+    stress, limit = float(stress), float(limit)
+    if not math.isfinite(stress):
+        return "not available", None
+    share = f"{100.0 * stress / limit:.0f} % of {limit / 1e6:g} MPa"
+    if stress <= limit:
+        return f"below the static limit ({share})", None
+    return (f"above the static limit ({share}): permanent deformation expected",
+            f"largest contact stress {stress / 1e6:.0f} MPa is above the static limit "
+            f"{limit / 1e6:g} MPa (rating.static_contact_stress): permanent "
+            "deformation expected")

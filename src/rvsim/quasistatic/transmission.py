@@ -295,6 +295,8 @@ class LtcaResult(Headline):
     #: (n, discs, n_w) [N] output pins in the discs' holes (single-stage drive; n_w = 0: RV)
     output_pin_forces: np.ndarray = None
     rated_torque: float | None = None  # [N*m] the reducer's (reducer.rating.rated_torque)
+    #: [Pa] the reducer's rating.static_contact_stress (ISO 76's static limit)
+    static_contact_stress: float | None = None
 
     @property
     def te_relative(self) -> np.ndarray:
@@ -335,7 +337,32 @@ class LtcaResult(Headline):
             "positions": int(len(self.te)),
             "wall_s": self.wall_s,
             "status": self.status,
+            **self._contact_stress_verdict(),
         }
+
+    def _contact_stress_verdict(self) -> dict:
+        """The largest contact stress against the static limit (``static_contact_stress_mpa``,
+        ``contact_stress_verdict``; rvsim.parameters.rating.contact_stress_verdict); none
+        without a limit."""
+        if self.static_contact_stress is None:
+            return {}
+        from ..parameters.rating import contact_stress_verdict
+
+        ok = self.converged
+        stress = float(self.contact_stress[ok].max()) if ok.any() else float("nan")
+        verdict, _ = contact_stress_verdict(stress, self.static_contact_stress)
+        return {"static_contact_stress_mpa": self.static_contact_stress / 1e6,
+                "contact_stress_verdict": verdict}
+
+    def contact_stress_warning(self) -> str | None:
+        """The warning line's text when the largest contact stress is above the static limit
+        (else None)."""
+        if self.static_contact_stress is None or not self.converged.any():
+            return None
+        from ..parameters.rating import contact_stress_verdict
+
+        return contact_stress_verdict(float(self.contact_stress[self.converged].max()),
+                                      self.static_contact_stress)[1]
 
     def headline(self) -> tuple[str, list[tuple]]:
         """Status, torque and the report's opening rows
@@ -455,7 +482,8 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         converged=converged, iterations=path.iterations,
         force_resolution=path.force_resolution,
         output_pin_forces=path.output_pin_forces[:, :discs],
-        rated_torque=reducer.rating.rated_torque)
+        rated_torque=reducer.rating.rated_torque,
+        static_contact_stress=reducer.rating.static_contact_stress)
     result.te[~converged] = np.nan
     if path.status != "ok" and raise_on_failure:
         k = int(np.argmax(path.status_codes != 0))
