@@ -1,0 +1,46 @@
+"""The set-wise identifiability check of a calibration (the condition index of the Jacobian
+with unit-length columns; Belsley, Kuh & Welsch 1980), on Jacobians built by hand."""
+
+import numpy as np
+
+from rvsim.testrig.calibration import CONDITION_LIMIT, _collinear
+
+NAMES = ["a", "b", "c"]
+
+
+def _jacobian(mix):
+    """Three sensitivity columns over 101 samples; the third is a + b plus ``mix`` of a
+    column of its own (a smaller ``mix``: a flatter combination)."""
+    t = np.linspace(-1.0, 1.0, 101)
+    a, b, own = np.sin(3 * t), t ** 2, np.cos(7 * t)
+    return np.column_stack([a, b, a + b + mix * own])
+
+
+def _index(J):
+    sv = np.linalg.svd(J / np.linalg.norm(J, axis=0), compute_uv=False)
+    return sv[0] / sv[-1]
+
+
+def test_a_flat_combination_is_not_identifiable_though_no_pair_is():
+    J = _jacobian(0.02)
+    corr = np.corrcoef(J.T)
+    assert np.max(np.abs(corr[np.triu_indices(3, 1)])) < 0.999       # the pairwise rule passes
+    notes = []
+    assert _collinear(J, NAMES, {}, notes) == {0, 1, 2}
+    assert _index(J) > CONDITION_LIMIT
+    assert notes == [f"the data fix a combination of a, b, c, not each (condition index "
+                     f"{_index(J):.0f} of the scaled Jacobian, above 30: Belsley, Kuh & Welsch "
+                     "1980): fix all but one of them, or add a test that separates them"]
+
+
+def test_a_well_conditioned_fit_is_left_alone():
+    J = _jacobian(1.0)
+    notes = []
+    assert _index(J) < CONDITION_LIMIT
+    assert _collinear(J, NAMES, {}, notes) == set() and notes == []
+
+
+def test_a_blocked_column_is_left_out():
+    J = _jacobian(0.02)
+    J[:, 2] = 0.0                   # the model failed on both sides of c: no column
+    assert _collinear(J, NAMES, {2: "fails"}, []) == set()
