@@ -147,6 +147,10 @@ def _calibrate(args: argparse.Namespace) -> int:
     from ..testrig.curves import check_efficiency_points, read_efficiency, read_loop
 
     fitted_names(names)                    # before the recordings are read
+    given = [Path(path).resolve() for path in args.loops]
+    if len(set(given)) != len(given):      # the same data twice narrowed every interval
+        raise ParameterError("--loop", f"{next(p for p in given if given.count(p) > 1)}: "
+                             "given twice")
     loops = [read_loop(path) for path in args.loops]
     for loop in loops:
         check_load(reducer, float(abs(loop.torque).max()), f"--loop {loop.path.name}")
