@@ -33,6 +33,9 @@ MAX_ITERATIONS = 200
 #: contact foot points and the tangent predictor at each chunk (same equilibria, to the
 #: tolerance; paths up to this length are solved in one call)
 CHUNK = 4000
+#: status code of a point whose condensed stiffness could not be inverted ("singular_stiffness",
+#: the compliance budget's word); the compiled solver's own codes are 0-3
+STATUS_SINGULAR = 100
 
 
 @dataclasses.dataclass
@@ -162,7 +165,7 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
     out.wall_s, _ = clock.split()
     out.force_resolution = problem.tol
     worst = int(out.status_codes[solved - 1]) if solved else S.STATUS_NOT_CONVERGED
-    out.status = S.STATUS_TEXT[worst]
+    out.status = "singular_stiffness" if worst == STATUS_SINGULAR else S.STATUS_TEXT[worst]
     return out
 
 
@@ -225,13 +228,23 @@ def _sweep(problem: _Problem, constants: tuple, q0: np.ndarray, points: slice,
     model, p = problem.model, points
     friction = (out.friction_forces[rows] if out.friction_forces is not None
                 else np.zeros((rows.stop - rows.start, len(q0))))
-    return S.sweep(P, problem.hertz, q0, problem.angle[p], problem.load[p], problem.scale,
-                   problem.tol, MAX_ITERATIONS, model.pins, model.holes, model.crank_angles,
-                   model.mesh_phase, out.q[rows], out.pin_forces[rows],
-                   out.contact_stress[rows], out.channels[rows], out.mesh_state[rows],
-                   out.torsional_stiffness[rows], out.status_codes[rows],
-                   out.iterations[rows], out.input_torque[rows], out.output_pin_forces[rows],
-                   P_fric, problem.moving[p], problem.turning[p], friction, fe_tables)
+    try:
+        return S.sweep(P, problem.hertz, q0, problem.angle[p], problem.load[p], problem.scale,
+                       problem.tol, MAX_ITERATIONS, model.pins, model.holes,
+                       model.crank_angles, model.mesh_phase, out.q[rows], out.pin_forces[rows],
+                       out.contact_stress[rows], out.channels[rows], out.mesh_state[rows],
+                       out.torsional_stiffness[rows], out.status_codes[rows],
+                       out.iterations[rows], out.input_torque[rows],
+                       out.output_pin_forces[rows], P_fric, problem.moving[p],
+                       problem.turning[p], friction, fe_tables)
+    except np.linalg.LinAlgError:
+        # stiffnesses that span too many decades (stiffness.pins = 1e8 on the RV-40E) make
+        # the condensed stiffness singular in double precision: the point reached fails
+        # with the budget's status word (it was a LinAlgError traceback)
+        codes = out.status_codes[rows]
+        k = int(np.argmax(codes == -1))
+        codes[k] = STATUS_SINGULAR
+        return k + 1
 
 
 #: stiffening factor gained per step of the continuation of :func:`_continued` (a decade: one
