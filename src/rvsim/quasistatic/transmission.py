@@ -151,12 +151,14 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
         check_stop()        # a Ctrl-C or SIGTERM whose exception was swallowed on its way
         failed = done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK
         k = solved - 1
-        if failed and factors and k not in continued:
-            q, iterations = _continued(problem, factors, out.q[k - 1] if k else q0, k)
+        if failed and factors and k not in continued and out.status_codes[k] != STATUS_SINGULAR:
+            q, iterations, code = _continued(problem, factors, out.q[k - 1] if k else q0, k)
             continued[k] = iterations
             if q is not None:
                 solved, q0 = k, q
                 continue
+            if code == STATUS_SINGULAR:          # the reason the continuation stopped
+                out.status_codes[k] = code
         if failed:
             break
         q0 = out.q[solved - 1].copy()
@@ -253,9 +255,9 @@ CONTINUATION_STEP = 10.0
 
 
 def _continued(problem: _Problem, factors: dict, q_before: np.ndarray, k: int):
-    """(equilibrium of point ``k`` with the elements stiffened by ``factors``, iterations), or
-    (None, iterations) where a step fails, by continuation in the factor: the point solved
-    first with the model's own laws from the previous point's equilibrium ``q_before``, then
+    """(equilibrium of point ``k`` with the elements stiffened by ``factors``, iterations, 0),
+    or (None, iterations, the failed step's status code) where a step fails, by continuation
+    in the factor: the point solved first with the model's own laws from the previous point's equilibrium ``q_before``, then
     with the factors raised a decade at a time (:data:`CONTINUATION_STEP`), each from the
     last.  Where the point's equilibrium lies across a clearance from ``q_before`` (the
     torque-reversal test's first point past zero torque), a stiffened element turns the
@@ -275,9 +277,9 @@ def _continued(problem: _Problem, factors: dict, q_before: np.ndarray, k: int):
         _sweep(problem, constants, q, slice(k, k + 1), scratch, slice(0, 1))
         iterations += int(scratch.iterations[0])
         if scratch.status_codes[0] != 0:
-            return None, iterations
+            return None, iterations, int(scratch.status_codes[0])
         q = scratch.q[0].copy()
-    return q, iterations
+    return q, iterations, 0
 
 
 @dataclasses.dataclass(repr=False)
