@@ -259,11 +259,12 @@ def _continued(problem: _Problem, factors: dict, q_before: np.ndarray, k: int):
     or (None, iterations, the failed step's status code) where a step fails, by continuation
     in the factor: the point solved first with the model's own laws from the previous
     point's equilibrium ``q_before``, then with the factors raised a decade at a time
-    (:data:`CONTINUATION_STEP`), each from the last.  Where the point's equilibrium lies across a clearance from ``q_before`` (the
-    torque-reversal test's first point past zero torque), a stiffened element turns the
-    crossing into hundreds of rejected trust-region steps against its contact; the model's own
-    laws cross it as every test does, and each decade then moves the bodies by a fraction of
-    their deflection (docs/decisions.md, issue 30/32 fourth session)."""
+    (:data:`CONTINUATION_STEP`), each from the last.  Where the point's equilibrium lies
+    across a clearance from ``q_before`` (the torque-reversal test's first point past zero
+    torque), a stiffened element turns the crossing into hundreds of rejected trust-region
+    steps against its contact; the model's own laws cross it as every test does, and each
+    decade then moves the bodies by a fraction of their deflection (docs/decisions.md, issue
+    30/32 fourth session)."""
     decades = max(abs(math.log(s) / math.log(CONTINUATION_STEP)) for s in factors.values())
     steps = max(1, math.ceil(decades - 1e-9))
     from ..physics import _layout as L
