@@ -302,9 +302,11 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     if measured <= len(names):
         field = ("--efficiency" if efficiency is not None else "--loop" if loops and not points
                  else "recordings")
-        raise ParameterError(field, f"{measured} measured values (after removing each "
-                             f"curve's mean) cannot fit {len(names)} parameters: record more "
-                             "points or fit fewer parameters")
+        # efficiency points have no mean removed (the note was wrong there)
+        removed = "" if efficiency is not None else " (after removing each curve's mean)"
+        raise ParameterError(field, f"{measured} measured values{removed} cannot fit "
+                             f"{len(names)} parameters: record more points or fit fewer "
+                             "parameters")
     unit = "%" if efficiency is not None else "arcsec"
     evaluations = [0]
     failed = [None]
