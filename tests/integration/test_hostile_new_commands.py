@@ -315,3 +315,19 @@ def test_analyze_table_refuses_what_is_not_a_table():
 
     with pytest.raises(ParameterError, match="'table': a pandas DataFrame .* got str"):
         rvsim.analyze_table("results.csv")
+
+
+def test_plot_of_a_failed_loop_names_its_status():
+    """``.plot()`` of a failed torque reversal raised the curve reader's "curve 'branch': the
+    curve has no increasing branch"; it names the test's status."""
+    import numpy as np
+
+    from rvsim.errors import SimulationError
+    from rvsim.quasistatic.torque_reversal import HysteresisResult
+
+    failed = HysteresisResult(torque=np.zeros(3), angle=np.full(3, np.nan),
+                              branch=np.ones(3), rated_torque=412.0,
+                              status="singular_stiffness", wall_s=0.0,
+                              converged=np.zeros(3, bool), torsional_stiffness=np.zeros(3))
+    with pytest.raises(SimulationError, match=r"ended singular_stiffness \(0 of 3 points"):
+        failed.plot()
