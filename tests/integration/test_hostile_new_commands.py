@@ -112,8 +112,8 @@ BAD_ROWS = {
     # status ok: 1.606 mm, 95 % interval 0 .. 113 409 mm, RMS unchanged
     "--fit flexibility.fe_element_size": (
         ["calibrate", "--loop", LOOP, "--fit", "flexibility.fe_element_size", "--out", "f"],
-        "'flexibility.fe_element_size': cannot be fitted (the finite-element mesh's element "
-        "sizes are the model's resolution"),
+        "'flexibility.fe_element_size': cannot be fitted (an element size of the "
+        "finite-element mesh: the model's resolution"),
     # status model_fails, exit 1, after the fit's first step
     "--fit stiffness.input_coupling on an RV reducer": (
         ["calibrate", "--loop", LOOP, "--fit", "stiffness.input_coupling", "--out", "f"],

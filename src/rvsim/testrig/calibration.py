@@ -65,10 +65,7 @@ NIL_SENSITIVITY = 1e-3
 NOT_FITTED = {"rating": "the rated torque sets the extent of the model's torque-reversal "
                         "test, it is not a property of the reducer",
               "operating": "the recordings give the operating points and the model is "
-                           "quasi-static: the dynamic run's settings do not enter it",
-              # a fit moved the disc's mesh to 1.606 mm, status ok, 95 % 0 .. 113 409 mm
-              "flexibility": "the finite-element mesh's element sizes are the model's "
-                             "resolution, not a property of the reducer"}
+                           "quasi-static: the dynamic run's settings do not enter it"}
 #: step of the finite-difference Jacobian in scaled units (1e-3 of a parameter's scale)
 JACOBIAN_STEP = 1e-3
 #: scale of a parameter that starts at zero, by unit
@@ -260,6 +257,12 @@ def fitted_names(fit: list[str]) -> list[str]:
                     "choice": "a choice"}.get(spec.kind, f"of kind {spec.kind}")
             raise ParameterError(spec.name, f"cannot be fitted ({what}; only continuous "
                                  "quantities can be)")
+        if section == "flexibility":
+            # its numbers are the FE mesh's element sizes: a fit moved the disc's to 1.606 mm,
+            # status ok, 95 % interval 0 .. 113 409 mm, the RMS unchanged
+            raise ParameterError(spec.name, "cannot be fitted (an element size of the "
+                                 "finite-element mesh: the model's resolution, not a property "
+                                 "of the reducer)")
     return names
 
 
