@@ -17,7 +17,15 @@ def pyplot():
     import os
     import sys
 
-    import matplotlib
+    try:
+        import matplotlib
+    except ValueError:
+        # MPLBACKEND names no backend: matplotlib refuses it at import, and a report written
+        # after its run ended in that traceback; the files need none, Agg draws them
+        os.environ.pop("MPLBACKEND", None)
+        for name in [m for m in sys.modules if m.split(".")[0] == "matplotlib"]:
+            del sys.modules[name]              # the half-imported package, imported again
+        import matplotlib
 
     if "matplotlib.pyplot" not in sys.modules and not os.environ.get("MPLBACKEND"):
         matplotlib.use("Agg")

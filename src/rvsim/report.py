@@ -463,10 +463,9 @@ def write_run_report(result, reducer, path: str | Path) -> Path:
     changed = params[[not name.startswith("materials") for name in params.index]]
     window = result.time >= result.steady_start
     forces = result.pin_forces[window].mean(axis=0)
-    import matplotlib
+    from ._matplotlib import pyplot
 
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     fig, ax = plt.subplots(figsize=(7, 3))
     pins = np.arange(1, forces.shape[1] + 1)

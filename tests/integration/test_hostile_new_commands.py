@@ -12,6 +12,8 @@ import pytest
 
 from tests.conftest import run_cli
 
+LOOP = str(Path(__file__).resolve().parents[2] / "docs" / "examples" / "hysteresis_loop.csv")
+EFF = "input_speed_rpm,output_torque_nm,efficiency,temperature_c\n"
 QS = 'name = "u"\ndesign = "L4"\nengine = "quasi-static"\n[factors.H]\nparameter = "H"\n'
 
 # (command line, words the one error line must contain)
@@ -94,6 +96,38 @@ BAD_ROWS = {
     "levels [0.02, '20 um']": (
         ["study", "{toml:" + QS + 'levels = [0.02, "20 um"]\n}', "--out", "o"],
         "'factors.H.levels': level '20 um' is given twice (as 0.02)"),
+    # fourth session's hostile test (hostile5) of calibrate --loop/--efficiency and [stiffness]
+    # the file's 200 degC was refused as 'operating.temperature', which the user never set
+    "--efficiency temperature_c 200": (
+        ["calibrate", "--efficiency", "{csv:" + EFF + "500,100,0.9,200\n3000,400,0.9,40\n}",
+         "--params", "RV-40E-bearings", "--fit", "contact.friction_coefficient", "--out", "f"],
+        "in.csv: temperature_c: data row 1: 200 degC is above the lubricant's "
+        "highest temperature"),
+    # refused as 'speeds' (no such option of calibrate)
+    "--efficiency input_speed_rpm 1e9": (
+        ["calibrate", "--efficiency", "{csv:" + EFF + "1e9,100,0.9,40\n3000,400,0.9,40\n}",
+         "--params", "RV-40E-bearings", "--fit", "contact.friction_coefficient", "--out", "f"],
+        "in.csv: input_speed_rpm: data row 1 (1e+09) is above the model's "
+        "100000 rpm"),
+    # status ok: 1.606 mm, 95 % interval 0 .. 113 409 mm, RMS unchanged
+    "--fit flexibility.fe_element_size": (
+        ["calibrate", "--loop", LOOP, "--fit", "flexibility.fe_element_size", "--out", "f"],
+        "'flexibility.fe_element_size': cannot be fitted (an element size of the "
+        "finite-element mesh: the model's resolution"),
+    # status model_fails, exit 1, after the fit's first step
+    "--fit stiffness.input_coupling on an RV reducer": (
+        ["calibrate", "--loop", LOOP, "--fit", "stiffness.input_coupling", "--out", "f"],
+        "'stiffness.input_coupling': cannot be fitted: this model has no such element"),
+    # the same data twice: status ok, every interval narrower by sqrt(2)
+    "--loop twice": (["calibrate", "--loop", LOOP, "--loop", LOOP, "--fit", "stiffness.pins",
+                      "--out", "f"], "'--loop': " + LOOP + ": given twice"),
+    "--loop a folder": (["calibrate", "--loop", ".", "--fit", "stiffness.pins", "--out", "f"],
+                        ": is a folder, not a table"),
+    # 'params' printed a set every other command refuses
+    "params allowable speed 1 rad/s": (
+        ["params", "--set", "rating.allowable_output_speed=1rad/s"],
+        "'rating.allowable_output_speed': must be at least the rated output speed 15 rpm "
+        "(got 9.5493)"),
 }
 
 
@@ -104,10 +138,11 @@ def _listing(folder: Path) -> list[str]:
 def _expand(args: list[str], folder: Path) -> list[str]:
     out = []
     for arg in args:
-        if arg.startswith("{toml:") and arg.endswith("}"):
-            path = folder / "in.toml"
-            path.write_text(arg[len("{toml:"):-1])
-            arg = str(path)
+        for kind in ("toml", "csv"):
+            if arg.startswith("{" + kind + ":") and arg.endswith("}"):
+                path = folder / f"in.{kind}"
+                path.write_text(arg[len(kind) + 2:-1])
+                arg = str(path)
         out.append(arg)
     return out
 
@@ -259,3 +294,40 @@ def test_main_bearing_static_rating_bounds_the_external_loads():
                        "3e\\+04 N") as info:
         check_static_capacity(r, 0.0, 1800.0, 0.0)
     assert info.value.field == "moment"
+
+
+def test_a_singular_stiffness_is_a_status(tmp_path, monkeypatch):
+    """``hysteresis --set stiffness.pins=1e8`` (and ltca, efficiency, life) ended in numba's
+    LinAlgError traceback: the condensed stiffness of stiffnesses 1e8 apart cannot be
+    inverted in double precision.  It is the point's status, singular_stiffness (the compliance
+    budget's word), exit 1, one line, no file."""
+    monkeypatch.chdir(tmp_path)
+    res = run_cli("hysteresis", "--set", "stiffness.pins=1e8", "--csv", "loop.csv")
+    assert res.code == 1 and res.out == ""
+    assert res.err == "rvsim: hysteresis failed: status singular_stiffness\n"
+    assert _listing(tmp_path) == []
+
+
+def test_analyze_table_refuses_what_is_not_a_table():
+    """``rvsim.analyze_table("results.csv")`` (or a Study) was an AttributeError."""
+    import rvsim
+    from rvsim.errors import ParameterError
+
+    with pytest.raises(ParameterError, match="'table': a pandas DataFrame .* got str"):
+        rvsim.analyze_table("results.csv")
+
+
+def test_plot_of_a_failed_loop_names_its_status():
+    """``.plot()`` of a failed torque reversal raised the curve reader's "curve 'branch': the
+    curve has no increasing branch"; it names the test's status."""
+    import numpy as np
+
+    from rvsim.errors import SimulationError
+    from rvsim.quasistatic.torque_reversal import HysteresisResult
+
+    failed = HysteresisResult(torque=np.zeros(3), angle=np.full(3, np.nan),
+                              branch=np.ones(3), rated_torque=412.0,
+                              status="singular_stiffness", wall_s=0.0,
+                              converged=np.zeros(3, bool), torsional_stiffness=np.zeros(3))
+    with pytest.raises(SimulationError, match=r"ended singular_stiffness \(0 of 3 points"):
+        failed.plot()

@@ -105,6 +105,11 @@ def analyze_table(table, response: str | None = None, factors=None, *, pool=(),
     from .range_analysis import range_analysis
     from .signal_noise import table_kind
 
+    if not hasattr(table, "columns"):  # a path or a Study was an AttributeError
+        from ..errors import ParameterError
+
+        raise ParameterError("table", f"a pandas DataFrame of a study's runs (pandas.read_csv "
+                             f"of its results.csv; got {type(table).__name__})")
     if response is None:
         response = check_response(table, None, factors=factors or (), option="response")
 

@@ -16,8 +16,9 @@ from pathlib import Path
 
 from .._json import to_json_safe
 from ..errors import ParameterError
-from ._common import (number, add_command, add_reducer_options, check_load, check_output_file,
-                      check_output_folder, path_text, print_json, reducer_from_args, whole)
+from ._common import (number, add_command, add_reducer_options, check_input_speeds, check_load,
+                      check_output_file, check_output_folder, path_text, print_json,
+                      reducer_from_args, whole)
 
 __all__ = ["register"]
 
@@ -143,15 +144,21 @@ def _calibrate(args: argparse.Namespace) -> int:
     from ..parameters._io import toml_text
     from ..testrig.bench import analyse_path
     from ..testrig.calibration import calibrate, fitted_names
-    from ..testrig.curves import read_efficiency, read_loop
+    from ..testrig.curves import check_efficiency_points, read_efficiency, read_loop
 
     fitted_names(names)                    # before the recordings are read
+    given = [Path(path).resolve() for path in args.loops]
+    if len(set(given)) != len(given):      # the same data twice narrowed every interval
+        raise ParameterError("--loop", f"{next(p for p in given if given.count(p) > 1)}: "
+                             "given twice")
     loops = [read_loop(path) for path in args.loops]
     for loop in loops:
         check_load(reducer, float(abs(loop.torque).max()), f"--loop {loop.path.name}")
     efficiency = None if args.efficiency is None else read_efficiency(args.efficiency)
     if efficiency is not None:
         check_load(reducer, float(efficiency.torque.max()), "--efficiency output_torque_nm")
+        check_efficiency_points(efficiency, reducer)
+        check_input_speeds(reducer, efficiency.speed_rpm, "--efficiency input_speed_rpm")
     analysed = [] if args.path is None else analyse_path(args.path, reducer, column_map)
     _check_model_loads(analysed, reducer)
     result = calibrate(analysed, reducer, names, positions=args.positions, loops=loops,

@@ -305,6 +305,9 @@ def _check_consistency(r: Reducer) -> None:
         raise ParameterError("operating.load_ramp_end", "must be later than load_start")
     if op.steady_start >= op.duration:
         raise ParameterError("operating.steady_start", "must be earlier than duration")
+    from .rating import check_rating     # rated <= allowable, for every command ('params' too)
+
+    check_rating(r)
 
 
 def parameter_table(reducer: Reducer) -> list[dict[str, Any]]:

@@ -83,7 +83,13 @@ class HysteresisResult(Headline):
 
     def plot(self, ax=None):
         """Output angle [arcmin] against output torque [N*m], the catalogue quantities marked
-        (:func:`rvsim.plots.hysteresis_plot`); returns the first panel's Axes."""
+        (:func:`rvsim.plots.hysteresis_plot`); returns the first panel's Axes.  A failed test
+        has no loop: SimulationError naming its status (was the curve reader's "no increasing
+        branch")."""
+        if self.status != "ok":
+            raise SimulationError(self.status, f"no loop to draw: the torque-reversal test "
+                                  f"ended {self.status} ({int(self.converged.sum())} of "
+                                  f"{self.converged.size} points solved)")
         return draw(figure("rvsim.plots", "hysteresis_plot"), ax, self, self.rated_torque,
                     panels=True)
 

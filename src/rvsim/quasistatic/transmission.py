@@ -33,6 +33,9 @@ MAX_ITERATIONS = 200
 #: contact foot points and the tangent predictor at each chunk (same equilibria, to the
 #: tolerance; paths up to this length are solved in one call)
 CHUNK = 4000
+#: status code of a point whose condensed stiffness could not be inverted ("singular_stiffness",
+#: the compliance budget's word); the compiled solver's own codes are 0-3
+STATUS_SINGULAR = 100
 
 
 @dataclasses.dataclass
@@ -148,12 +151,14 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
         check_stop()        # a Ctrl-C or SIGTERM whose exception was swallowed on its way
         failed = done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK
         k = solved - 1
-        if failed and factors and k not in continued:
-            q, iterations = _continued(problem, factors, out.q[k - 1] if k else q0, k)
+        if failed and factors and k not in continued and out.status_codes[k] != STATUS_SINGULAR:
+            q, iterations, code = _continued(problem, factors, out.q[k - 1] if k else q0, k)
             continued[k] = iterations
             if q is not None:
                 solved, q0 = k, q
                 continue
+            if code == STATUS_SINGULAR:          # the reason the continuation stopped
+                out.status_codes[k] = code
         if failed:
             break
         q0 = out.q[solved - 1].copy()
@@ -162,7 +167,7 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
     out.wall_s, _ = clock.split()
     out.force_resolution = problem.tol
     worst = int(out.status_codes[solved - 1]) if solved else S.STATUS_NOT_CONVERGED
-    out.status = S.STATUS_TEXT[worst]
+    out.status = "singular_stiffness" if worst == STATUS_SINGULAR else S.STATUS_TEXT[worst]
     return out
 
 
@@ -225,13 +230,23 @@ def _sweep(problem: _Problem, constants: tuple, q0: np.ndarray, points: slice,
     model, p = problem.model, points
     friction = (out.friction_forces[rows] if out.friction_forces is not None
                 else np.zeros((rows.stop - rows.start, len(q0))))
-    return S.sweep(P, problem.hertz, q0, problem.angle[p], problem.load[p], problem.scale,
-                   problem.tol, MAX_ITERATIONS, model.pins, model.holes, model.crank_angles,
-                   model.mesh_phase, out.q[rows], out.pin_forces[rows],
-                   out.contact_stress[rows], out.channels[rows], out.mesh_state[rows],
-                   out.torsional_stiffness[rows], out.status_codes[rows],
-                   out.iterations[rows], out.input_torque[rows], out.output_pin_forces[rows],
-                   P_fric, problem.moving[p], problem.turning[p], friction, fe_tables)
+    try:
+        return S.sweep(P, problem.hertz, q0, problem.angle[p], problem.load[p], problem.scale,
+                       problem.tol, MAX_ITERATIONS, model.pins, model.holes,
+                       model.crank_angles, model.mesh_phase, out.q[rows], out.pin_forces[rows],
+                       out.contact_stress[rows], out.channels[rows], out.mesh_state[rows],
+                       out.torsional_stiffness[rows], out.status_codes[rows],
+                       out.iterations[rows], out.input_torque[rows],
+                       out.output_pin_forces[rows], P_fric, problem.moving[p],
+                       problem.turning[p], friction, fe_tables)
+    except np.linalg.LinAlgError:
+        # stiffnesses that span too many decades (stiffness.pins = 1e8 on the RV-40E) make
+        # the condensed stiffness singular in double precision: the point reached fails
+        # with the budget's status word (it was a LinAlgError traceback)
+        codes = out.status_codes[rows]
+        k = int(np.argmax(codes == -1))
+        codes[k] = STATUS_SINGULAR
+        return k + 1
 
 
 #: stiffening factor gained per step of the continuation of :func:`_continued` (a decade: one
@@ -240,15 +255,16 @@ CONTINUATION_STEP = 10.0
 
 
 def _continued(problem: _Problem, factors: dict, q_before: np.ndarray, k: int):
-    """(equilibrium of point ``k`` with the elements stiffened by ``factors``, iterations), or
-    (None, iterations) where a step fails, by continuation in the factor: the point solved
-    first with the model's own laws from the previous point's equilibrium ``q_before``, then
-    with the factors raised a decade at a time (:data:`CONTINUATION_STEP`), each from the
-    last.  Where the point's equilibrium lies across a clearance from ``q_before`` (the
-    torque-reversal test's first point past zero torque), a stiffened element turns the
-    crossing into hundreds of rejected trust-region steps against its contact; the model's own
-    laws cross it as every test does, and each decade then moves the bodies by a fraction of
-    their deflection (docs/decisions.md, issue 30/32 fourth session)."""
+    """(equilibrium of point ``k`` with the elements stiffened by ``factors``, iterations, 0),
+    or (None, iterations, the failed step's status code) where a step fails, by continuation
+    in the factor: the point solved first with the model's own laws from the previous
+    point's equilibrium ``q_before``, then with the factors raised a decade at a time
+    (:data:`CONTINUATION_STEP`), each from the last.  Where the point's equilibrium lies
+    across a clearance from ``q_before`` (the torque-reversal test's first point past zero
+    torque), a stiffened element turns the crossing into hundreds of rejected trust-region
+    steps against its contact; the model's own laws cross it as every test does, and each
+    decade then moves the bodies by a fraction of their deflection (docs/decisions.md, issue
+    30/32 fourth session)."""
     decades = max(abs(math.log(s) / math.log(CONTINUATION_STEP)) for s in factors.values())
     steps = max(1, math.ceil(decades - 1e-9))
     from ..physics import _layout as L
@@ -262,9 +278,9 @@ def _continued(problem: _Problem, factors: dict, q_before: np.ndarray, k: int):
         _sweep(problem, constants, q, slice(k, k + 1), scratch, slice(0, 1))
         iterations += int(scratch.iterations[0])
         if scratch.status_codes[0] != 0:
-            return None, iterations
+            return None, iterations, int(scratch.status_codes[0])
         q = scratch.q[0].copy()
-    return q, iterations
+    return q, iterations, 0
 
 
 @dataclasses.dataclass(repr=False)

@@ -35,7 +35,7 @@ from ..errors import InputFileError, ParameterError
 from ..units import ARCMIN
 
 __all__ = ["LoopCurve", "EfficiencyPoints", "read_loop", "read_efficiency", "loop_table",
-           "LOOP_COLUMNS", "EFFICIENCY_COLUMNS"]
+           "check_efficiency_points", "LOOP_COLUMNS", "EFFICIENCY_COLUMNS"]
 
 #: column -> (required, unit)
 LOOP_COLUMNS = {"torque_nm": (True, "N*m"), "twist_arcmin": (True, "arcmin"),
@@ -155,6 +155,30 @@ def read_efficiency(path, option: str = "--efficiency") -> EfficiencyPoints:
                                  f"({columns[name][row]:g}) must be {what}")
     return EfficiencyPoints(where, columns["input_speed_rpm"], columns["output_torque_nm"], eff,
                             columns.get("temperature_c"))
+
+
+def check_efficiency_points(points: EfficiencyPoints, reducer, option: str = "--efficiency"):
+    """Refuse, naming ``option``, the file, the column and the data row, a point the model
+    cannot run: an input speed above the efficiency map's limit, a lubricant temperature
+    outside the reducer's viscosity law (``rvsim.friction.lubricant_viscosity``)."""
+    from ..friction import lubricant_viscosity
+    from ..parameters import with_values
+    from ..quasistatic.efficiency import MAX_SPEED_RPM
+
+    fast = np.flatnonzero(points.speed_rpm > MAX_SPEED_RPM)
+    if fast.size:
+        raise ParameterError(option, f"{points.path}: input_speed_rpm: data row {fast[0] + 1} "
+                             f"({points.speed_rpm[fast[0]]:g}) is above the model's "
+                             f"{MAX_SPEED_RPM:g} rpm")
+    if points.temperature is None:
+        return
+    for t in np.unique(points.temperature):
+        try:
+            lubricant_viscosity(with_values(reducer, {"operating.temperature": float(t)}))
+        except ParameterError as exc:
+            row = int(np.flatnonzero(points.temperature == t)[0]) + 1
+            raise ParameterError(option, f"{points.path}: temperature_c: data row {row}: "
+                                 f"{exc.reason}") from None
 
 
 def loop_table(result):

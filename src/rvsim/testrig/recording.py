@@ -245,8 +245,10 @@ def _read_table(path: Path):
     import pandas as pd
 
     suffix = path.suffix.lower()
-    if not path.is_file():
-        raise InputFileError(f"{path}: file not found")
+    if not path.is_file():         # a folder, a pipe or a device was "file not found"
+        raise InputFileError(f"{path}: " + ("is a folder, not a table" if path.is_dir() else
+                                            "not a regular file" if path.exists() else
+                                            "file not found"))
     if suffix in (".parquet", ".pq"):
         try:
             import pyarrow  # noqa: F401
