@@ -190,6 +190,12 @@ def test_calibration_shows_each_estimate_with_its_interval():
                       [], 41.5, 3.25, 2048, 17, "ok")
     _check(fit, "Calibration: ok, 2048 residuals, 17 model evaluations",
            ["3.25 arcsec (at the start 41.5 arcsec)", "0.0123 mm (95 %: 0.0101 to 0.0145; start 0)"], 3)
+    nan = np.array([np.nan])
+    lost = Calibration(["errors.pin_radius"], ["mm"], np.array([0.0]), np.array([0.0123]),
+                       np.array([np.inf]), nan, nan, np.eye(1), [], 41.5, 3.25, 2048, 17,
+                       "not_identifiable")
+    _check(lost, "Calibration: not_identifiable, 2048 residuals, 17 model evaluations",
+           ["0.0123 mm (not identifiable; start 0)"], 3)     # not "not available to ..."
 
 
 @pytest.mark.parametrize("backend, used", [("svg", "svg"), ("nonsense", "agg")])

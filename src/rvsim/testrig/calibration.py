@@ -109,8 +109,10 @@ class Calibration(Headline):
         for name, unit, start, estimate, low, high in zip(self.names, self.units, self.start,
                                                           self.estimate, self.ci_low,
                                                           self.ci_high):
-            rows.append((name, f"{number(float(estimate), unit)} (95 %: {number(float(low))} "
-                               f"to {number(float(high))}; start {number(float(start))})"))
+            interval = (f"95 %: {number(float(low))} to {number(float(high))}"
+                        if math.isfinite(low) and math.isfinite(high) else "not identifiable")
+            rows.append((name, f"{number(float(estimate), unit)} ({interval}; start "
+                               f"{number(float(start))})"))
         return (f"Calibration: {self.status}, {self.residuals} residuals, {self.evaluations} "
                 "model evaluations", rows + [("note", n) for n in self.notes])
 
