@@ -71,7 +71,10 @@ RESULT_COLUMNS = frozenset({
     "max_contact_stress_mpa", "pins_in_contact_max", "pins_in_contact_min", "positions",
     "torque_nm", "torsional_stiffness_nm_per_arcmin", "backlash_arcmin",
     "hysteresis_loss_arcmin", "lost_motion_arcmin", "points", "rated_torque_nm",
-    "torsional_rigidity_nm_per_arcmin"})
+    "torsional_rigidity_nm_per_arcmin",
+    # keys of ltca's summary that are no run metric (the reducer's limit, a verdict's text):
+    # left out of a study's rows, reserved as labels all the same
+    "static_contact_stress_mpa", "contact_stress_verdict"})
 
 
 def is_coded(values: pd.Series) -> bool:

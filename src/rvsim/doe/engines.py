@@ -75,7 +75,9 @@ def evaluate_quasi_static(reducer, *, hysteresis: bool = False, positions: int =
     clock = RunClock()      # the run without numba compiling (a cold cache)
     try:
         result = ltca(reducer, positions=positions)
-        metrics = _without(result.summary(), "status")
+        # the reducer's contact-stress limit and its verdict's text are no run metrics
+        metrics = _without(result.summary(), "status", "static_contact_stress_mpa",
+                           "contact_stress_verdict")
         status, error = result.status, None
         if status != "ok":
             error = f"ltca {status.replace('_', ' ')}"
