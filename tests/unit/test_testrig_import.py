@@ -174,3 +174,16 @@ def test_a_loop_without_both_branches_is_an_error_naming_the_file(tmp_path):
     with pytest.raises(InputFileError,
                        match=re.escape(f"{path}: read as a torque reversal recording: ")):
         analyse_path(path, RV40E)
+
+
+def test_trailing_separators_of_a_spreadsheet_export_are_no_columns(tmp_path):
+    """`a,b,,` rows (a spreadsheet's export) gave blank-headed empty columns that pandas names
+    "Unnamed: 2" and a curve reader refused as unknown (hostile5); a named column stays, empty
+    or not, for its reader to judge."""
+    from rvsim.testrig.recording import _read_table
+
+    path = tmp_path / "loop.csv"
+    path.write_text("torque_nm,twist_arcmin,,\n0,0,,\n10,0.03,,\n")
+    assert list(_read_table(path).columns) == ["torque_nm", "twist_arcmin"]
+    path.write_text("torque_nm,twist_arcmin,branch\n0,0,\n10,0.03,\n")
+    assert list(_read_table(path).columns) == ["torque_nm", "twist_arcmin", "branch"]

@@ -272,6 +272,10 @@ def _read_table(path: Path):
         frame.columns = [str(i + 1) for i in range(frame.shape[1])]
     else:
         frame.columns = [str(c).strip() for c in frame.columns]
+        # trailing separators of a spreadsheet export (a,b,c,,): columns without header or
+        # value, which pandas names "Unnamed: 3" (refused as unknown columns, hostile5)
+        blank = [c for c in frame.columns if c.startswith("Unnamed: ") and frame[c].isna().all()]
+        frame = frame.drop(columns=blank)
     return frame
 
 
