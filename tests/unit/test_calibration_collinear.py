@@ -1,4 +1,4 @@
-"""The set-wise identifiability check of a calibration (the condition index of the Jacobian
+"""The set-wise identifiability check (and the estimate left on its bound) of a calibration (the condition index of the Jacobian
 with unit-length columns; Belsley, Kuh & Welsch 1980), on Jacobians built by hand."""
 
 import numpy as np
@@ -44,3 +44,24 @@ def test_a_blocked_column_is_left_out():
     J = _jacobian(0.02)
     J[:, 2] = 0.0                   # the model failed on both sides of c: no column
     assert _collinear(J, NAMES, {2: "fails"}, []) == set()
+
+
+def test_an_estimate_the_data_push_onto_its_bound_is_no_fit():
+    """scipy's active_mask (-1: lower bound active): efficiency points of RV-40E fitted with
+    RV-40E-bearings gave a pin friction of 1.8e-15, status ok before (hostile5); at_bound now."""
+    from types import SimpleNamespace
+
+    from rvsim.testrig.calibration import _on_bound
+
+    specs = [SimpleNamespace(unit="-"), SimpleNamespace(unit="mm")]
+    names = ["contact.friction_coefficient", "clearances.crank_arm_bushing"]
+    notes = []
+    assert _on_bound(np.array([-1, 0]), np.array([1.8e-15, 0.004]), names, specs, set(), {},
+                     notes)
+    assert notes == ["contact.friction_coefficient stopped on its lower bound (1.8e-15 -): the "
+                     "data push it beyond its range, so the value is the bound, not a fit "
+                     "(check the recording's units and columns and the parameter set it is "
+                     "fitted from)"]
+    assert not _on_bound(np.array([0, 0]), np.array([0.03, 0.004]), names, specs, set(), {}, [])
+    # a parameter already not identifiable (or blocked) is said so, not twice
+    assert not _on_bound(np.array([-1, 0]), np.array([0.0, 0.004]), names, specs, {0}, {}, [])

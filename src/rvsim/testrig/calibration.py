@@ -446,14 +446,31 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     for j in unfixed:                      # an interval of a parameter not fixed is no interval
         low[j] = high[j] = np.nan
     fitted = model_at(result.x)
+    on_bound = _on_bound(result.active_mask, estimate, names, specs, unfixed, blocked, notes)
     # a parameter the data do not fix is not fitted, whatever the optimiser says
     status = ("model_fails" if blocked else "not_identifiable" if unfixed
-              else "ok" if result.success else "not_converged")
+              else "at_bound" if on_bound else "ok" if result.success else "not_converged")
     return Calibration(names, [s.unit for s in specs], start, estimate, std, low,
                        high, corr, notes,
                        float(np.sqrt(np.mean(r0 ** 2))),
                        float(np.sqrt(np.mean(result.fun ** 2))), m, evaluations[0], status,
                        fitted, unit)
+
+
+def _on_bound(active, estimate, names, specs, unfixed, blocked, notes) -> bool:
+    """Whether the fit stopped on a parameter's bound that the data push against (scipy's
+    ``active_mask``: the constraint is active, so the least-squares optimum lies outside the
+    parameter's range).  Such an estimate is the bound, not a fit: a pin friction of 5e-17
+    fitted to efficiency points of another set, a stiffness of 3.7e-5 to a loop recorded in
+    kN*m (hostile5).  Each is said in a note."""
+    hit = [j for j in np.flatnonzero(active) if j not in unfixed and j not in blocked]
+    for j in hit:
+        side = "lower" if active[j] < 0 else "upper"
+        notes.append(f"{names[j]} stopped on its {side} bound ({estimate[j]:.6g} "
+                     f"{specs[j].unit}): the data push it beyond its range, so the value is the "
+                     "bound, not a fit (check the recording's units and columns and the "
+                     "parameter set it is fitted from)")
+    return bool(hit)
 
 
 def _collinear(J, names, blocked, notes) -> set[int]:
