@@ -1,5 +1,6 @@
-"""The set-wise identifiability check (and the estimate left on its bound) of a calibration (the condition index of the Jacobian
-with unit-length columns; Belsley, Kuh & Welsch 1980), on Jacobians built by hand."""
+"""Two checks of a calibration on inputs built by hand: set-wise identifiability (the condition
+index of the Jacobian with unit-length columns; Belsley, Kuh & Welsch 1980) and an estimate
+left on its bound (scipy's active_mask)."""
 
 import numpy as np
 
