@@ -13,12 +13,15 @@ on the core the quasi-static chain leaves free (docs/decisions.md, issue 30, thi
 The chains share the force elements: each function is compiled by the first chain that
 reaches it, under a per-function file lock (:func:`share_compiles`); the other waits and loads
 it from the cache (cold, on an otherwise loaded machine: 252 s of CPU for the two chains
-without the locks, 209 s with them), and its core goes to the tests meanwhile.  Each task is the smallest run that reaches one engine's scheme; with a
-warm cache a chain takes a few seconds.  ``python -m tests._warmup`` runs both side by side.
+without the locks, 209 s with them), and its core goes to the tests meanwhile.  Each task is
+the smallest run that reaches one engine's scheme; with a warm cache a chain takes a few
+seconds.  ``python -m tests._warmup`` runs both side by side.
 """
 from __future__ import annotations
 
+import os
 import sys
+import tempfile
 import time
 
 #: a short schedule of the dynamic model (the integration tests' own, tests/integration)
@@ -166,7 +169,6 @@ def share_compiles(folder: str) -> None:
     cannot cache is compiled again by the waiter, as before: a cost, never a wrong result."""
     import fcntl
     import hashlib
-    import os
 
     from numba.core.dispatcher import Dispatcher
 
@@ -186,8 +188,6 @@ def share_compiles(folder: str) -> None:
 
 def run_chain(name: str) -> list[tuple[str, float]]:
     """Run one chain's tasks in order; (task, seconds) of each."""
-    import os
-
     if os.environ.get(COMPILE_LOCKS):
         share_compiles(os.environ[COMPILE_LOCKS])
     times = []
@@ -201,13 +201,13 @@ def run_chain(name: str) -> list[tuple[str, float]]:
 def main() -> None:
     """Both chains side by side, in two spawned processes (nothing of numba's inherited)."""
     import multiprocessing
-    import os
-    import tempfile
 
-    os.environ.setdefault(COMPILE_LOCKS, tempfile.mkdtemp(prefix="rvsim-compile-locks-"))
-    with multiprocessing.get_context("spawn").Pool(len(CHAINS)) as pool:
-        for times in pool.imap_unordered(run_chain, list(CHAINS)):
-            print(", ".join(f"{name} {seconds:.1f} s" for name, seconds in times), flush=True)
+    with tempfile.TemporaryDirectory(prefix="rvsim-compile-locks-") as locks:
+        os.environ.setdefault(COMPILE_LOCKS, locks)
+        with multiprocessing.get_context("spawn").Pool(len(CHAINS)) as pool:
+            for times in pool.imap_unordered(run_chain, list(CHAINS)):
+                print(", ".join(f"{name} {seconds:.1f} s" for name, seconds in times),
+                      flush=True)
 
 
 if __name__ == "__main__":

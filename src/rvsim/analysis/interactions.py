@@ -52,11 +52,13 @@ def interaction_anova(table: pd.DataFrame, response: str, factors: list[str]) ->
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")     # a singular design is refused below, in one line
         model = ols("y ~ " + " + ".join(terms + pairs), data=data).fit()
-        rank, terms = np.linalg.matrix_rank(model.model.exog), model.model.exog.shape[1]
-        if rank < terms:
+        design = model.model.exog
+        rank = np.linalg.matrix_rank(design)
+        if rank < design.shape[1]:
             raise InputFileError(
                 f"the {len(data)} runs do not separate the main effects and two-factor "
-                f"interactions of {len(factors)} factors (rank {rank} of {terms} terms: some "
+                f"interactions of {len(factors)} factors (rank {rank} of {design.shape[1]} "
+                "terms: some "
                 "are aliased; run a full factorial or a resolution V design, all its runs "
                 "finished)")
         frame = sm.stats.anova_lm(model, typ=2)

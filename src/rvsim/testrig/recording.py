@@ -274,8 +274,8 @@ def _read_table(path: Path):
         frame.columns = [str(c).strip() for c in frame.columns]
         # trailing separators of a spreadsheet export (a,b,c,,): columns without header or
         # value, which pandas names "Unnamed: 3" (refused as unknown columns, hostile5)
-        blank = [c for c in frame.columns if c.startswith("Unnamed: ") and frame[c].isna().all()]
-        frame = frame.drop(columns=blank)
+        frame = frame.drop(columns=[c for c in frame.columns
+                                    if c.startswith("Unnamed: ") and frame[c].isna().all()])
     return frame
 
 
