@@ -61,9 +61,7 @@ def write_efficiency_report(result, reducer, path: str | Path) -> Path:
     """Write an HTML page for one efficiency ``result`` of ``reducer``."""
     path = _target(path)
     summary = result.summary()
-    frame = result.to_frame()
-    table = (100.0 * frame.pivot(index="output_torque_nm", columns="input_speed_rpm",
-                                 values="efficiency")).round(2)
+    table = result.percent_table()
     table.columns = [f"{c:g} rpm" for c in table.columns]
     table.index.name = "output torque [N*m]"
     running = pd.DataFrame(summary["no_load_running_torque"]).rename(columns={

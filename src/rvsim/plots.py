@@ -58,8 +58,6 @@ def te_plot(results: dict, steady_start: float, ax=None):
     inset, the window shaded there (the transient's +-15 arcmin set the scale and squashed
     the steady differences: issue 34 item 2)."""
     plt = pyplot()
-    import numpy as np
-
     fig, ax = (plt.subplots(figsize=(7, 3.6)) if ax is None else (ax.figure, ax))
     arcmin = 180.0 * 60.0 / math.pi
     end = max(r.time[-1] for r in results.values())

@@ -41,13 +41,14 @@ class StudyAnalysis(Headline, dict):
     as before), and the same as pandas DataFrames with the unit in each column name:
     ``ranges`` (level means k<level>, range R, rank, optimal level), ``anova`` (DF, adjusted
     sums and mean squares in the response's unit squared, F, P), ``sn`` (S/N ratio per
-    level [dB], or None).  Shown as its answer (factor order, significant factors, optimum,
-    prediction); ``plot()`` draws the main effects."""
+    level [dB], or None), and ``range_analysis`` (the :class:`RangeAnalysis` they come from).
+    Shown as its answer (factor order, significant factors, optimum, prediction); ``plot()``
+    draws the main effects."""
 
-    def __init__(self, out: dict, ranges, anova_frame, sn):
+    def __init__(self, out: dict, range_analysis, ranges, anova_frame, sn):
         super().__init__(out)
+        self.range_analysis = range_analysis
         self.ranges, self.anova, self.sn = ranges, anova_frame, sn
-        self._range_analysis = None
 
     def headline(self) -> tuple[str, list[tuple]]:
         """The response, the factor order, the significant factors and the prediction."""
@@ -72,7 +73,7 @@ class StudyAnalysis(Headline, dict):
         main_effects_plot`); returns the first panel's Axes."""
         from .figures import main_effects_plot
 
-        fig = main_effects_plot(self._range_analysis, ax=ax)
+        fig = main_effects_plot(self.range_analysis, ax=ax)
         return ax if ax is not None else fig.axes[0]
 
 
@@ -158,6 +159,4 @@ def analyze_table(table, response: str | None = None, factors=None, *, pool=(),
                               for f, row in sn.iterrows()}
     if notes:
         out["notes"] = notes
-    result = StudyAnalysis(out, *_frames(ra, table_anova, sn, response))
-    result._range_analysis = ra
-    return result
+    return StudyAnalysis(out, ra, *_frames(ra, table_anova, sn, response))

@@ -91,13 +91,11 @@ def _efficiency(args: argparse.Namespace) -> int:
     if args.json:
         print_json(with_compile_time(summary))
         return 0
-    frame = result.to_frame()
     print(f"{reducer.name}: efficiency at {len(result.input_speed)} speeds x "
           f"{len(result.output_torque)} torques ({summary['wall_s']:.2f} s"
           f"{compile_time_text()}), status "
           f"{summary['status']}")
-    table = (100.0 * frame.pivot(index="output_torque_nm", columns="input_speed_rpm",
-                                 values="efficiency")).round(2)
+    table = result.percent_table()
     table.columns = [f"{c:g} rpm" for c in table.columns]
     table.index = [f"{t:g} N*m" for t in table.index]
     print("efficiency [%]: output torque \\ input speed")

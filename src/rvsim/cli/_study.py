@@ -320,10 +320,7 @@ def _analyze(args: argparse.Namespace) -> int:
         print_json(result)
         return 0
     print(f"response {response_bench_note(response)}\n")
-    kind = result["sn_kind"]
-    ra = range_analysis(table, response, factors,
-                        larger=None if kind is None else kind == "larger")
-    print(ra.to_df().round(4).to_string())
+    print(result.range_analysis.to_df().round(4).to_string())
     if result.get("constant_response"):
         print(f"\norder: none: the response '{response}' is constant (to round-off), so the "
               "factors cannot be ranked")

@@ -13,12 +13,13 @@ from __future__ import annotations
 import math
 
 from ..errors import ParameterError
+from ..units import TO_SI
 
 __all__ = ["check_torque", "check_rating", "check_output_speed", "peak_load",
            "contact_stress_verdict"]
 
 #: [rad/s] per rpm
-_RPM = 2.0 * math.pi / 60.0
+_RPM = TO_SI["rpm"]
 
 
 def peak_load(reducer) -> tuple[float, str]:

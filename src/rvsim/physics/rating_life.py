@@ -83,11 +83,11 @@ BALL_F0_TABLE = (
      11.6, 11.4, 11.2, 10.9, 10.7, 10.5, 10.3, 10.0, 9.8, 9.6, 9.4))
 
 
-def _table_fc(table, gamma: float, field: str) -> float:
+def _table_fc(table, gamma: float, field: str, what: str = "ISO 281's table of f_c") -> float:
     x, y = table
     if not x[0] <= gamma <= x[-1]:
-        raise ParameterError(field, f"D cos(alpha) / D_pw = {gamma:.4g} is outside ISO 281's "
-                             f"table of f_c ({x[0]:g} to {x[-1]:g})")
+        raise ParameterError(field, f"D cos(alpha) / D_pw = {gamma:.4g} is outside {what} "
+                             f"({x[0]:g} to {x[-1]:g})")
     return float(np.interp(gamma, x, y))
 
 
@@ -138,11 +138,8 @@ def ball_static_rating(count: int, diameter: float, pitch_diameter: float,
     permanent deformation of about 1e-4 D_w."""
     cos_a = math.cos(contact_angle)
     gamma = diameter * cos_a / pitch_diameter
-    x, y = BALL_F0_TABLE
-    if not x[0] <= gamma <= x[-1]:
-        raise ParameterError(field, f"D cos(alpha) / D_pw = {gamma:.4g} is outside ISO 76's "
-                             f"table of f_0 ({x[0]:g} to {x[-1]:g})")
-    return float(np.interp(gamma, x, y)) * rows * count * (diameter / _MM) ** 2 * cos_a
+    f0 = _table_fc(BALL_F0_TABLE, gamma, field, "ISO 76's table of f_0")
+    return f0 * rows * count * (diameter / _MM) ** 2 * cos_a
 
 
 def tapered_factors(contact_angle: float,

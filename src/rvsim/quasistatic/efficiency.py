@@ -118,6 +118,13 @@ class EfficiencyResult(Headline):
         return draw(figure("rvsim._efficiency_report", "efficiency_plot"), ax, self,
                     panels=True)
 
+    def percent_table(self):
+        """Efficiency [%] to 0.01, output torques [N*m] as rows by input speeds [rpm] as columns
+        (the console's and the report's table)."""
+        frame = self.to_frame()
+        return (100.0 * frame.pivot(index="output_torque_nm", columns="input_speed_rpm",
+                                    values="efficiency")).round(2)
+
     def to_frame(self):
         """One row per (input speed, output torque) point."""
         import pandas as pd

@@ -356,29 +356,31 @@ class LtcaResult(Headline):
             **self._contact_stress_verdict(),
         }
 
-    def _contact_stress_verdict(self) -> dict:
-        """The largest contact stress against the static limit (``static_contact_stress_mpa``,
-        ``contact_stress_verdict``; rvsim.parameters.rating.contact_stress_verdict); none
-        without a limit."""
+    def _stress_check(self) -> tuple[str, str | None] | None:
+        """(verdict, warning text or None) of the largest contact stress against the static
+        limit (rvsim.parameters.rating.contact_stress_verdict); None without a limit."""
         if self.static_contact_stress is None:
-            return {}
+            return None
         from ..parameters.rating import contact_stress_verdict
 
         ok = self.converged
         stress = float(self.contact_stress[ok].max()) if ok.any() else float("nan")
-        verdict, _ = contact_stress_verdict(stress, self.static_contact_stress)
+        return contact_stress_verdict(stress, self.static_contact_stress)
+
+    def _contact_stress_verdict(self) -> dict:
+        """``static_contact_stress_mpa`` and ``contact_stress_verdict`` of the summary (none
+        without a limit)."""
+        check = self._stress_check()
+        if check is None:
+            return {}
         return {"static_contact_stress_mpa": self.static_contact_stress / 1e6,
-                "contact_stress_verdict": verdict}
+                "contact_stress_verdict": check[0]}
 
     def contact_stress_warning(self) -> str | None:
         """The warning line's text when the largest contact stress is above the static limit
         (else None)."""
-        if self.static_contact_stress is None or not self.converged.any():
-            return None
-        from ..parameters.rating import contact_stress_verdict
-
-        return contact_stress_verdict(float(self.contact_stress[self.converged].max()),
-                                      self.static_contact_stress)[1]
+        check = self._stress_check()
+        return None if check is None else check[1]
 
     def headline(self) -> tuple[str, list[tuple]]:
         """Status, torque and the report's opening rows

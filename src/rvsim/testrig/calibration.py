@@ -194,7 +194,6 @@ def _curve_residuals(loop, reducer) -> np.ndarray:
 def _efficiency_residuals(points, reducer) -> np.ndarray:
     """Measured minus model efficiency [-] at each point, the model at the point's
     lubricant temperature where the file gives one."""
-    from ..parameters import with_values
     from ..quasistatic.efficiency import efficiency_points
 
     model = np.empty(points.efficiency.size)
