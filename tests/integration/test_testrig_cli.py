@@ -180,6 +180,16 @@ def test_compare_gives_the_model_efficiency_when_the_set_has_friction(tmp_path, 
     # the efficiency engine at 15 rpm, 300 N*m (0.903 measured when written)
     assert 0.8 < s["simulated"]["efficiency"] < 0.99
     assert s["difference"]["efficiency"] == pytest.approx(0.85 - s["simulated"]["efficiency"])
+    # % beside the fraction, as rvsim efficiency's JSON; the console in % (issue 34)
+    assert s["efficiency_pct"] == pytest.approx(85.0, rel=1e-9)
+    assert s["simulated"]["efficiency_pct"] == pytest.approx(100 * s["simulated"]["efficiency"])
+    assert s["difference"]["efficiency_pct"] == pytest.approx(100 * s["difference"]["efficiency"])
+    assert main(["testrig", str(path), "--compare", "--positions", "256", "--params",
+                 "RV-40E-bearings"]) == 0
+    out = capsys.readouterr().out
+    assert "  efficiency 85.00 %" in out
+    assert f"efficiency_pct {s['simulated']['efficiency_pct']:.4g} (difference" in out
+    assert "efficiency 0." not in out
     assert main(["testrig", str(path), "--compare", "--points", "256", "--json"]) == 0
     s = json.loads(capsys.readouterr().out)
     assert "efficiency" not in s["simulated"] and "no friction" in s["simulated"]["note"]

@@ -35,7 +35,7 @@ LAYERS = {
     # 0 foundation: no physics, no numba kernels; imported by everything
     "rvsim.units": 0, "rvsim.errors": 0, "rvsim._files": 0, "rvsim._json": 0,
     "rvsim._fingerprint": 0, "rvsim._stopping": 0, "rvsim._jit": 0, "rvsim._cache_guard": 0,
-    "rvsim.data": 0, "rvsim._matplotlib": 0, "rvsim._display": 0,
+    "rvsim.data": 0, "rvsim._matplotlib": 0, "rvsim._display": 0, "rvsim._keywords": 0,
     # 1 inputs and metrics: parameter sets; pure functions of curves and tables
     "rvsim.parameters": 1, "rvsim.analysis": 1,
     # 2 geometry and finite-element tables

@@ -122,7 +122,7 @@ def register(sub) -> None:
                      "rvsim efficiency --params my_reducer.toml --speeds 500,1500,3000 "
                      "--torques 100,200,412 --report efficiency.html"])
     add_reducer_options(p)
-    p.add_argument("--speeds", metavar="RPM,...",
+    p.add_argument("--speeds", "--speeds-rpm", metavar="RPM,...", dest="speeds",
                    help="input speeds [rpm], comma-separated (default 500,1000,1500,2000,3000)")
     p.add_argument("--torques", metavar="NM,...",
                    help="output torques [N*m], comma-separated (default 20..100 %% of the "

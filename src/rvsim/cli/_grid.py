@@ -156,12 +156,13 @@ def register(sub) -> None:
                      "rvsim grid --speeds 1000,2000 --torques 200 --temperatures 20,60 "
                      "--out grid --workers 2 --report grid.html"])
     add_reducer_options(p)
-    p.add_argument("--speeds", required=True, metavar="RPM,...",
+    p.add_argument("--speeds", "--speeds-rpm", required=True, metavar="RPM,...", dest="speeds",
                    help="input speeds [rpm], comma-separated")
     p.add_argument("--torques", required=True, metavar="NM,...",
                    help="output torques [N*m], comma-separated (above the rated torque: a "
                         "warning; above the momentary maximum: refused)")
-    p.add_argument("--temperatures", metavar="DEGC,...",
+    p.add_argument("--temperatures", "--temperatures-c", metavar="DEGC,...",
+                   dest="temperatures",
                    help="lubricant temperatures [degC], comma-separated (default: the "
                         "parameter set's operating.temperature)")
     p.add_argument("--out", required=True, metavar="DIR", type=path_text,

@@ -379,7 +379,8 @@ def register(sub) -> None:
     p.add_argument("--torque", type=number, metavar="NM",
                    help="output torque [N*m] (default: rating.rated_torque, 412 N*m for the "
                         "RV-40E)")
-    p.add_argument("--output-speed", type=number, metavar="RPM",
+    p.add_argument("--output-speed", "--output-speed-rpm", type=number, metavar="RPM",
+                   dest="output_speed",
                    help="output speed [rpm] (default: rating.rated_output_speed, 15 rpm)")
     p.add_argument("--positions", type=int, default=360, metavar="N",
                    help=f"input positions over one output revolution whose loads are averaged "

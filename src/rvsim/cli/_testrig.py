@@ -64,7 +64,7 @@ def _testrig(args: argparse.Namespace) -> int:
         from ..analysis.sampling import check_positions
 
         check_positions(reducer, points, "--points")   # the model's TE at that many
-    analysed = analyse_path(args.path, reducer, column_map, points=points)
+    analysed = analyse_path(args.path, reducer, column_map, positions=points)
     if args.compare:
         _check_model_loads(analysed, reducer)
     results, code = [], 0
@@ -114,13 +114,14 @@ def _print_point(s: dict) -> None:
               f"{s['torsional_rigidity_nm_per_arcmin']:.2f} N*m/arcmin")
         if "note" in s:
             print(f"    ({s['note']})")
-    if "efficiency" in s:
-        print(f"  efficiency {s['efficiency']:.4f}")
+    if "efficiency_pct" in s:
+        print(f"  efficiency {s['efficiency_pct']:.2f} %")
     for note in s.get("notes", []):
         print(f"  note: {note}")
     sim, diff = s.get("simulated"), s.get("difference") or {}
     if sim and sim.get("status") == "ok":
-        keys = [k for k in diff if k != "te_curve_rms_arcsec"]
+        # efficiency in % (its fraction is the JSON's other key)
+        keys = [k for k in diff if k not in ("te_curve_rms_arcsec", "efficiency")]
         print("  model: " + ", ".join(f"{k} {_fmt(sim.get(k), '.4g')} (difference "
                                          f"{diff[k]:+.4g})" for k in keys))
         if "torque_nm" not in s["point"] and s.get("ate_pp_arcmin") is not None:
@@ -240,8 +241,11 @@ def register(sub) -> None:
                    help="run the model (quasi-static) at the same operating points")
     p.add_argument("--report", metavar="FILE.html",
                    help="write an HTML report (measured and model curves on the same axes)")
-    p.add_argument("--points", type=whole, default=4096, metavar="N",
-                   help="nodes per output revolution (64 to 65536, default 4096)")
+    p.add_argument("--points", "--positions", type=whole, default=4096, metavar="N",
+                   dest="points",
+                   help="positions (nodes) per output revolution of the measured and the "
+                        "model TE (64 to 65536, default 4096); --positions is its name in "
+                        "every other command and in Python")
     p.set_defaults(func=_testrig)
 
     p = add_command(sub, "calibrate", "fit uncertain parameters to bench recordings",

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.catalogue import CurveError
+from .._keywords import renamed
 from ..errors import InputFileError
 from ..parameters import plain_number
 from . import analysis as A
@@ -304,9 +305,12 @@ def _point_key(declared: dict) -> tuple:
                  if k in declared)
 
 
+@renamed(points="positions")
 def analyse_path(path: str | Path, reducer, column_map: ColumnMap | None = None, *,
-                 points: int = A.DEFAULT_POINTS) -> list[PointResult]:
-    """Every recording of a file or folder, analysed and grouped into operating points.
+                 positions: int = A.DEFAULT_POINTS) -> list[PointResult]:
+    """Every recording of a file or folder, analysed and grouped into operating points, its
+    TE at ``positions`` equally spaced output angles per revolution (``rvsim testrig
+    --positions``; ``points``, its old name, is deprecated).
 
     A column that ``column_map`` maps must be in a single file; a folder's files may lack it
     (the oil temperature of some runs only), but not all of them, and a file whose analysis
@@ -319,7 +323,7 @@ def analyse_path(path: str | Path, reducer, column_map: ColumnMap | None = None,
         rec = read_recording(file, column_map, strict=not folder)
         seen.update(rec.columns)
         try:
-            result = analyse_recording(rec, declared, reducer, points=points)
+            result = analyse_recording(rec, declared, reducer, points=positions)
         except InputFileError:
             missing = missing_mapped(column_map, rec.columns)
             if missing:               # the likelier cause: a mapped column this file lacks

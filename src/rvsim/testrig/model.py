@@ -123,8 +123,9 @@ def point_summary(point: PointResult, reducer) -> dict:
     if loops:
         out.update(A.reversal_summary(*loops[0], reducer.rating.rated_torque))
     efficiency = [f.efficiency for f in point.files if f.efficiency is not None]
-    if efficiency:
-        out["efficiency"] = float(np.mean(efficiency))
+    if efficiency:              # a fraction, as since its first version, and in % (the unit
+        out["efficiency"] = float(np.mean(efficiency))      # of the console and the report,
+        out["efficiency_pct"] = 100.0 * out["efficiency"]   # as rvsim efficiency's JSON)
     ratios = [f.ratio_measured for f in point.files if f.ratio_measured]
     if ratios:
         out["ratio_measured"] = float(np.mean(ratios))
@@ -204,6 +205,8 @@ def compare_point(point: PointResult, reducer, *, points: int = A.DEFAULT_POINTS
     summary["simulated"] = sim
     summary["difference"] = {k: summary[k] - sim[k] for k in COMPARED_KEYS
                              if summary.get(k) is not None and sim.get(k) is not None}
+    if "efficiency" in summary["difference"]:       # in percentage points
+        summary["difference"]["efficiency_pct"] = 100.0 * summary["difference"]["efficiency"]
     curves = _curve_difference(point, simulated)
     if curves:
         summary["difference"]["te_curve_rms_arcsec"] = curves

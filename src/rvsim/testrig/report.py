@@ -22,7 +22,7 @@ __all__ = ["write_testrig_report"]
 
 _ROWS = ("ate_pp_arcmin", "te_rms_arcsec", "forward_backward_offset_arcmin",
          "lost_motion_arcmin", "backlash_arcmin", "hysteresis_loss_arcmin",
-         "torsional_rigidity_nm_per_arcmin", "efficiency")
+         "torsional_rigidity_nm_per_arcmin", "efficiency_pct")    # % as everywhere else
 
 
 def _te_figure(measured, simulated):
