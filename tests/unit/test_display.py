@@ -215,18 +215,52 @@ def test_pyplot_keeps_a_backend_already_chosen(backend, used):
     assert out.split()[-1] == used
 
 
-def test_every_frame_column_names_its_unit():
+#: the columns of the public frames that are plain numbers by their name (docs/decisions.md,
+#: issue 34 fifth session): counts, flags, ratios, orders, identifiers
+DIMENSIONLESS = {"branch", "converged", "pins_in_contact_disc1", "pins_in_contact_disc2",
+                 "efficiency", "order", "run", "status", "error", "key"}
+
+
+def _unnamed(frame) -> list[str]:
     from rvsim.analysis import unit_suffix
 
-    counts = {"branch", "converged", "pins_in_contact_disc1", "pins_in_contact_disc2"}
+    return [c for c in frame.columns if c not in DIMENSIONLESS and not unit_suffix(c)[1]]
+
+
+def test_every_frame_column_names_its_unit():
     for frame in (known_run().to_frame(), known_te(rvsim.RV40E).to_frame(),
-                  known_loop().to_frame(), known_map().to_frame()):
-        unnamed = [c for c in frame.columns if c not in counts and not unit_suffix(c)[1]]
-        assert not unnamed or unnamed == ["efficiency"]     # a ratio
+                  known_loop().to_frame(), known_map().to_frame(), known_run().spectrum(),
+                  known_te(rvsim.RV40E).spectrum(), known_tolerances().to_frame()):
+        assert _unnamed(frame) == []
     frame = known_run().to_frame()
     assert frame["te_arcmin"].mean() == pytest.approx(1.5, abs=1e-3)
     assert {"time_s", "theta_in_rad", "omega_out_rad_per_s", "torque_in_nm",
             "pin_f_max_n"} <= set(frame.columns)
+
+
+def test_a_sampling_study_frame_names_each_factor_unit():
+    """results.csv keeps the factor labels (a file's columns stay, issue 31); the frame of a
+    sampling design, whose factor columns hold values, names their units."""
+    import pandas as pd
+
+    from rvsim.analysis import suffix_of_unit
+    from rvsim.doe.result import StudyResult
+    from rvsim.doe.study import study_from_data
+
+    study = study_from_data({"name": "s", "design": "lhs", "samples": 4,
+                             "engine": "quasi-static", "factors": {
+                                 "F": {"parameter": "errors.pin_radius", "range": [0.01, 0.03]},
+                                 "T": {"parameter": "operating.load_torque",
+                                       "range": [100.0, 300.0]}}}, Path("s.toml"))
+    table = study.table().assign(te_mean_arcmin=1.0, status="ok", error="", key="k")
+    frame = StudyResult(study, Path("s"), table).to_frame()
+    assert list(frame.columns) == ["run", "F_mm", "T_nm", "te_mean_arcmin", "status", "error",
+                                   "key"]
+    assert _unnamed(frame) == [] and list(table.columns)[:3] == ["run", "F", "T"]
+    levels = StudyResult(rvsim.paper_l36(), Path("p"), pd.DataFrame({"run": [1], "H": [2]}))
+    assert list(levels.to_frame().columns) == ["run", "H"]       # level numbers
+    assert (suffix_of_unit("N/m"), suffix_of_unit("kg*m^2"), suffix_of_unit("degC"),
+            suffix_of_unit("count")) == ("_n_per_m", "_kgm2", "_c", "")
 
 
 def test_a_failed_result_shows_its_status_not_numbers():

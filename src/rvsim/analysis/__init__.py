@@ -17,23 +17,40 @@ __getattr__, __dir__, _ = lazy_loader.attach(__name__, submodules=["catalogue"],
 
 __all__ = ["RangeAnalysis", "range_analysis", "AnovaTable", "anova", "predict_optimum",
            "signal_to_noise_smaller", "sn_response_table", "analyze_table", "StudyAnalysis",
-           "unit_suffix", "UNIT_SUFFIXES", "catalogue"]
+           "unit_suffix", "suffix_of_unit", "UNIT_SUFFIXES", "catalogue"]
 
 
-#: the unit suffixes of rvsim's column names and the units they stand for (longest first)
+#: the unit suffixes of rvsim's column names and the units they stand for (the longest
+#: matching suffix wins: "_rad_per_s" before "_s")
 UNIT_SUFFIXES = {"_nm_per_arcmin": "N*m/arcmin", "_nm_per_rad": "N*m/rad", "_n_per_m": "N/m",
-                 "_rad_per_s": "rad/s", "_arcmin": "arcmin", "_arcsec": "arcsec",
-                 "_rad": "rad", "_mpa": "MPa", "_pa": "Pa", "_nm": "N*m", "_n": "N",
-                 "_hours": "h", "_rpm": "rpm", "_s": "s", "_sn": "dB"}
+                 "_mm2_s": "mm^2/s", "_rad_per_s": "rad/s", "_deg_per_s": "deg/s",
+                 "_mm_per_s": "mm/s", "_kg_per_m3": "kg/m^3", "_arcmin": "arcmin",
+                 "_arcsec": "arcsec", "_rad": "rad", "_deg": "deg", "_gpa": "GPa",
+                 "_mpa": "MPa", "_pa": "Pa", "_nm": "N*m", "_n": "N", "_mm": "mm", "_um": "um",
+                 "_hours": "h", "_rpm": "rpm", "_s": "s", "_hz": "Hz", "_kgm2": "kg*m^2",
+                 "_c": "degC", "_pct": "%", "_sn": "dB"}
+
+#: units that are plain numbers (no suffix)
+_PLAIN = ("-", "count", "flag", "choice", "")
 
 
 def unit_suffix(column: str) -> tuple[str, str]:
     """(suffix, unit) of a column's name ("te_mean_arcmin" -> ("_arcmin", "arcmin"), an S/N
     ratio "_sn" -> dB); ("", "") when it names no unit."""
-    for suffix, unit in UNIT_SUFFIXES.items():
+    for suffix in sorted(UNIT_SUFFIXES, key=len, reverse=True):
         if str(column).endswith(suffix):
-            return suffix, unit
+            return suffix, UNIT_SUFFIXES[suffix]
     return "", ""
+
+
+def suffix_of_unit(unit: str) -> str:
+    """The column suffix of a unit as docs/parameters.md writes it ("N*m" -> "_nm", "N/m" ->
+    "_n_per_m", "kg*m^2" -> "_kgm2", "degC" -> "_c"); "" for a plain number."""
+    if unit in _PLAIN:
+        return ""
+    known = {u: s for s, u in UNIT_SUFFIXES.items() if s != "_sn"}
+    return known.get(unit) or "_" + unit.lower().replace("*", "").replace("^", "").replace(
+        "/", "_per_")
 
 
 class StudyAnalysis(Headline, dict):

@@ -25,7 +25,17 @@ class StudyResult(Headline):
     table: object                   # pandas.DataFrame
 
     def to_frame(self):
-        return self.table
+        """The results table, as results.csv holds it, except that a sampling design's
+        factor columns (values in the parameter's unit) carry that unit ("H" -> "H_mm");
+        a level design's hold level numbers (1, 2, 3: no unit)."""
+        if not self.study.is_sampling:
+            return self.table
+        from ..analysis import suffix_of_unit
+        from ..parameters._io import SPECS
+
+        return self.table.rename(columns={
+            f.label: f.label + suffix_of_unit(SPECS[f.parameter].unit)
+            for f in self.study.factors if f.parameter in SPECS})
 
     def analysis(self, response: str | None = None, alpha: float = 0.1):
         """Range analysis, ANOVA and S/N ratios of ``response`` over the runs that finished
