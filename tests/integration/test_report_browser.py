@@ -179,3 +179,19 @@ def test_efficiency_tolerance_and_allocation_reports_in_browser(tmp_path, cli, b
     _check(seen, min_images=2)
     for heading in ("Before and after", "Convergence", "Tolerances", "Targets"):
         assert heading in seen["text"]
+
+
+def test_grid_report_in_browser(tmp_path, cli, browser):
+    """The speed-torque grid's report (issue 33 item 4) from the smallest grid that makes one:
+    one point of the single-stage drive on test_grid.py's short schedule (about 0.3 s
+    simulated)."""
+    from .test_grid import SHORT
+
+    page = tmp_path / "grid.html"
+    res = cli("grid", *SHORT, "--speeds-rpm", "12000", "--torques", "50", "--workers", "1",
+              "--out", str(tmp_path / "grid"), "--report", str(page), "--no-progress")
+    assert res.code == 0, res.err
+    seen = _open(browser, page, tmp_path / "grid.png")
+    _check(seen, min_images=2)
+    for heading in ("Campbell", "natural frequency", "arcmin"):
+        assert heading in seen["text"]
