@@ -121,7 +121,7 @@ BAD_ROWS = {
     "tolerance --sobol 3_2": (["tolerance", "rv40e-tolerances", "--sobol", "3_2", "--out", "t"],
                               "--sobol: '3_2' is not a whole number"),
     "testrig --points 1_024": (["testrig", EXAMPLE, "--points", "1_024"],
-                               "--points: '1_024' is not a whole number"),
+                               "--points/--positions: '1_024' is not a whole number"),
     "testrig counts 1_024": (["testrig", EXAMPLE, "--column",
                               "input_angle=input_angle_deg:counts:1_024"],
                              "input_angle in counts needs the counts per revolution as a "
