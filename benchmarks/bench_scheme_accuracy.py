@@ -49,7 +49,7 @@ def _table(candidate: str, rows: dict) -> None:
 
     peaks = [m for m in PEAK_METRICS
              if any(row[f"{m}_spread"] == row[f"{m}_spread"] for row in rows.values())]
-    head = ["run", "status", "mean TE", "energy"]
+    head = ["run", "status", "mean TE diff / spread", "energy"]
     head += [f"{m} diff / spread" for m in peaks] + ["CPU ref/cand s"]
     print(f"\n{candidate} against the explicit reference (relative differences)")
     print(" | ".join(head))
@@ -57,7 +57,8 @@ def _table(candidate: str, rows: dict) -> None:
         status = "ok" if (row["status_reference"], row["status_perturbed"],
                           row["status_candidate"]) == ("ok",) * 3 else (
             f"{row['status_reference']}/{row['status_perturbed']}/{row['status_candidate']}")
-        cells = [f"{run:3d}", status, f"{row['mean_te_difference']:.2e}",
+        cells = [f"{run:3d}", status,
+                 f"{row['mean_te_difference']:.2e} / {row['mean_te_spread']:.2e}",
                  f"{row['energy_residual']:+.2e}"]
         cells += [f"{row[f'{m}_difference']:.2e} / {row[f'{m}_spread']:.2e}" for m in peaks]
         cells.append(f"{row['cpu_reference_s']:.2f}/{row['cpu_candidate_s']:.2f}")
@@ -72,14 +73,43 @@ def _verdict(candidate: str, verdict: dict) -> None:
     for key in ("mean_te", "energy"):
         part = verdict[key]
         print(f"  {key}: median {part['median']:.2e}, max {part['max']:.2e} (limit "
-              f"{part['limit']:g}) -> {'pass' if part['passed'] else 'FAIL'}")
+              f"{part['limit']:g}) -> {'pass' if part['passed'] else 'FAIL'}"
+              + (f"; the reference's own spread median {part['spread']['median']:.2e}, max "
+                 f"{part['spread']['max']:.2e}" if "spread" in part else ""))
     for key, part in verdict.items():
-        if isinstance(part, dict) and "spread" in part:
+        if isinstance(part, dict) and "difference" in part:
             d, s = part["difference"], part["spread"]
             print(f"  {key}: difference median {d['median']:.2e} max {d['max']:.2e}; "
                   f"spread median {s['median']:.2e} max {s['max']:.2e} -> "
                   f"{'pass' if part['passed'] else 'FAIL'} (median x{d['median'] / s['median']:.3g},"
-                  f" max x{d['max'] / s['max']:.3g} of the spread)")
+                  f" max x{d['max'] / s['max']:.3g} of the spread; {part['runs_within_spread']}"
+                  f" of {part['runs']} runs within their own spread)")
+
+
+def _collect(args) -> tuple[dict, tuple, float, dict]:
+    """(measured figures by run, candidates, wall time, the loaded report or {}): the runs
+    simulated in parallel, or read from a --json file (``--load``)."""
+    from rvsim.dynamics.accuracy import REFERENCE
+    from rvsim.dynamics.model import SCHEMES
+
+    if args.load:
+        with open(args.load) as handle:
+            loaded = json.load(handle)
+        measured = {int(run): value for run, value in loaded["measured"].items()}
+        names = [n for n in measured[min(measured)] if not n.startswith(REFERENCE + "+")]
+        candidates = tuple(args.candidates or [n for n in names if n != REFERENCE])
+        args.duration, args.workers = loaded["duration"], loaded["workers"]
+        return measured, candidates, loaded["wall_s"], loaded
+    candidates = tuple(args.candidates or [s for s in SCHEMES if s != REFERENCE])
+    start = time.perf_counter()
+    measured = {}
+    with ProcessPoolExecutor(max_workers=args.workers) as pool:
+        futures = [pool.submit(_measure, run, candidates, args.duration)
+                   for run in _runs(args.runs)]
+        for future in futures:
+            run, result = future.result()
+            measured[run] = result
+    return measured, candidates, time.perf_counter() - start, {}
 
 
 def main() -> None:
@@ -92,22 +122,17 @@ def main() -> None:
                         help="simulated time [s] (default: the run's own, 4 s)")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--json", default=None, help="write every figure to this file")
+    parser.add_argument("--load", default=None,
+                        help="judge the runs of a --json file again instead of running them")
     args = parser.parse_args()
 
-    from rvsim.dynamics.accuracy import REFERENCE, differences, judge
-    from rvsim.dynamics.model import SCHEMES
+    from rvsim.dynamics.accuracy import differences, judge
 
-    candidates = tuple(args.candidates or [s for s in SCHEMES if s != REFERENCE])
-    runs = _runs(args.runs)
-    start, cpu0 = time.perf_counter(), time.process_time()
-    measured = {}
-    with ProcessPoolExecutor(max_workers=args.workers) as pool:
-        futures = [pool.submit(_measure, run, candidates, args.duration) for run in runs]
-        for future in futures:
-            run, result = future.result()
-            measured[run] = result
-    wall = time.perf_counter() - start
+    measured, candidates, wall, loaded = _collect(args)
+    runs = sorted(measured)
     report = {"machine": machine(), "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+              **({"measured_on": {k: loaded[k] for k in ("machine", "date")}}
+                 if loaded else {}),
               "runs": runs, "duration": args.duration, "workers": args.workers,
               "wall_s": round(wall, 1),
               "cpu_of_runs_s": round(sum(m["cpu_s"] for r in measured.values()
