@@ -55,15 +55,18 @@ def _parse(name: str) -> tuple[str, float | None]:
     return scheme, (float(step) if step else None)
 
 
-def measure_run(reducer, candidates=("implicit-bearings",), *, duration=None) -> dict:
+def measure_run(reducer, candidates=("implicit-bearings",), *, duration=None,
+                reference: bool = True) -> dict:
     """Simulate ``reducer`` with the explicit reference, the reference at its step x (1 +
-    :data:`PERTURBATION`) and each candidate (``"scheme"`` or ``"scheme@step"``).  Returns
+    :data:`PERTURBATION`) and each candidate (``"scheme"`` or ``"scheme@step"``; with
+    ``reference=False`` the candidates alone, to add to an earlier measurement).  Returns
     {name: {metric: value, "status": ..., "cpu_s": thread CPU time of the run}}; failed runs
     are returned with their status, not raised."""
     from .simulate import simulate
 
     step = SCHEMES[REFERENCE]
-    runs = {REFERENCE: (REFERENCE, step), PERTURBED: (REFERENCE, step * (1.0 + PERTURBATION))}
+    runs = ({REFERENCE: (REFERENCE, step), PERTURBED: (REFERENCE, step * (1.0 + PERTURBATION))}
+            if reference else {})
     runs.update({name: _parse(name) for name in candidates})
     out = {}
     for name, (scheme, time_step) in runs.items():
