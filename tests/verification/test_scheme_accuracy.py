@@ -22,7 +22,7 @@ from rvsim.parameters import RV40E, paper_run_values, with_values
 
 #: 1 s runs, steady window 0.6-1.0 s (the 0.4 s schedule of test_implicit_bearings leaves a
 #: 0.1 s window right after the load ramp, where a 1e-12 change of the step alone moves run
-#: 34's mean TE by 9e-4: no scheme can be judged there)
+#: 34's mean TE by 8.7e-4: no scheme can be judged there)
 QUICK = {"operating.speed_ramp_time": 0.2, "operating.load_start": 0.2,
          "operating.load_ramp_end": 0.4, "operating.steady_start": 0.6,
          "operating.duration": 1.0}
