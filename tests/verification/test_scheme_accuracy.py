@@ -2,8 +2,9 @@
 (rvsim.dynamics.accuracy; benchmarks/bench_scheme_accuracy.py runs it on the paper's 36 runs).
 
 * the criterion's arithmetic on rows made by hand: a candidate equal to the reference meets it;
-  a mean TE 1e-4 off, an energy residual beyond 1e-3, a failed run or a peak difference beyond
-  the chaotic spread (median or maximum) fails it;
+  a mean TE 1e-4 off, an energy residual beyond 1e-3, a failed run, a peak difference beyond
+  the chaotic spread (median or maximum), a peak moved from a zero reference or no runs at
+  all fails it;
 * the measurement on two shortened paper runs (3, every element active; 34, the most
   rounding-sensitive of the 36): implicit-bearings against the explicit reference and its
   step x (1 + 1e-12), the figures pinned from the measured runs.  As over the 36 full runs
@@ -66,6 +67,17 @@ def test_a_median_beyond_the_spread_fails_though_each_run_is_within_the_largest(
     part = judge(rows)["te_pp_arcmin"]
     assert part["difference"]["max"] <= part["spread"]["max"]
     assert not part["passed"]
+
+
+def test_no_runs_and_a_zero_reference():
+    assert not judge([])["passed"]
+    measured = {name: {"te_mean_arcmin": 1.0, "energy_residual": 0.0, "status": "ok",
+                       "cpu_s": 0.1, **dict.fromkeys(PEAK_METRICS, 0.0)}
+                for name in (REFERENCE, PERTURBED, "c")}
+    measured["c"]["te_pp_arcmin"] = 1e-3
+    row = differences(measured, "c")
+    assert row["te_pp_arcmin_difference"] == math.inf and row["te_pp_arcmin_spread"] == 0.0
+    assert not judge([row])["passed"]
 
 
 def test_a_metric_nan_in_the_reference_is_left_out():

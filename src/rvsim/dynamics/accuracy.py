@@ -81,15 +81,18 @@ def measure_run(reducer, candidates=("implicit-bearings",), *, duration=None,
 
 
 def _relative(value: float, reference: float) -> float:
+    """|value - reference| / |reference|; 0 where both are 0, inf where only the reference is."""
+    if reference == 0.0:
+        return 0.0 if value == 0.0 else math.inf
     return abs(value - reference) / abs(reference)
 
 
 def differences(measured: dict, candidate: str) -> dict:
     """One run's row for ``candidate`` from :func:`measure_run`'s answer: statuses, the mean
     TE's relative difference (and, for information, its chaotic spread), the candidate's
-    energy residual, and for each peak metric the
-    candidate's relative difference (``<metric>_difference``) and the perturbed reference's
-    (``<metric>_spread``), NaN where the metric is NaN in the reference."""
+    energy residual, and for each peak metric the candidate's relative difference
+    (``<metric>_difference``) and the perturbed reference's (``<metric>_spread``), NaN where
+    the metric is NaN in the reference."""
     ref, twin, cand = measured[REFERENCE], measured[PERTURBED], measured[candidate]
     row = {"status_reference": ref["status"], "status_perturbed": twin["status"],
            "status_candidate": cand["status"],
@@ -119,7 +122,8 @@ def judge(rows: list[dict]) -> dict:
     failed = [i for i, row in enumerate(rows)
               if (row["status_reference"], row["status_perturbed"],
                   row["status_candidate"]) != ("ok", "ok", "ok")]
-    verdict = {"status": {"runs": len(rows), "not_ok": failed, "passed": not failed}}
+    verdict = {"status": {"runs": len(rows), "not_ok": failed,
+                          "passed": bool(rows) and not failed}}      # no runs: no verdict
     mean = [row["mean_te_difference"] for row in rows]
     energy = [abs(row["energy_residual"]) for row in rows]
     for key, values, limit in (("mean_te", mean, MEAN_TE_LIMIT),
