@@ -12,7 +12,8 @@ the verdict of each criterion; ``--json FILE`` writes every figure.
 Usage:  python benchmarks/bench_scheme_accuracy.py [--runs 1-36] [--workers 2]
             [--candidates implicit-bearings implicit-bearings@2.5e-5] [--duration 4]
             [--json accuracy.json]
-(about 6 s of CPU per run and candidate set on a 2-core shared host: 4 minutes of CPU for 36)
+(on a loaded 2-core host, 2026-11-28: about 6 s of CPU per run with the default candidate,
+4 minutes for the 36; 330 s with three candidates; docs/benchmarks.md)
 """
 
 from __future__ import annotations
@@ -65,6 +66,10 @@ def _table(candidate: str, rows: dict) -> None:
         print(" | ".join(cells))
 
 
+def _ratio(difference: dict, spread: dict, key: str) -> float:
+    return difference[key] / spread[key] if spread[key] else float("inf")
+
+
 def _verdict(candidate: str, verdict: dict) -> None:
     print(f"\nverdict for {candidate}: {'MEETS' if verdict['passed'] else 'FAILS'} the criterion")
     status = verdict["status"]
@@ -81,8 +86,8 @@ def _verdict(candidate: str, verdict: dict) -> None:
             d, s = part["difference"], part["spread"]
             print(f"  {key}: difference median {d['median']:.2e} max {d['max']:.2e}; "
                   f"spread median {s['median']:.2e} max {s['max']:.2e} -> "
-                  f"{'pass' if part['passed'] else 'FAIL'} (median x{d['median'] / s['median']:.3g},"
-                  f" max x{d['max'] / s['max']:.3g} of the spread; {part['runs_within_spread']}"
+                  f"{'pass' if part['passed'] else 'FAIL'} (median x{_ratio(d, s, 'median'):.3g},"
+                  f" max x{_ratio(d, s, 'max'):.3g} of the spread; {part['runs_within_spread']}"
                   f" of {part['runs']} runs within their own spread)")
 
 
