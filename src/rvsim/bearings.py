@@ -38,10 +38,14 @@ RAD_PER_ARCMIN = math.pi / (180.0 * 60.0)
 
 def arm_play(r: Reducer) -> float:
     """Radial play of the eccentric in its disc hole [m]: K + M, plus half the needle
-    bearing's radial internal clearance when needles are fitted (negative: preload)."""
+    bearing's radial internal clearance when needles are fitted (negative: preload), less
+    the needles' excess over their radial space (``crank.arm_bushing_thickness``): needles
+    larger than it are pressed in, a preload as the assembly check counts it (issue 32; a
+    smaller needle's room is not added, as before)."""
     play = arm_bushing_play(r)
     if r.bearings.arm_needles:
         play += 0.5 * r.bearings.needle_clearance
+        play -= max(r.bearings.needle_diameter - r.crank.arm_bushing_thickness, 0.0)
     return play
 
 

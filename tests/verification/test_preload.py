@@ -83,3 +83,16 @@ def test_preload_is_refused_only_above_the_static_limit():
 def test_without_interference_nothing_is_preloaded():
     assert roller_preloads(BEARINGS) == []
     assert roller_preloads(_hole_moved(BEARINGS, -0.0)) == []
+
+
+def test_the_engines_preload_needles_larger_than_their_space_as_the_verdict_does():
+    """Needles 5 um larger than their radial space: the verdict's approach is the roller
+    sets' gap in the engines' model (it was refused before any model was built)."""
+    from rvsim.dynamics.model import build_model
+    from rvsim.physics import _layout as L
+
+    reducer = with_values(BEARINGS, {"bearings.needle_diameter": 3.005})
+    approaches = {p.interference for p in roller_preloads(reducer)}
+    assert len(roller_preloads(reducer)) == 4 and len(approaches) == 1
+    assert build_model(reducer, 1e-5).P[L.ARM_CLEAR] == pytest.approx(-approaches.pop(),
+                                                                     abs=1e-15)
