@@ -88,9 +88,10 @@ class RollerPreload:
 
 
 def _roller_sizes(r: Reducer, element: str) -> tuple:
-    """(roller diameter, length, inner raceway radius, cos alpha, law coefficient C, (E*,
-    curvature sum) of the inner and the outer raceway contact) of the needle or the tapered
-    roller set (the constants dynamics.model gives the kernel's roller sets)."""
+    """(roller length, cos alpha, law coefficient C, ((E*, curvature sum) of the inner and of
+    the outer raceway contact)) of the needle or the tapered roller set: the constants
+    dynamics.model gives the kernel's roller sets (the inner raceway the eccentric or the
+    journal, the outer one a roller diameter further out)."""
     b, k, m = r.bearings, r.crank, r.materials
     if element == "arm_needles":
         d, length, inner, cos_a = b.needle_diameter, b.needle_length, k.eccentric_radius, 1.0
