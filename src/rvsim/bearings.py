@@ -114,6 +114,8 @@ def roller_preloads(r: Reducer) -> list[RollerPreload]:
     (:func:`~rvsim.physics._contact_law.hertz_pressure`).  The parts are held at the
     assembled pose (the discs do not move to share the interference): an upper bound of the
     preload the engines find in equilibrium (docs/model.md section 11)."""
+    if not (r.bearings.arm_needles or r.bearings.support_rollers):
+        return []                       # bushings: nothing to preload (0.8 ms of gaps saved)
     from .geometry.assembly import ROLLING, assembly_overlaps
     from .physics._contact_law import hertz_pressure, spring_force
 
