@@ -5,6 +5,12 @@
 * Needle roller bearings at the eccentrics and tapered roller bearings at the supports: every
   roller a Palmgren line contact on both raceways (Harris & Kotzalas, *Rolling Bearing
   Analysis*, 5th ed., Eq. 7.9 and Ch. 7 load distribution).
+* Preload of an interference (issue 32): a rolling bearing whose rollers do not fit at the
+  assembled pose (a crank-hole position error against needles without clearance) is
+  assembled with elastic preload; :func:`roller_preloads` gives the most loaded roller's
+  force from the rollers' own law at that approach and its Hertz stress, and
+  :func:`check_preload` refuses the reducer only where that stress exceeds
+  ``rating.static_contact_stress`` (ISO 76; docs/model.md section 11).
 * Main bearings (two angular-contact ball bearings, back to back, carrier in the housing):
   not in the planar kernel (docs/decisions.md); :func:`main_bearing_stiffness` reports their
   radial, axial and tilting stiffness at the preload from Hertz point contact (Hamrock &
@@ -22,7 +28,8 @@ from .physics.compliance import effective_modulus, palmgren_coefficient
 from .parameters import Reducer
 
 __all__ = ["arm_play", "support_play", "roller_pitch_diameter", "conforming_constants",
-           "roller_coefficient",
+           "roller_coefficient", "RollerPreload", "roller_preloads", "preload_refusal",
+           "check_preload",
            "MainBearingStiffness", "main_bearing_stiffness", "ball_contact_coefficient",
            "RAD_PER_ARCMIN"]
 
@@ -31,10 +38,14 @@ RAD_PER_ARCMIN = math.pi / (180.0 * 60.0)
 
 def arm_play(r: Reducer) -> float:
     """Radial play of the eccentric in its disc hole [m]: K + M, plus half the needle
-    bearing's radial internal clearance when needles are fitted (negative: preload)."""
+    bearing's radial internal clearance when needles are fitted (negative: preload), less
+    the needles' excess over their radial space (``crank.arm_bushing_thickness``): needles
+    larger than it are pressed in, a preload as the assembly check counts it (issue 32; a
+    smaller needle's room is not added, as before)."""
     play = arm_bushing_play(r)
     if r.bearings.arm_needles:
         play += 0.5 * r.bearings.needle_clearance
+        play -= max(r.bearings.needle_diameter - r.crank.arm_bushing_thickness, 0.0)
     return play
 
 
@@ -63,6 +74,88 @@ def roller_coefficient(length: float, inner, roller, outer) -> float:
     """Palmgren coefficient C [m/N^0.9] of one roller on both raceways in series."""
     return palmgren_coefficient(length, inner, roller) + palmgren_coefficient(length, roller,
                                                                               outer)
+
+
+@dataclasses.dataclass(frozen=True)
+class RollerPreload:
+    """The most loaded roller of a rolling bearing at the assembled pose (SI)."""
+
+    parts: str          # the bearing, as the assembly check names it
+    interference: float  # radial overlap of the most loaded roller, own preload included [m]
+    approach: float     # the roller's normal approach, own preload included [m]
+    force: float        # the roller's force from its law at that approach [N]
+    stress: float       # the larger Hertz pressure of its two raceway contacts [Pa]
+
+
+def _roller_sizes(r: Reducer, element: str) -> tuple:
+    """(roller length, cos alpha, law coefficient C, ((E*, curvature sum) of the inner and of
+    the outer raceway contact)) of the needle or the tapered roller set: the constants
+    dynamics.model gives the kernel's roller sets (the inner raceway the eccentric or the
+    journal, the outer one a roller diameter further out)."""
+    b, k, m = r.bearings, r.crank, r.materials
+    if element == "arm_needles":
+        d, length, inner, cos_a = b.needle_diameter, b.needle_length, k.eccentric_radius, 1.0
+        outer_material = m.cycloid_disc
+    else:
+        d, length, inner = b.support_roller_diameter, b.support_roller_length, k.journal_radius
+        cos_a, outer_material = math.cos(b.support_contact_angle), m.carrier
+    c = roller_coefficient(length, m.crankshaft, m.bushing, outer_material)
+    contacts = ((effective_modulus(m.bushing, m.crankshaft), 2.0 / d + 1.0 / inner),
+                (effective_modulus(m.bushing, outer_material), 2.0 / d - 1.0 / (inner + d)))
+    return length, cos_a, c, contacts
+
+
+def roller_preloads(r: Reducer) -> list[RollerPreload]:
+    """Every rolling bearing of ``r`` that its rollers preload at the assembled pose (the
+    most loaded roller's approach positive): the approach of the roller on the line of the
+    eccentric's (or journal's) offset, its force from the rollers' Palmgren law in series on
+    both raceways (:func:`~rvsim.physics._contact_law.spring_force`, the law of the engines'
+    roller sets) and the larger of its two raceway contacts' Hertz pressures
+    (:func:`~rvsim.physics._contact_law.hertz_pressure`).  The parts are held at the
+    assembled pose (the discs do not move to share the interference): an upper bound of the
+    preload the engines find in equilibrium (docs/model.md section 11)."""
+    if not (r.bearings.arm_needles or r.bearings.support_rollers):
+        return []                       # bushings: nothing to preload (0.8 ms of gaps saved)
+    from .geometry.assembly import ROLLING, assembly_overlaps
+    from .physics._contact_law import hertz_pressure, spring_force
+
+    out = []
+    for o in assembly_overlaps(r):
+        if o.element not in ROLLING or o.approach + o.preload <= 0.0:
+            continue
+        length, cos_a, c, contacts = _roller_sizes(r, o.element)
+        approach = (o.approach + o.preload) * cos_a
+        force = spring_force(approach, c, 0.0, 0.0)[0]
+        stress = max(hertz_pressure(force, e_star, curvature, length)
+                     for e_star, curvature in contacts)
+        out.append(RollerPreload(o.parts, o.approach + o.preload, approach, force, stress))
+    return out
+
+
+def preload_refusal(r: Reducer) -> str | None:
+    """Why ``r``'s rolling bearings cannot carry their preload at the assembled pose (the
+    largest Hertz stress of :func:`roller_preloads` above ``rating.static_contact_stress``),
+    or None."""
+    preloads = roller_preloads(r)
+    if not preloads:
+        return None
+    worst = max(preloads, key=lambda p: p.stress)
+    limit = r.rating.static_contact_stress
+    if worst.stress <= limit:
+        return None
+    return (f"{worst.parts} by {worst.interference * 1e6:.2f} um at the assembled pose: "
+            f"the elastic preload ({worst.force / 1e3:.3g} kN on the most loaded roller) "
+            f"gives a Hertz stress of {worst.stress / 1e6:.0f} MPa, above the static limit "
+            f"{limit / 1e6:g} MPa (rating.static_contact_stress)")
+
+
+def check_preload(r: Reducer) -> None:
+    """Raise ParameterError("assembly", ...) where :func:`preload_refusal` gives a reason."""
+    from .errors import ParameterError
+
+    reason = preload_refusal(r)
+    if reason:
+        raise ParameterError("assembly", reason)
 
 
 @dataclasses.dataclass(frozen=True)

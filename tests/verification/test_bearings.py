@@ -177,9 +177,14 @@ def test_main_bearing_stiffness_is_positive_and_scales_with_preload():
 
 
 def test_needles_must_fit_the_space_and_preload_is_not_an_interference():
+    # 0.5 mm of interference: elastic preload far above the static limit (issue 32), refused
+    # where the engines build their model, not by validate
+    from rvsim.bearings import check_preload
+
     with pytest.raises(ParameterError) as info:
-        with_values(BEARINGS, {"bearings.needle_diameter": 3.5})
+        check_preload(with_values(BEARINGS, {"bearings.needle_diameter": 3.5}))
     assert info.value.field == "assembly" and "needle rollers do not fit" in info.value.reason
+    assert "above the static limit" in info.value.reason
     preloaded = with_values(BEARINGS, {"bearings.support_clearance": -0.002,
                                        "bearings.needle_clearance": -0.002})
     path = solve_path(preloaded, np.array([0.3]), np.array([0.0]))

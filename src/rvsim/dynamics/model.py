@@ -15,6 +15,7 @@ from ..geometry.cycloid import profile_offset
 from ..geometry.deviations import bore_offsets, eccentric_errors, hole_offsets, pin_table
 from ..geometry.involute import gear_geometry
 from ..parameters.fe_sizes import check_element_sizes
+from ..bearings import check_preload
 from ..friction import fill_constants as fill_friction_constants
 from ..errors import ParameterError
 from ..parameters import Reducer
@@ -268,6 +269,7 @@ def build_model(r: Reducer, time_step: float, scheme: str = EXPLICIT) -> KernelM
     root_radius = c.pin_circle_radius - c.pin_radius - c.eccentricity
     body = 0.0
     check_element_sizes(r)          # before the first mesh (validate has, unless bypassed)
+    check_preload(r)    # a rolling bearing's interference: elastic preload within ISO 76
     fe_disc = r.flexibility.cycloid_disc and r.flexibility.model == "fe"
     if r.flexibility.cycloid_disc and not fe_disc:
         body += tooth_compliance(2.0 * c.eccentricity, 2.0 * math.pi * root_radius / c.disc_teeth,

@@ -20,16 +20,21 @@ angle 0 with the crank's eccentricity a - G, at rest.  In that pose:
 * **rolling bearings** (``bearings.arm_needles`` / ``support_rollers``): the needles must fit
   the radial space between the eccentric and the disc hole (``crank.arm_bushing_thickness``):
   a needle diameter larger than that space plus K + M is an interference; a bearing's own
-  preload (negative internal clearance) is intended and not reported.  The tapered support
-  bearings start centred like the bushings.
+  preload (negative internal clearance) is intended and not reported (it is the overlap's
+  ``preload``).  The tapered support bearings start centred like the bushings.  An
+  interference of a rolling bearing is not refused here: it is assembled with elastic
+  preload of its rollers, as real reducers are, and refused only where the preload's Hertz
+  stress exceeds the static limit (:func:`rvsim.bearings.check_preload`, called where the
+  engines build their model; issue 32).
 * **per-part errors** of pins (position, size) and discs (pitch, phase, profile form) enter
   the exact pin gaps (:mod:`rvsim.geometry.deviations`).
 * **sun-planet meshes**: the cranks start at zero phase with the input at zero, so the mesh
   deflection along the line of action is zero and the approach is minus half the backlash.
 
-An overlap larger than :data:`CONTACT_TOLERANCE` (round-off of the gap evaluation) is an
-interference: :func:`check_assembly` raises :class:`~rvsim.errors.ParameterError` naming the
-parts, the overlap and the parameters that close clearance.
+An overlap larger than :data:`CONTACT_TOLERANCE` (round-off of the gap evaluation) of any
+other pair is an interference: :func:`check_assembly` raises
+:class:`~rvsim.errors.ParameterError` naming the parts, the overlap and the parameters that
+close clearance.
 """
 
 from __future__ import annotations
@@ -43,10 +48,13 @@ from ..errors import ParameterError
 from ..parameters import Reducer
 from .cycloid import nominal_disc_pose, pin_gaps
 
-__all__ = ["CONTACT_TOLERANCE", "Overlap", "assembly_overlaps", "check_assembly"]
+__all__ = ["CONTACT_TOLERANCE", "ROLLING", "Overlap", "assembly_overlaps", "rigid_overlaps",
+           "check_assembly"]
 
 #: an overlap at or below this is contact (round-off of the exact gap), not interference [m]
 CONTACT_TOLERANCE = 1e-9
+#: the elements whose interference is elastic preload of their rollers (Overlap.element)
+ROLLING = ("arm_needles", "support_rollers")
 
 #: parameters whose non-zero value can close clearance at the assembled pose
 _CLOSING = ("errors.eccentricity", "errors.rotation_modification", "errors.disc_runout",
@@ -58,10 +66,17 @@ _OPENING = ("errors.pin_radius", "errors.pin_circle_radius", "errors.equidistant
 
 @dataclasses.dataclass(frozen=True)
 class Overlap:
-    """The approach of one pair of parts at the assembled pose (positive = overlap) [m]."""
+    """The approach of one pair of parts at the assembled pose (positive = overlap) [m].
+
+    ``element``: "pin", "arm_bushing", "support_bushing", "mesh", "output_pin" or one of
+    :data:`ROLLING`; ``preload`` [m]: a rolling bearing's own radial preload (half its
+    negative radial internal clearance), which ``approach`` leaves out (intended, not an
+    interference): the most loaded roller's radial approach is ``approach + preload``."""
 
     parts: str
     approach: float
+    element: str = "pin"
+    preload: float = 0.0
 
 
 def _pin_overlaps(reducer: Reducer) -> list[Overlap]:
@@ -110,21 +125,27 @@ def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
                 # play, as rvsim.bearings.arm_play; a preload, negative needle_clearance, is
                 # intended, not an overlap)
                 excess = reducer.bearings.needle_diameter - reducer.crank.arm_bushing_thickness
-                room = arm_clearance + 0.5 * max(reducer.bearings.needle_clearance, 0.0)
+                needle = reducer.bearings.needle_clearance
+                room = arm_clearance + 0.5 * max(needle, 0.0)
                 result.append(Overlap(f"crank {crank + 1} needle rollers do not fit between "
                                       f"the eccentric and the hole of disc {disc + 1}",
-                                      offset + excess - room))
+                                      offset + excess - room, "arm_needles",
+                                      0.5 * max(-needle, 0.0)))
                 continue
             result.append(Overlap(f"crank {crank + 1} eccentric overlaps the arm bushing of "
-                                  f"disc {disc + 1}", offset - arm_clearance))
+                                  f"disc {disc + 1}", offset - arm_clearance, "arm_bushing"))
         # the crank's support journals start on their bore centres
         supports = ((("input shaft", reducer.layout.input_bearing_clearance),) if single else
                     (("lower (flange)", support_bushing_play(reducer, False)),
                      ("upper (carrier)", support_bushing_play(reducer, True))))
+        rollers = reducer.bearings.support_rollers and not single
+        own = reducer.bearings.support_clearance if rollers else 0.0
         for name, clearance in supports:
-            kind = "bearing" if reducer.bearings.support_rollers else "bushing"
+            kind = "bearing" if rollers else "bushing"
             result.append(Overlap(f"crank {crank + 1} overlaps its {name} support {kind}",
-                                  0.0 - clearance))
+                                  0.0 - clearance - 0.5 * max(own, 0.0),
+                                  "support_rollers" if rollers else "support_bushing",
+                                  0.5 * max(-own, 0.0)))
     return result
 
 
@@ -141,7 +162,8 @@ def _output_pin_overlaps(reducer: Reducer) -> list[Overlap]:
             hole = np.array([x + cos_t * pin[0] - sin_t * pin[1],
                              y + sin_t * pin[0] + cos_t * pin[1]])
             result.append(Overlap(f"output pin {m} overlaps its hole in disc {disc + 1}",
-                                  float(np.linalg.norm(pin - hole)) - clearance))
+                                  float(np.linalg.norm(pin - hole)) - clearance,
+                                  "output_pin"))
     return result
 
 
@@ -150,8 +172,8 @@ def _mesh_overlaps(reducer: Reducer) -> list[Overlap]:
     # is zero, so the approach is minus half the normal backlash (kernel gear_mesh)
     if reducer.layout.single_stage:
         return []
-    return [Overlap(f"planet {crank + 1} overlaps the sun", 0.0 - 0.5 * reducer.gears.backlash)
-            for crank in range(2)]
+    return [Overlap(f"planet {crank + 1} overlaps the sun", 0.0 - 0.5 * reducer.gears.backlash,
+                    "mesh") for crank in range(2)]
 
 
 def assembly_overlaps(reducer: Reducer) -> list[Overlap]:
@@ -176,10 +198,17 @@ def _closing_parameters(reducer: Reducer) -> str:
             "I, J)")
 
 
+def rigid_overlaps(reducer: Reducer) -> list[Overlap]:
+    """:func:`assembly_overlaps` but the rolling bearings' (whose interference is elastic
+    preload, judged by :func:`rvsim.bearings.check_preload`)."""
+    return [o for o in assembly_overlaps(reducer) if o.element not in ROLLING]
+
+
 def check_assembly(reducer: Reducer) -> None:
-    """Raise :class:`ParameterError` if any two parts overlap at the assembled pose."""
+    """Raise :class:`ParameterError` if any two parts overlap at the assembled pose, other than
+    the rollers of a rolling bearing (elastic preload: :func:`rvsim.bearings.check_preload`)."""
     # round-off ties (disc 2 mirrors disc 1) go to the first part listed
-    worst = max(assembly_overlaps(reducer), key=lambda o: round(o.approach, 12))
+    worst = max(rigid_overlaps(reducer), key=lambda o: round(o.approach, 12))
     if worst.approach > CONTACT_TOLERANCE:
         micrometres = worst.approach * 1e6      # an overlap below 0.05 um is not "0.0 um"
         size = f"{micrometres:.1f}" if micrometres >= 0.1 else f"{micrometres:.2g}"

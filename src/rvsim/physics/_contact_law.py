@@ -1,7 +1,7 @@
 """Contact law shared by every force element of the kernel (numba; docs/model.md section 5).
 
 Palmgren line contact in series with a linear compliance, damping that vanishes at first touch,
-and the rank-one update of a stiffness matrix.
+the rank-one update of a stiffness matrix, and the largest Hertz pressure of a line contact.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from .._cache_guard import invalidate_stale_cache
 invalidate_stale_cache(__file__)
 
 __all__ = ["EXPONENT", "spring_force", "spring_force_power", "spring_force_from", "spring_start",
-           "power_ratio", "damping", "damped", "contact", "add_rank_one"]
+           "power_ratio", "damping", "damped", "contact", "add_rank_one", "hertz_pressure"]
 
 EXPONENT = 0.9          # Palmgren line contact: delta = C * F**0.9
 _INV_EXPONENT = 1.0 / EXPONENT
@@ -186,3 +186,14 @@ def add_rank_one(K, index, g, scale):
     for a in range(len(index)):
         for b in range(len(index)):
             K[index[a], index[b]] += scale * g[a] * g[b]
+
+
+@numba.njit(cache=CACHE, inline="always")
+def hertz_pressure(force, e_star, curvature, length):
+    """Largest Hertz pressure p0 = sqrt(F E* (1/R1 + 1/R2) / (pi L)) [Pa] of two cylinders in
+    line contact over ``length`` carrying ``force``, ``curvature`` the sum of the two bodies'
+    curvatures (negative for a concave body; zero or less: no pressure) and ``e_star`` the
+    pair's effective modulus (K. L. Johnson, *Contact Mechanics*, 1985, section 4.3; the pin
+    contacts' stresses of the quasi-static engine and the rolling bearings' preload check,
+    rvsim.bearings.roller_preloads)."""
+    return math.sqrt(force * e_star * max(curvature, 0.0) / (math.pi * length))

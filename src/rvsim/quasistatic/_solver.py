@@ -38,6 +38,7 @@ invalidate_stale_cache(__file__)
 
 from ..physics._fe_holes import (DF_DQ, DS_DQ, PREDICT, Q_PINS, Q_SUM, SETTLED,  # noqa: E402
                                  STRETCH, hole_css, hole_row, holes_on)
+from ..physics._contact_law import hertz_pressure  # noqa: E402
 from ..physics._crank_bearings import arm_bushing, arm_pair  # noqa: E402
 from ..physics._forces import forces_at  # noqa: E402
 from ..physics._frames import arm_trig, hole_station, profile_turn  # noqa: E402
@@ -892,7 +893,8 @@ def sweep(P, hertz, q_start, theta_in, torque, scale, tol, max_iter, pins, holes
 @numba.njit(cache=CACHE)
 def _hertz(P, hertz, q, u, pin_angle, pin_force, out):
     """Maximum Hertz pressure of each loaded pin (line contact, the profile's curvature at the
-    contact point): p = sqrt(F E* (1/r_pin + kappa_profile) / (pi L))."""
+    contact point): p = sqrt(F E* (1/r_pin + kappa_profile) / (pi L)),
+    :func:`~rvsim.physics._contact_law.hertz_pressure`."""
     e_star, width = hertz[0], hertz[1]
     offset = P[PROFILE_OFFSET]
     for disc in range(2):
@@ -908,4 +910,4 @@ def _hertz(P, hertz, q, u, pin_angle, pin_force, out):
             kappa = curvature(foot, P[RG], P[A_GEN], P[ZP])     # of the pin-centre curve
             kappa_profile = kappa / (1.0 - offset * kappa)      # of the offset profile
             relative = 1.0 / P[PIN_RADIUS] + kappa_profile
-            out[disc, i] = math.sqrt(f * e_star * max(relative, 0.0) / (math.pi * width))
+            out[disc, i] = hertz_pressure(f, e_star, relative, width)

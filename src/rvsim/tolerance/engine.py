@@ -2,7 +2,8 @@
 
 :func:`evaluate_sample` returns the outcome shape of :func:`rvsim.doe.runner.evaluate`
 (status, metrics, wall_s, error; never raises).  A reducer whose parts overlap at the
-assembled pose has status ``binds`` (it cannot be built as drawn: the binding share).
+assembled pose has status ``binds`` (it cannot be built as drawn: the binding share); a
+rolling bearing's interference is elastic preload, ``binds`` only above the static stress limit.
 """
 
 from __future__ import annotations
@@ -65,16 +66,19 @@ def evaluate_sample(reducer, positions: int = 360) -> dict:
 
 def assembly_binds(reducer) -> str | None:
     """Why a drawn reducer cannot be built (its worst overlap at the assembled pose: "crank 1
-    eccentric overlaps ... by 2.20 um"), or None when it assembles.  A value the model refuses
-    raises ParameterError first (invalid, even if it binds)."""
-    from ..geometry.assembly import CONTACT_TOLERANCE, assembly_overlaps
+    eccentric overlaps ... by 2.20 um"), or None when it assembles.  A rolling bearing's
+    interference is assembled with elastic preload and binds only where the preload's Hertz
+    stress exceeds the static limit (:func:`rvsim.bearings.preload_refusal`, issue 32).  A
+    value the model refuses raises ParameterError first (invalid, even if it binds)."""
+    from ..bearings import preload_refusal
+    from ..geometry.assembly import CONTACT_TOLERANCE, rigid_overlaps
     from ..parameters import validate
 
     validate(reducer, assembly=False)
-    worst = max(assembly_overlaps(reducer), key=lambda o: o.approach)
+    worst = max(rigid_overlaps(reducer), key=lambda o: o.approach)
     if worst.approach > CONTACT_TOLERANCE:
         return f"{worst.parts} by {worst.approach * 1e6:.2f} um"
-    return None
+    return preload_refusal(reducer)
 
 
 def evaluate_run(reducer, *, positions: int = 360, **_) -> dict:
