@@ -456,10 +456,17 @@ class LtcaResult(Headline):
 
 
 def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
-         revolutions: float = 1.0, raise_on_failure: bool = True) -> LtcaResult:
+         revolutions: float = 1.0, raise_on_failure: bool = True,
+         allow_aliasing: bool = False) -> LtcaResult:
     """TE and contact loads at ``positions`` equally spaced input angles over ``revolutions``
     output revolutions (input from 0 to revolutions * 2 pi * ratio, one direction) under the
     output ``torque`` [N*m] (default: reducer.operating.load_torque).
+
+    ``positions / revolutions`` (per output revolution) must resolve the reducer's highest
+    order (:func:`rvsim.analysis.sampling.check_positions`, the command line's check: 81 for the
+    RV-40E's 40 pins), else a :class:`~rvsim.errors.ParameterError`; ``allow_aliasing=True``
+    skips it for a probe of a few poses (its TE curve, peak-to-peak and spectrum are then
+    aliased, not the reducer's).
 
     A position that does not converge stops the sweep: with ``raise_on_failure`` (default) a
     :class:`~rvsim.errors.SimulationError` names it, else the result carries the status and
@@ -475,6 +482,13 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
     revolutions = _finite("revolutions", revolutions)
     if revolutions <= 0:
         raise ParameterError("revolutions", f"must be positive (got {revolutions:g})")
+    if not allow_aliasing:
+        from ..analysis.sampling import check_positions
+
+        # per output revolution (the bench model's sweep: points + 1 over (points + 1) /
+        # points revolutions, i.e. points per revolution)
+        check_positions(reducer, int(positions) if revolutions == 1.0
+                        else round(positions / revolutions, 9), "positions")
     from ..physics import _layout as L
 
     from ..geometry.layout import disc_count
