@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from .._display import Headline
+from .._display import Headline, check_axes
 from ..errors import InputFileError
 from .study import Study
 
@@ -51,6 +51,7 @@ class StudyResult(Headline):
     def plot(self, ax=None):
         """Main effects of the default response (:meth:`rvsim.analysis.StudyAnalysis.plot`);
         returns the Axes."""
+        check_axes(ax)                      # before the analysis is computed
         return self.analysis().plot(ax)
 
 
