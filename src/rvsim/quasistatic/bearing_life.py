@@ -266,11 +266,13 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     no life, status "needs_external_load"); :func:`main_bearing_rows`."""
     import time
 
+    from ..analysis.sampling import check_positions
     from ..parameters import validate
     from ..parameters.rating import check_torque
     from ..physics import rating_life as iso
     from .transmission import ltca
 
+    check_positions(reducer, positions, "positions")    # ltca's own check, before the ratings
     g = reducer.rating
     torque = float(g.rated_torque if torque is None else torque)
     output_speed = float(g.rated_output_speed if output_speed is None else output_speed)

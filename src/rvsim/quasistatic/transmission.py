@@ -487,8 +487,9 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
 
         # per output revolution (the bench model's sweep: points + 1 over (points + 1) /
         # points revolutions, i.e. points per revolution)
-        check_positions(reducer, int(positions) if revolutions == 1.0
-                        else round(positions / revolutions, 9), "positions")
+        per_revolution = round(positions / revolutions, 9)
+        check_positions(reducer, int(per_revolution) if per_revolution.is_integer()
+                        else per_revolution, "positions")
     from ..physics import _layout as L
 
     from ..geometry.layout import disc_count

@@ -295,13 +295,13 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     ``reducer`` to the analysed recordings ``points`` (:func:`rvsim.testrig.analyse_path`),
     the loop curves ``loops`` and, on their own, the ``efficiency`` points
     (:mod:`rvsim.testrig.curves`)."""
-    from scipy import optimize, stats
-
     from ..analysis.sampling import check_positions
 
     check_positions(reducer, positions, "positions")     # the pin order unaliased
     names = fitted_names(fit)
     _check_scalable(reducer, names)
+    from scipy import optimize, stats
+
     specs = [SPECS[n] for n in names]
     start = np.array([float(get_value(reducer, n)) for n in names])
     scale = np.array([_scale(s, v) for s, v in zip(specs, start)])
