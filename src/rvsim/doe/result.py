@@ -8,7 +8,7 @@ import dataclasses
 from pathlib import Path
 
 from .._display import Headline, check_axes
-from ..errors import InputFileError
+from ..errors import InputFileError, check_type
 from .study import Study
 
 __all__ = ["StudyResult", "run_study"]
@@ -63,5 +63,7 @@ def run_study(study: Study, folder: str | Path, *, workers: int | None = None,
     analysis.json, the report) are the command's."""
     from .runner import run
 
+    check_type(study, Study, "study", "a study (rvsim.load_study(path), "
+               "rvsim.BUILT_IN_STUDIES[name]())")
     table = run(study, folder, workers=workers, scheduler=scheduler, progress=progress)
     return StudyResult(study, Path(folder), table)

@@ -16,7 +16,7 @@ import numpy as np
 
 from .._display import Headline, number
 from ..errors import ParameterError
-from ..parameters import Reducer
+from ..parameters import Reducer, check_reducer
 
 __all__ = ["life", "LifeResult", "BearingLife", "crank_speed", "check_life_inputs",
            "dynamic_ratings", "main_bearing_rows", "DEFAULT_POSITIONS",
@@ -272,6 +272,7 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     from ..physics import rating_life as iso
     from .transmission import ltca
 
+    check_reducer(reducer)
     check_positions(reducer, positions, "positions")    # ltca's own check, before the ratings
     g = reducer.rating
     torque = float(g.rated_torque if torque is None else torque)

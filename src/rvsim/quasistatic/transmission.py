@@ -16,7 +16,7 @@ from .._cache_guard import RunClock
 from .._display import Headline, draw, figure, number, without_status
 from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError
-from ..parameters import Reducer, validate
+from ..parameters import Reducer, check_reducer, validate
 from ..units import ARCMIN
 
 __all__ = ["ltca", "LtcaResult", "solve_path", "PathSolution", "TOLERANCE", "MAX_ITERATIONS",
@@ -472,10 +472,16 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
     :class:`~rvsim.errors.SimulationError` names it, else the result carries the status and
     ``converged`` marks the positions solved.
     """
+    check_reducer(reducer)
     torque = _finite("torque", reducer.operating.load_torque if torque is None else torque)
     if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
             or positions < 2:
         raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
+    from ..analysis.sampling import MAX_POSITIONS
+
+    if positions > MAX_POSITIONS:           # 1e9 asked numpy for 7.45 GiB (or the OOM killer)
+        raise ParameterError("positions", f"must be at most {MAX_POSITIONS}, the most the "
+                             f"command line takes (got {positions})")
     from ..parameters.rating import check_torque
 
     check_torque(reducer, torque, "torque")

@@ -297,8 +297,9 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
     (:mod:`rvsim.testrig.curves`)."""
     from ..analysis.sampling import check_positions
 
+    _check_inputs(points, reducer, loops, efficiency, max_evaluations)
     check_positions(reducer, positions, "positions")     # the pin order unaliased
-    names = fitted_names(fit)
+    names = fitted_names([fit] if isinstance(fit, str) else fit)
     _check_scalable(reducer, names)
     from scipy import optimize, stats
 
@@ -460,6 +461,30 @@ def calibrate(points, reducer, fit: list[str], *, positions: int = 1024,
                        float(np.sqrt(np.mean(r0 ** 2))),
                        float(np.sqrt(np.mean(result.fun ** 2))), m, evaluations[0], status,
                        fitted, unit)
+
+
+def _check_inputs(points, reducer, loops, efficiency, max_evaluations) -> None:
+    """The Python call's argument types, each refused naming it (a path given as a loop was an
+    AttributeError from inside the fit; the command line reads and checks the files)."""
+    from ..errors import check_type
+    from ..parameters import check_reducer
+    from .bench import PointResult
+    from .curves import EfficiencyPoints, LoopCurve
+
+    check_reducer(reducer)
+    for field, values, kind, what in (
+            ("points", points, PointResult, "analysed recordings (rvsim.analyse_path)"),
+            ("loops", loops, LoopCurve, "loop curves (rvsim.testrig.curves.read_loop(path))")):
+        check_type(values, (list, tuple), field, f"a list of {what}")
+        for value in values:
+            check_type(value, kind, field, f"a list of {what}")
+    if efficiency is not None:
+        check_type(efficiency, EfficiencyPoints, "efficiency", "efficiency points "
+                   "(rvsim.testrig.curves.read_efficiency(path)) or None")
+    if isinstance(max_evaluations, bool) or not isinstance(max_evaluations, int) \
+            or max_evaluations < 1:
+        raise ParameterError("max_evaluations", f"must be a whole number >= 1 (got "
+                             f"{max_evaluations!r})")
 
 
 def _on_bound(active, estimate, names, specs, unfixed, blocked, notes) -> bool:
