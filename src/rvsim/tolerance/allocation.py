@@ -237,8 +237,8 @@ def allocate(study: ToleranceStudy, targets: list[Target], folder, *, samples: i
 
     from .spec import check_samples
 
-    check_type(study, ToleranceStudy, "study", "a tolerance study (rvsim.load_tolerance_study(path), "
-               "rvsim.BUILT_IN_TOLERANCE_STUDIES[name]())")
+    check_type(study, ToleranceStudy, "study", "a tolerance study "
+               "(rvsim.load_tolerance_study(path), rvsim.BUILT_IN_TOLERANCE_STUDIES[name]())")
     if isinstance(targets, str):              # the command line's form, "ate_p95=0.3"
         targets = parse_targets(targets)
     check_type(targets, (list, tuple), "targets", "a list of targets (parse_targets("

@@ -74,8 +74,8 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
     from ..doe.runner import check_scheduler
     from ..doe.store import ResultStore
 
-    check_type(study, ToleranceStudy, "study", "a tolerance study (rvsim.load_tolerance_study(path), "
-               "rvsim.BUILT_IN_TOLERANCE_STUDIES[name]())")
+    check_type(study, ToleranceStudy, "study", "a tolerance study "
+               "(rvsim.load_tolerance_study(path), rvsim.BUILT_IN_TOLERANCE_STUDIES[name]())")
     folder = Path(folder)
     n = check_samples(study.samples if samples is None else samples)
     if sobol:
