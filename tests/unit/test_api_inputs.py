@@ -171,6 +171,15 @@ SET = "must be a parameter set (rvsim.parameters.Reducer: rvsim.RV40E"
      "must be 64 to 65536 (got 3)"),
     ("rvsim.read_recording('docs/examples/testrig/reversal.csv', 'x')", "column_map",
      "must be a ColumnMap"),
+    ("rvsim.load_toml(None)", "path", "must be the path of a TOML file (got NoneType)"),
+    ("rvsim.hysteresis(RV40E, stiffen='pins')", "stiffen",
+     "must be a dict of element names to factors"),
+    ("rvsim.hysteresis(RV40E, points_per_branch=10 ** 8)", "points_per_branch",
+     "must be an integer from 2 to 19999, a test of at most 100000 points (got 100000000)"),
+    ("rvsim.compliance_budget(RV40E, points_per_branch=10 ** 7)", "points_per_branch",
+     "must be an integer from 2 to 19999"),
+    ("rvsim.efficiency(RV40E, speeds_rpm=[500], torques=[412], positions=10 ** 9)",
+     "positions", "must be an integer from 2 to 100000 (got 1000000000)"),
 ])
 def test_a_notebook_users_wrong_arguments_are_named(call, field, words, tmp_path):
     import rvsim

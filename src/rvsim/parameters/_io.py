@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import numbers
+import os
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -179,6 +180,7 @@ def _flatten(table: dict, prefix: str = "") -> dict[str, Any]:
 
 def load_toml(path: str | Path, base: Reducer | None = None) -> Reducer:
     """Read a reducer from a TOML file in user units (see module docstring)."""
+    check_type(path, (str, os.PathLike), "path", "the path of a TOML file")
     path = Path(path)
     data = read_toml(path, "reducer TOML file")
     base_name = data.pop("base", None)

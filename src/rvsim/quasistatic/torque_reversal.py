@@ -146,11 +146,16 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
     from ..parameters.rating import check_torque
 
     check_torque(reducer, rated, "rated_torque")
+    from ..analysis.sampling import MAX_POSITIONS
+
+    most = (MAX_POSITIONS - 1) // 5          # five quarters (sweep_torques) and the start
     if isinstance(points_per_branch, bool) or not isinstance(points_per_branch,
                                                              (int, np.integer)) \
-            or points_per_branch < 2:
+            or not 2 <= points_per_branch <= most:
+        # 10**8 asked numpy for 763 MiB, 10**7 in the budget for 6.33 GiB
         raise ParameterError("points_per_branch",
-                             f"must be an integer >= 2 (got {points_per_branch!r})")
+                             f"must be an integer from 2 to {most}, a test of at most "
+                             f"{MAX_POSITIONS} points (got {points_per_branch!r})")
 
     torque, branch = sweep_torques(rated, points_per_branch)
     return _solve(reducer, torque, branch, rated, stiffen, raise_on_failure)

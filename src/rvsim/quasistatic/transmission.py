@@ -9,13 +9,14 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
 from .._cache_guard import RunClock
 from .._display import Headline, draw, figure, number, without_status
 from .._stopping import check_stop
-from ..errors import ParameterError, SimulationError
+from ..errors import ParameterError, SimulationError, check_type
 from ..parameters import Reducer, check_reducer, validate
 from ..units import ARCMIN
 
@@ -105,6 +106,8 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
                              f"empty (got {load.shape} and {angle.shape})")
     if not (np.all(np.isfinite(angle)) and np.all(np.isfinite(load))):
         raise ParameterError("torque", "the input angles and torques must be finite")
+    check_type(stiffen, (Mapping, type(None)), "stiffen", "a dict of element names to "
+               "factors (rvsim.physics.stiffening.elements_in) or None")
     model = build_model(reducer, 1e-5)
     factors = dict(stiffen or {})
     P = model.P
