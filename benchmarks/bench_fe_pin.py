@@ -59,7 +59,7 @@ def main() -> None:
     def run(values, pins, torque=300.0):
         fe_pin.pin_table = real if pins == "fe" else (lambda reducer: constant)
         r = with_values(RV40E, values)
-        ltca(r, torque=torque, positions=8)                 # compile, tables
+        ltca(r, torque=torque, positions=8, allow_aliasing=True)    # compile, tables
         cpu = time.process_time()
         result = ltca(r, torque=torque, positions=360)
         m = result.summary()

@@ -76,12 +76,26 @@ def figure(module: str, name: str):
     return getattr(import_module(module), name)
 
 
+def check_axes(ax) -> None:
+    """Refuse an ``ax`` that is neither None nor a matplotlib Axes with one TypeError naming
+    it (``result.plot(ax="x")`` was an AttributeError from deep in matplotlib).  Imports
+    nothing: an Axes exists only once matplotlib is imported."""
+    import sys
+
+    axes = sys.modules.get("matplotlib.axes")
+    if ax is None or (axes is not None and isinstance(ax, axes.Axes)):
+        return
+    raise TypeError(f"ax must be a matplotlib Axes (e.g. from plt.subplots()) or None, not "
+                    f"{type(ax).__name__} {ax!r:.40}")
+
+
 def draw(function, ax=None, *args, panels: bool = False, **options):
     """Draw ``function(*args, **options)`` on ``ax`` (a new figure if None) and return the
     Axes drawn on (the first panel's of a figure of several).
 
     ``panels``: the function draws a figure of several panels (it takes ``fig``): given an
     ``ax``, that Axes must be alone in its figure and the panels replace it there."""
+    check_axes(ax)
     if not panels:
         fig = function(*args, ax=ax, **options)
         return ax if ax is not None else fig.axes[0]

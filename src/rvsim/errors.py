@@ -6,7 +6,8 @@ exits with code 2.  Messages name the offending field and the reason.
 
 from __future__ import annotations
 
-__all__ = ["RvsimError", "ParameterError", "SimulationError", "InputFileError", "Terminated"]
+__all__ = ["RvsimError", "ParameterError", "SimulationError", "InputFileError", "Terminated",
+           "check_type"]
 
 
 class RvsimError(Exception):
@@ -23,6 +24,15 @@ class ParameterError(RvsimError, ValueError):
         self.field = field
         self.reason = reason
         super().__init__(f"parameter '{field}': {reason}")
+
+
+def check_type(value, kind, field: str, what: str):
+    """``value`` if it is a ``kind`` (a class or a tuple of classes), else a
+    :class:`ParameterError` naming ``field``: "must be ``what`` (got <type>)" (a notebook's
+    ``rvsim.ltca("RV-40E")`` was an AttributeError from inside the engine)."""
+    if not isinstance(value, kind):
+        raise ParameterError(field, f"must be {what} (got {type(value).__name__})")
+    return value
 
 
 class InputFileError(RvsimError):

@@ -131,3 +131,24 @@ def test_efficiency_is_fitted_on_its_own_and_something_must_be_given(tmp_path, c
     assert capsys.readouterr().err.startswith(
         "rvsim: error: parameter 'FILE_OR_FOLDER': give recordings")
     assert not out.exists()
+
+
+def test_a_loop_in_the_wrong_unit_is_a_lack_of_fit(tmp_path, capsys):
+    """The guide's loop with its torque in kN*m under torque_nm (every other row: 51): a pin
+    stiffness of 3.7e-5 fitted it, status ok, exit 0 (hostile5).  Its residuals keep one sign
+    for long runs: status lack_of_fit, exit 1, no fitted.toml (issue 30, fifth session)."""
+    frame = pd.read_csv(LOOP).iloc[::2]
+    frame["torque_nm"] /= 1000.0
+    loop = tmp_path / "kilo.csv"
+    frame.to_csv(loop, index=False)
+    out = tmp_path / "fit"
+    assert main(["calibrate", "--loop", str(loop), "--fit", "stiffness.pins", "--out",
+                 str(out), "--json"]) == 1
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["status"] == "lack_of_fit" and payload["residuals"] == 51
+    assert payload["rms_start_arcsec"] == pytest.approx(39.775, abs=1e-3)
+    assert payload["rms_arcsec"] == pytest.approx(9.992, abs=1e-3)
+    assert ("the fitted model does not reproduce the data: its residuals are systematic (9 runs "
+            "of one sign in 51 residuals, runs test z = -4.9, p = 3.8e-07 < 0.001; noise changes "
+            "sign at random; RMS left 25.1% of the data's)") in payload["notes"][-1]
+    assert sorted(p.name for p in out.iterdir()) == ["calibration.json"]

@@ -21,7 +21,7 @@ HYST_KEYS = {"rated_torque_nm", "torsional_rigidity_nm_per_arcmin", "lost_motion
 
 @pytest.fixture(scope="module")
 def ltca_run():
-    return qs.ltca(RV40E, torque=412.0, positions=72)
+    return qs.ltca(RV40E, torque=412.0, positions=72, allow_aliasing=True)
 
 
 @pytest.fixture(scope="module")

@@ -152,6 +152,57 @@ def test_python_api_refuses_too():
     assert minimum_positions(BUILT_IN_SETS["cycloid-drive"]) == 61
 
 
+ALIAS_REASON = ("must be at least {need} for {name} (got {got}): fewer than {need} positions "
+                "alias the {order} (pin) order of the output revolution")
+
+
+def test_python_entry_points_refuse_positions_that_alias_as_the_command_line():
+    """``ltca(RV40E, positions=3)`` returned status ok (hostile5): every Python entry point
+    that takes a positions count refuses with the command line's check and reason, before
+    any solve (issue 30, fifth session)."""
+    from rvsim.quasistatic import life, ltca
+    from rvsim.testrig import curves
+    from rvsim.testrig.calibration import calibrate
+    from rvsim.testrig.model import compare_point
+    from rvsim.tolerance.robust import with_noise
+    from rvsim.tolerance.spec import rv40e_tolerances
+
+    drive, bearings = BUILT_IN_SETS["cycloid-drive"], BUILT_IN_SETS["RV-40E-bearings"]
+    loop = curves.read_loop("docs/examples/hysteresis_loop.csv")
+    rv40e = dict(need=81, name="RV-40E", order="40th")
+    for call, field, reason in (
+            (lambda: ltca(RV40E, positions=3), "positions", ALIAS_REASON.format(got=3, **rv40e)),
+            (lambda: ltca(RV40E, positions=80), "positions", ALIAS_REASON.format(got=80, **rv40e)),
+            # per output revolution: 40 over half of one are 80
+            (lambda: ltca(RV40E, positions=40, revolutions=0.5), "positions",
+             ALIAS_REASON.format(got=80, **rv40e)),
+            (lambda: ltca(drive, positions=60), "positions",
+             ALIAS_REASON.format(need=61, name="cycloid-drive", got=60, order="30th")),
+            (lambda: life(bearings, positions=40), "positions",
+             ALIAS_REASON.format(got=40, need=81, name="RV-40E-bearings", order="40th")),
+            (lambda: calibrate([], RV40E, ["stiffness.pins"], positions=40, loops=[loop]),
+             "positions", ALIAS_REASON.format(got=40, **rv40e)),
+            (lambda: compare_point(None, RV40E, points=64), "points",
+             ALIAS_REASON.format(got=64, **rv40e)),
+            (lambda: with_noise(rvsim_l36(), rv40e_tolerances().tolerances[:1], 2,
+                                positions=40), "noise.positions",
+             ALIAS_REASON.format(got=40, **rv40e))):
+        with pytest.raises(ParameterError) as info:
+            call()
+        assert (info.value.field, info.value.reason) == (field, reason)
+    # a probe of a few poses, on purpose
+    assert ltca(RV40E, torque=412.0, positions=2, allow_aliasing=True).status == "ok"
+    with pytest.raises(ParameterError, match="'positions': must be a whole number "
+                                             r"\(got 'x'\)"):
+        life(bearings, positions="x")
+
+
+def rvsim_l36():
+    from rvsim.doe.study import paper_l36
+
+    return paper_l36()
+
+
 def test_the_paper_runs_at_400_n_m_with_fluctuation_are_above_rated():
     # 400 N*m + 41.2 N*m fluctuation (factor levels E3, D1): 7 % above the rated 412 N*m for
     # a moment, within the start/stop torque: a warning, not a refusal

@@ -96,7 +96,8 @@ def test_no_factor_label_can_overwrite_a_metric_column(tmp_path):
                                 "operating.steady_start": 0.3})
     summaries = [simulate(short, scheme="implicit-bearings").summary(),
                  simulate(short, time_step=7e-6).summary(),           # with the step guard
-                 ltca(RV40E, positions=16).summary(), hysteresis(RV40E).summary()]
+                 ltca(RV40E, positions=16, allow_aliasing=True).summary(),
+                 hysteresis(RV40E).summary()]
     keys = {k for s in summaries for k in s}
     assert {"guard_substep_checks", "implicit_alerts", "backlash_arcmin"} <= keys
     assert sorted(k for k in keys if k not in RESULT_COLUMNS and not k.startswith("te_")) == []

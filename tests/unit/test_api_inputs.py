@@ -117,3 +117,75 @@ def test_a_finite_element_disc_on_the_single_stage_drive_is_refused_at_once():
 
     with pytest.raises(ParameterError, match="built for the RV reducer only so far"):
         with_values(BUILT_IN_SETS["cycloid-drive"], {"A": 1, "flexibility.model": "fe"})
+
+
+def _bearings():
+    from rvsim.parameters import BUILT_IN_SETS
+
+    return BUILT_IN_SETS["RV-40E-bearings"]
+
+
+def _l36_tolerances():
+    from rvsim.tolerance.spec import rv40e_tolerances
+
+    return rv40e_tolerances()
+
+
+SET = "must be a parameter set (rvsim.parameters.Reducer: rvsim.RV40E"
+
+
+# a notebook user's wrong arguments (issue 30, fifth session): each was an AttributeError or a
+# numpy ValueError from inside rvsim, or a run asked numpy for 7.45 GiB
+@pytest.mark.parametrize("call, field, words", [
+    ("rvsim.ltca('RV-40E')", "reducer", SET),
+    ("rvsim.hysteresis('RV-40E')", "reducer", SET),
+    ("rvsim.life('RV-40E')", "reducer", SET),
+    ("rvsim.compliance_budget('RV-40E')", "reducer", SET),
+    ("rvsim.with_values('RV-40E', {'H': 0.02})", "reducer", SET),
+    ("rvsim.with_values(RV40E, [('H', 0.02)])", "values",
+     "must be a dict of parameter names (or factor letters) to values in user units"),
+    ("rvsim.hysteresis(RV40E, torques='abc')", "torques", "must be numbers [N*m] (got 'abc')"),
+    ("rvsim.ltca(RV40E, positions=10 ** 9)", "positions",
+     "must be at most 100000, the most the command line takes (got 1000000000)"),
+    ("rvsim.life(_bearings(), positions=10 ** 9)", "positions", "must be at most 100000"),
+    ("rvsim.calibrate([], RV40E, ['stiffness.pins'], loops=['loop.csv'])", "loops",
+     "must be a list of loop curves (rvsim.testrig.curves.read_loop(path)) (got str)"),
+    ("rvsim.calibrate([], RV40E, ['stiffness.pins'], efficiency='points.csv')", "efficiency",
+     "must be efficiency points (rvsim.testrig.curves.read_efficiency(path)) or None"),
+    ("rvsim.calibrate('bench', RV40E, ['stiffness.pins'])", "points",
+     "must be a list of analysed recordings (rvsim.analyse_path) (got str)"),
+    ("rvsim.calibrate([], RV40E, ['stiffness.pins'], max_evaluations=-1)", "max_evaluations",
+     "must be a whole number >= 1 (got -1)"),
+    ("rvsim.calibrate([], RV40E, 'stiffness.pinz')", "stiffness.pinz", "unknown parameter"),
+    ("rvsim.tolerance_analysis('rv40e-tolerances', OUT)", "study",
+     "must be a tolerance study (rvsim.load_tolerance_study(path), "
+     "rvsim.BUILT_IN_TOLERANCE_STUDIES[name]()) (got str)"),
+    ("rvsim.allocate('rv40e-tolerances', 'ate_p95=0.3', OUT)", "study",
+     "must be a tolerance study"),
+    ("rvsim.allocate(_l36_tolerances(), {'ate_p95': 0.3}, OUT)", "targets",
+     "must be a list of targets (parse_targets(\"ate_p95=0.3\"), or that text) (got dict)"),
+    ("rvsim.run_study('paper-l36', OUT)", "study",
+     "must be a study (rvsim.load_study(path), rvsim.BUILT_IN_STUDIES[name]()) (got str)"),
+    ("rvsim.analyse_path('docs/examples/testrig', 'RV-40E')", "reducer", SET),
+    ("rvsim.analyse_path('docs/examples/testrig', RV40E, points=3)", "points",
+     "must be 64 to 65536 (got 3)"),
+    ("rvsim.read_recording('docs/examples/testrig/reversal.csv', 'x')", "column_map",
+     "must be a ColumnMap"),
+    ("rvsim.load_toml(None)", "path", "must be the path of a TOML file (got NoneType)"),
+    ("rvsim.hysteresis(RV40E, stiffen='pins')", "stiffen",
+     "must be a dict of element names to factors"),
+    ("rvsim.hysteresis(RV40E, points_per_branch=10 ** 8)", "points_per_branch",
+     "must be an integer from 2 to 19999, a test of at most 100000 points (got 100000000)"),
+    ("rvsim.compliance_budget(RV40E, points_per_branch=10 ** 7)", "points_per_branch",
+     "must be an integer from 2 to 19999"),
+    ("rvsim.efficiency(RV40E, speeds_rpm=[500], torques=[412], positions=10 ** 9)",
+     "positions", "must be an integer from 2 to 100000 (got 1000000000)"),
+])
+def test_a_notebook_users_wrong_arguments_are_named(call, field, words, tmp_path):
+    import rvsim
+
+    with pytest.raises(ParameterError) as info:
+        eval(call, {"rvsim": rvsim, "RV40E": RV40E, "_bearings": _bearings,
+                    "_l36_tolerances": _l36_tolerances, "OUT": str(tmp_path / "out")})
+    assert info.value.field == field and words in info.value.reason
+    assert not (tmp_path / "out").exists()

@@ -4,6 +4,7 @@ left on its bound (scipy's active_mask)."""
 
 import numpy as np
 
+from rvsim.testrig import calibration as C
 from rvsim.testrig.calibration import CONDITION_LIMIT, _collinear
 
 NAMES = ["a", "b", "c"]
@@ -66,3 +67,18 @@ def test_an_estimate_the_data_push_onto_its_bound_is_no_fit():
     assert not _on_bound(np.array([0, 0]), np.array([0.03, 0.004]), names, specs, set(), {}, [])
     # a parameter already not identifiable (or blocked) is said so, not twice
     assert not _on_bound(np.array([-1, 0]), np.array([0.0, 0.004]), names, specs, {0}, {}, [])
+
+
+def test_lack_of_fit_is_residuals_of_one_sign_for_long_runs():
+    """The runs test of the fitted residuals (issue 30, fifth session): noise keeps its status,
+    a misfit (a smooth curve: few runs of one sign) is lack_of_fit, a curve at the model's
+    numerical resolution (a noise-free fit of the model's own curve) is not judged."""
+    rng = np.random.default_rng(1)
+    noise = rng.normal(0.0, 0.1, 101)
+    notes = []
+    assert not C._systematic(noise, 40.0, notes) and notes == []
+    misfit = np.sin(np.linspace(0.0, 4.0 * np.pi, 101)) + noise      # 5 half waves
+    assert C._systematic(misfit, 40.0, notes)
+    assert len(notes) == 1 and "runs test z = " in notes[0]
+    assert not C._systematic(misfit * 1e-8, 40.0, [])           # below 1e-6 of the data's RMS
+    assert not C._systematic(np.array([np.nan, 1.0, 2.0]), 40.0, [])

@@ -4,6 +4,7 @@ and draw themselves with ``.plot()``.  Results are built from known curves, no c
 
 from __future__ import annotations
 
+import functools
 import math
 import pydoc
 from pathlib import Path
@@ -111,11 +112,16 @@ def test_efficiency_shows_its_map():
            ["92 %", "91 %", "0.01 N*m", "0.005 N*m"], 5)
 
 
-def test_analysis_frames_carry_units():
+@functools.cache
+def l36_analysis():
+    """The paper's L36 table analysed (0.8 s: once for the tests that need it)."""
     from rvsim.parameters import paper_l36_scheme
 
-    table = paper_l36_scheme().drop(columns=["note"])
-    analysis = rvsim.analyze_table(table)               # the default response: te_arcmin
+    return rvsim.analyze_table(paper_l36_scheme().drop(columns=["note"]))
+
+
+def test_analysis_frames_carry_units():
+    analysis = l36_analysis()                           # the default response: te_arcmin
     assert analysis["significant"] == ["H", "I"] and analysis.response == "te_arcmin"
     assert list(analysis.ranges.columns) == ["k1_arcmin", "k2_arcmin", "k3_arcmin",
                                              "R_arcmin", "rank", "optimal_level"]
@@ -140,6 +146,22 @@ def test_plot_returns_an_axes(make):
     fig, given = plt.subplots()
     assert result.plot(ax=given).figure is fig         # drawn in the caller's figure
     plt.close(fig)
+
+
+def test_plot_of_something_else_than_an_axes_is_one_type_error():
+    """``result.plot(ax="x")`` was an AttributeError from inside matplotlib (issue 30, fifth
+    session): every public ``plot`` names ``ax`` and what it must be."""
+    from rvsim.doe.result import StudyResult
+
+    analysis = l36_analysis()
+    study = StudyResult(None, Path("unused"), None)      # refused before its study is read
+    results = [known_run(), known_te(rvsim.RV40E), known_loop(), known_map(), known_tolerances(),
+               analysis, analysis.range_analysis, study]
+    for result, ax in [(r, "x") for r in results] + [(known_map(), 1), (known_loop(), [None])]:
+        with pytest.raises(TypeError) as error:
+            result.plot(ax=ax)
+        assert str(error.value) == ("ax must be a matplotlib Axes (e.g. from plt.subplots()) or "
+                                    f"None, not {type(ax).__name__} {ax!r}")
 
 
 def test_a_figure_of_panels_needs_an_axes_alone():

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from .._display import check_axes
 from .._matplotlib import plain, pyplot
 
 if TYPE_CHECKING:
@@ -20,6 +21,7 @@ __all__ = ["main_effects_plot", "interaction_plots"]
 
 def main_effects_plot(analysis, ax=None, *, factors=None, ylabel=None):
     """Level means of each factor (the paper's Figs. 8-10), one panel per factor."""
+    check_axes(ax)
     plt = pyplot()
     factors = factors or list(analysis.level_means)
     if ax is None:

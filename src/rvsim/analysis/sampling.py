@@ -13,6 +13,9 @@ measurement behind :data:`POSITIONS_PER_ORDER`.
 
 from __future__ import annotations
 
+import math
+import numbers
+
 from ..errors import ParameterError
 
 __all__ = ["POSITIONS_PER_ORDER", "MAX_POSITIONS", "highest_order", "minimum_positions",
@@ -53,6 +56,9 @@ def check_positions(reducer, positions, field: str, orders=(), *, order_field=No
     """``positions`` (per output revolution) if it resolves the reducer's highest order (and
     ``orders``); else a ParameterError naming ``field`` with the minimum and the reason, or
     ``order_field`` when no count up to MAX_POSITIONS could resolve ``orders``."""
+    if isinstance(positions, bool) or not isinstance(positions, numbers.Real) \
+            or not math.isfinite(positions):
+        raise ParameterError(field, f"must be a whole number (got {positions!r})")
     order, what = highest_order(reducer, orders)
     needed = minimum_positions(reducer, orders)
     if needed > MAX_POSITIONS:

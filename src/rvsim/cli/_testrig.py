@@ -35,9 +35,9 @@ def _column_map(args: argparse.Namespace):
 
 
 def _points_option(value: int) -> int:
-    if not 64 <= value <= 65536:
-        raise ParameterError("--points", f"must be 64 to 65536 (got {value})")
-    return value
+    from ..testrig.analysis import check_points
+
+    return check_points(value, "--points")
 
 
 def _check_model_loads(analysed, reducer) -> None:

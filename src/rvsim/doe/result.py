@@ -7,8 +7,8 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from .._display import Headline
-from ..errors import InputFileError
+from .._display import Headline, check_axes
+from ..errors import InputFileError, check_type
 from .study import Study
 
 __all__ = ["StudyResult", "run_study"]
@@ -61,6 +61,7 @@ class StudyResult(Headline):
     def plot(self, ax=None):
         """Main effects of the default response (:meth:`rvsim.analysis.StudyAnalysis.plot`);
         returns the Axes."""
+        check_axes(ax)                      # before the analysis is computed
         return self.analysis().plot(ax)
 
 
@@ -72,5 +73,7 @@ def run_study(study: Study, folder: str | Path, *, workers: int | None = None,
     analysis.json, the report) are the command's."""
     from .runner import run
 
+    check_type(study, Study, "study", "a study (rvsim.load_study(path), "
+               "rvsim.BUILT_IN_STUDIES[name]())")
     table = run(study, folder, workers=workers, scheduler=scheduler, progress=progress)
     return StudyResult(study, Path(folder), table)

@@ -12,11 +12,13 @@ from __future__ import annotations
 import dataclasses
 import math
 import numbers
+import os
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 from .._files import read_toml
-from ..errors import ParameterError
+from ..errors import ParameterError, check_type
 from ..units import TO_SI, si_from_text
 from ._schema import FieldSpec, field_specs
 from ._types import Reducer
@@ -27,7 +29,7 @@ from .rv40e_bearings import RV40E_ROLLING
 
 __all__ = ["SPECS", "parameter_table", "get_value", "with_values", "parse_assignment",
            "load_toml", "validate", "resolve_name", "BUILT_IN_SETS", "toml_string", "toml_text",
-           "plain_number"]
+           "plain_number", "check_reducer"]
 
 #: every leaf parameter of :class:`Reducer`, by dotted name
 SPECS: dict[str, FieldSpec] = {s.name: s for s in field_specs(Reducer)}
@@ -126,6 +128,9 @@ def _replace_path(obj: Any, parts: list[str], value: Any) -> Any:
 
 def with_values(reducer: Reducer, values: dict[str, Any], *, check: bool = True) -> Reducer:
     """A copy of ``reducer`` with parameters set from user-unit ``values``, validated."""
+    check_reducer(reducer)
+    check_type(values, Mapping, "values", "a dict of parameter names (or factor letters) to "
+               "values in user units, e.g. {\"H\": 0.02}")
     for raw_name, raw in values.items():
         name = resolve_name(raw_name)
         reducer = _replace_path(reducer, name.split("."), _coerce(SPECS[name], raw))
@@ -175,6 +180,7 @@ def _flatten(table: dict, prefix: str = "") -> dict[str, Any]:
 
 def load_toml(path: str | Path, base: Reducer | None = None) -> Reducer:
     """Read a reducer from a TOML file in user units (see module docstring)."""
+    check_type(path, (str, os.PathLike), "path", "the path of a TOML file")
     path = Path(path)
     data = read_toml(path, "reducer TOML file")
     base_name = data.pop("base", None)
@@ -227,13 +233,18 @@ def validate(reducer: Reducer, *, assembly: bool = True) -> Reducer:
     return reducer
 
 
+def check_reducer(reducer, field: str = "reducer") -> Reducer:
+    """``reducer`` if it is a parameter set, else the one ParameterError of every entry point
+    (a name such as "RV-40E" is no set: BUILT_IN_SETS[name] or load_toml(path) is)."""
+    return check_type(reducer, Reducer, field, "a parameter set (rvsim.parameters.Reducer: "
+                      "rvsim.RV40E, rvsim.BUILT_IN_SETS[name], rvsim.load_toml(path))")
+
+
 def check_values(reducer: Reducer) -> Reducer:
     """The checks that need no geometry: every field's type and range, then the consistency
     of fields with each other (counts, stages, axial stations, the load schedule).  Raises
     :class:`ParameterError` naming the first offending field; returns ``reducer``."""
-    if not isinstance(reducer, Reducer):
-        raise ParameterError("reducer", f"must be a parameter set (rvsim.parameters.Reducer; "
-                             f"got {type(reducer).__name__})")
+    check_reducer(reducer)
     for spec in SPECS.values():
         try:
             value = get_value(reducer, spec.name, user_units=False)

@@ -16,7 +16,7 @@ import numpy as np
 
 from .._display import Headline, number
 from ..errors import ParameterError
-from ..parameters import Reducer
+from ..parameters import Reducer, check_reducer
 
 __all__ = ["life", "LifeResult", "BearingLife", "crank_speed", "check_life_inputs",
            "dynamic_ratings", "main_bearing_rows", "DEFAULT_POSITIONS",
@@ -266,11 +266,14 @@ def life(reducer: Reducer, *, torque: float | None = None, output_speed: float |
     no life, status "needs_external_load"); :func:`main_bearing_rows`."""
     import time
 
+    from ..analysis.sampling import check_positions
     from ..parameters import validate
     from ..parameters.rating import check_torque
     from ..physics import rating_life as iso
     from .transmission import ltca
 
+    check_reducer(reducer)
+    check_positions(reducer, positions, "positions")    # ltca's own check, before the ratings
     g = reducer.rating
     torque = float(g.rated_torque if torque is None else torque)
     output_speed = float(g.rated_output_speed if output_speed is None else output_speed)

@@ -26,7 +26,7 @@ import time as _time
 import numpy as np
 
 from ..errors import ParameterError
-from ..parameters import Reducer
+from ..parameters import Reducer, check_reducer
 from ..units import ARCMIN
 
 __all__ = ["compliance_budget", "ComplianceBudget", "DEFAULT_FACTOR", "rigidity_of"]
@@ -181,6 +181,7 @@ def compliance_budget(reducer: Reducer, *, rated_torque: float | None = None,
 
     Never raises on a failed test: the budget's ``status`` names the first element whose
     stiffened test failed (its share NaN); a failed reference test fails the whole budget."""
+    check_reducer(reducer)
     factor, base, present, labels = _check(reducer, factor, base, elements)
     rated = reducer.rating.rated_torque if rated_torque is None else rated_torque
     start = _time.perf_counter()

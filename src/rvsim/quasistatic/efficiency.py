@@ -181,9 +181,13 @@ def _point_efficiency(reducer, speed, torque, angles) -> tuple[float, float]:
 def _angles(reducer: Reducer, positions: int) -> np.ndarray:
     """Input angles of one point's sweep, forwards (the input turns in the sense that turns
     the output forwards), ``positions`` over one crank revolution relative to the carrier."""
+    from ..analysis.sampling import MAX_POSITIONS
+
     if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
-            or positions < 2:
-        raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
+            or not 2 <= positions <= MAX_POSITIONS:
+        # 10**9 asked numpy for 7.45 GiB
+        raise ParameterError("positions", f"must be an integer from 2 to {MAX_POSITIONS} "
+                             f"(got {positions!r})")
     return math.copysign(1.0, reducer.ratio) * np.arange(positions) \
         * _crank_period(reducer) / positions
 

@@ -14,7 +14,7 @@ import numpy as np
 
 from .._display import Headline, draw, figure, number, without_status
 from ..errors import ParameterError, SimulationError
-from ..parameters import Reducer
+from ..parameters import Reducer, check_reducer
 from ..units import ARCMIN
 from .transmission import _finite, solve_path
 
@@ -136,6 +136,7 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
     largest magnitude is the test's rated torque and ``rated_torque`` and
     ``points_per_branch`` are not used.
     """
+    check_reducer(reducer)
     if torques is not None:
         return _follow(reducer, torques, stiffen, raise_on_failure)
     rated = _finite("rated_torque", reducer.rating.rated_torque if rated_torque is None
@@ -145,11 +146,16 @@ def hysteresis(reducer: Reducer, *, rated_torque: float | None = None,
     from ..parameters.rating import check_torque
 
     check_torque(reducer, rated, "rated_torque")
+    from ..analysis.sampling import MAX_POSITIONS
+
+    most = (MAX_POSITIONS - 1) // 5          # five quarters (sweep_torques) and the start
     if isinstance(points_per_branch, bool) or not isinstance(points_per_branch,
                                                              (int, np.integer)) \
-            or points_per_branch < 2:
+            or not 2 <= points_per_branch <= most:
+        # 10**8 asked numpy for 763 MiB, 10**7 in the budget for 6.33 GiB
         raise ParameterError("points_per_branch",
-                             f"must be an integer >= 2 (got {points_per_branch!r})")
+                             f"must be an integer from 2 to {most}, a test of at most "
+                             f"{MAX_POSITIONS} points (got {points_per_branch!r})")
 
     torque, branch = sweep_torques(rated, points_per_branch)
     return _solve(reducer, torque, branch, rated, stiffen, raise_on_failure)
@@ -160,7 +166,10 @@ def _follow(reducer: Reducer, torques, stiffen, raise_on_failure: bool) -> Hyste
     from ..analysis.catalogue import CurveError, sweep_branches
     from ..parameters.rating import check_torque
 
-    torque = np.asarray(torques, dtype=float).ravel()
+    try:
+        torque = np.asarray(torques, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise ParameterError("torques", f"must be numbers [N*m] (got {torques!r:.60})") from None
     if not np.all(np.isfinite(torque)):
         raise ParameterError("torques", "every torque must be a finite number")
     try:

@@ -9,14 +9,15 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
 from .._cache_guard import RunClock
 from .._display import Headline, draw, figure, number, without_status
 from .._stopping import check_stop
-from ..errors import ParameterError, SimulationError
-from ..parameters import Reducer, validate
+from ..errors import ParameterError, SimulationError, check_type
+from ..parameters import Reducer, check_reducer, validate
 from ..units import ARCMIN
 
 __all__ = ["ltca", "LtcaResult", "solve_path", "PathSolution", "TOLERANCE", "MAX_ITERATIONS",
@@ -105,6 +106,8 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
                              f"empty (got {load.shape} and {angle.shape})")
     if not (np.all(np.isfinite(angle)) and np.all(np.isfinite(load))):
         raise ParameterError("torque", "the input angles and torques must be finite")
+    check_type(stiffen, (Mapping, type(None)), "stiffen", "a dict of element names to "
+               "factors (rvsim.physics.stiffening.elements_in) or None")
     model = build_model(reducer, 1e-5)
     factors = dict(stiffen or {})
     P = model.P
@@ -456,25 +459,46 @@ class LtcaResult(Headline):
 
 
 def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
-         revolutions: float = 1.0, raise_on_failure: bool = True) -> LtcaResult:
+         revolutions: float = 1.0, raise_on_failure: bool = True,
+         allow_aliasing: bool = False) -> LtcaResult:
     """TE and contact loads at ``positions`` equally spaced input angles over ``revolutions``
     output revolutions (input from 0 to revolutions * 2 pi * ratio, one direction) under the
     output ``torque`` [N*m] (default: reducer.operating.load_torque).
+
+    ``positions / revolutions`` (per output revolution) must resolve the reducer's highest
+    order (:func:`rvsim.analysis.sampling.check_positions`, the command line's check: 81 for the
+    RV-40E's 40 pins), else a :class:`~rvsim.errors.ParameterError`; ``allow_aliasing=True``
+    skips it for a probe of a few poses (its TE curve, peak-to-peak and spectrum are then
+    aliased, not the reducer's).
 
     A position that does not converge stops the sweep: with ``raise_on_failure`` (default) a
     :class:`~rvsim.errors.SimulationError` names it, else the result carries the status and
     ``converged`` marks the positions solved.
     """
+    check_reducer(reducer)
     torque = _finite("torque", reducer.operating.load_torque if torque is None else torque)
     if isinstance(positions, bool) or not isinstance(positions, (int, np.integer)) \
             or positions < 2:
         raise ParameterError("positions", f"must be an integer >= 2 (got {positions!r})")
+    from ..analysis.sampling import MAX_POSITIONS
+
+    if positions > MAX_POSITIONS:           # 1e9 asked numpy for 7.45 GiB (or the OOM killer)
+        raise ParameterError("positions", f"must be at most {MAX_POSITIONS}, the most the "
+                             f"command line takes (got {positions})")
     from ..parameters.rating import check_torque
 
     check_torque(reducer, torque, "torque")
     revolutions = _finite("revolutions", revolutions)
     if revolutions <= 0:
         raise ParameterError("revolutions", f"must be positive (got {revolutions:g})")
+    if not allow_aliasing:
+        from ..analysis.sampling import check_positions
+
+        # per output revolution (the bench model's sweep: points + 1 over (points + 1) /
+        # points revolutions, i.e. points per revolution)
+        per_revolution = round(positions / revolutions, 9)
+        check_positions(reducer, int(per_revolution) if per_revolution.is_integer()
+                        else per_revolution, "positions")
     from ..physics import _layout as L
 
     from ..geometry.layout import disc_count

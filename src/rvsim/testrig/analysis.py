@@ -33,6 +33,19 @@ ARCMIN = math.pi / 10800.0
 #: nodes per output revolution (orders up to 2047 resolved: the RV-40E's sun-planet mesh is
 #: at order 1440)
 DEFAULT_POINTS = 4096
+#: nodes per output revolution a bench analysis takes (``rvsim testrig --points``)
+MIN_POINTS, MAX_POINTS = 64, 65536
+
+
+def check_points(points, field: str) -> int:
+    """``points`` (nodes per output revolution of a bench analysis) if a whole number from
+    MIN_POINTS to MAX_POINTS, else a ParameterError naming ``field``."""
+    from ..errors import ParameterError
+
+    if isinstance(points, bool) or not isinstance(points, (int, np.integer)) \
+            or not MIN_POINTS <= points <= MAX_POINTS:
+        raise ParameterError(field, f"must be {MIN_POINTS} to {MAX_POINTS} (got {points!r})")
+    return int(points)
 #: at least this many samples per node on average: nodes take the mean of their samples;
 #: fewer: a cubic spline through the samples, read at the nodes
 BIN_MIN_SAMPLES = 4

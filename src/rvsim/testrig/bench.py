@@ -315,6 +315,10 @@ def analyse_path(path: str | Path, reducer, column_map: ColumnMap | None = None,
     A column that ``column_map`` maps must be in a single file; a folder's files may lack it
     (the oil temperature of some runs only), but not all of them, and a file whose analysis
     fails while it lacks a mapped column is reported as lacking it."""
+    from ..parameters import check_reducer
+
+    check_reducer(reducer)
+    A.check_points(points, "points")
     column_map = column_map or ColumnMap()
     folder = Path(path).is_dir()
     groups: dict = {}

@@ -176,9 +176,13 @@ def _curve_difference(measured: PointResult, simulated: PointResult) -> dict:
 
 
 def compare_point(point: PointResult, reducer, *, points: int = A.DEFAULT_POINTS):
-    """(measured summary with "simulated" and "difference" entries, simulated PointResult)."""
+    """(measured summary with "simulated" and "difference" entries, simulated PointResult);
+    ``points`` per output revolution must resolve the reducer's highest order (the command
+    line's ``--points`` check)."""
+    from ..analysis.sampling import check_positions
     from ..errors import SimulationError
 
+    check_positions(reducer, points, "points")
     summary = point_summary(point, reducer)
     try:
         simulated = simulate_point(point, reducer, points=points)

@@ -362,6 +362,10 @@ def read_recording(path: str | Path, column_map: ColumnMap | None = None, *,
     """The bench file at ``path`` in SI (see the module docstring).  ``strict``: a column
     that ``column_map`` maps must be in the file (a folder's files may lack some, see
     :func:`rvsim.testrig.bench.analyse_path`)."""
+    from ..errors import check_type
+
+    check_type(column_map, (ColumnMap, type(None)), "column_map", "a ColumnMap "
+               "(rvsim.testrig.recording.ColumnMap, read_column_map(path)) or None")
     path = Path(path)
     column_map = column_map or ColumnMap()
     frame = _read_table(path)

@@ -29,7 +29,7 @@ import shutil
 
 import numpy as np
 
-from ..errors import InputFileError, ParameterError
+from ..errors import InputFileError, ParameterError, check_type
 from ..parameters import plain_number
 from .engine import METRICS
 from .spec import FEATURES, ToleranceStudy, largest_tolerance
@@ -237,6 +237,15 @@ def allocate(study: ToleranceStudy, targets: list[Target], folder, *, samples: i
 
     from .spec import check_samples
 
+    check_type(study, ToleranceStudy, "study", "a tolerance study "
+               "(rvsim.load_tolerance_study(path), rvsim.BUILT_IN_TOLERANCE_STUDIES[name]())")
+    if isinstance(targets, str):              # the command line's form, "ate_p95=0.3"
+        targets = parse_targets(targets)
+    check_type(targets, (list, tuple), "targets", "a list of targets (parse_targets("
+               "\"ate_p95=0.3\"), or that text)")
+    for target in targets:
+        check_type(target, Target, "targets", "a list of targets (parse_targets("
+                   "\"ate_p95=0.3\"), or that text)")
     check_samples(samples)
     cost = cost or CostModel.default(study, {n: dict(v) for n, v in study.cost})
     if max_evaluations < len(study.tolerances) + 2:      # COBYLA's least (it would warn)

@@ -10,7 +10,7 @@ import json
 from pathlib import Path
 
 from .._display import Headline, draw, number, without_status
-from ..errors import InputFileError
+from ..errors import InputFileError, check_type
 from .montecarlo import (collect, study_torque, monte_carlo_units, run_samples, summarise,
                          write_json, write_results_csv)
 from .sensitivity import check_base, check_groups, sobol_count, sobol_indices, sobol_units
@@ -74,6 +74,8 @@ def tolerance_analysis(study: ToleranceStudy, folder: str | Path, *, samples: in
     from ..doe.runner import check_scheduler
     from ..doe.store import ResultStore
 
+    check_type(study, ToleranceStudy, "study", "a tolerance study "
+               "(rvsim.load_tolerance_study(path), rvsim.BUILT_IN_TOLERANCE_STUDIES[name]())")
     folder = Path(folder)
     n = check_samples(study.samples if samples is None else samples)
     if sobol:
