@@ -36,7 +36,7 @@ def _ltca() -> None:
     from rvsim.parameters import RV40E
     from rvsim.quasistatic import ltca
 
-    ltca(RV40E, positions=16, raise_on_failure=False)
+    ltca(RV40E, positions=16, raise_on_failure=False, allow_aliasing=True)
 
 
 def _geometry() -> None:
@@ -95,7 +95,8 @@ def _others() -> None:
 
     pin_gaps(RV40E, 0.0)                     # the geometry's compiled curve functions
     undercut_ratio(RV40E, samples=50)
-    ltca(BUILT_IN_SETS["cycloid-drive"], positions=16, raise_on_failure=False)
+    ltca(BUILT_IN_SETS["cycloid-drive"], positions=16, raise_on_failure=False,
+         allow_aliasing=True)
 
 
 #: two chains of tasks, one per core (tests/conftest.py): the quasi-static solver's (the longest:
