@@ -33,12 +33,12 @@ import pytest
 from rvsim.cli import main
 from rvsim.physics import _layout as L
 from rvsim.dynamics import simulate
-from rvsim.physics._forces import forces_at
 from rvsim.dynamics.model import build_model
 from rvsim.errors import ParameterError
 from rvsim.geometry.layout import output_pins
 from rvsim.parameters import BUILT_IN_SETS, load_toml, with_values
 from rvsim.quasistatic import hysteresis, ltca, solve_path
+from rvsim.quasistatic._solver import _evaluate
 from rvsim.units import ARCMIN
 from tests.verification.textbook import textbook_output_pin_forces, textbook_pin_forces
 
@@ -174,17 +174,20 @@ def test_toml_base_and_set_name_on_the_command_line(tmp_path, capsys):
                    "RV-40E; 'cycloid-drive' is a single-stage drive"]
 
 
-def _forces(reducer, q, theta_in, torque, want_stiffness):
-    """The kernel's force evaluation at rest (the quasi-static residual) and its matrix."""
+def _forces(reducer, q, theta_in, torque):
+    """The force evaluation at rest (the quasi-static residual) and its matrix, by the
+    quasi-static engine's one evaluation (``_evaluate``, which calls the elements' ``forces_at``;
+    the engine's own compiled signature, loaded from numba's cache instead of compiling
+    ``forces_at`` alone for this test: about 8 s of CPU on a cold cache)."""
     model = build_model(reducer, 1e-5)
     zp, n_out = reducer.cycloid.pin_count, reducer.layout.output_pin_count
     Q = np.zeros(L.N_DOF)
-    K = np.zeros((L.N_DOF, L.N_DOF) if want_stiffness else (0, 0))
-    forces_at(model.P, q, np.zeros(L.N_DOF), theta_in, 0.0, torque, model.pins,
-              2.0 * np.pi * np.arange(zp) / zp, model.holes, model.crank_angles,
-              model.mesh_phase, np.zeros((2, zp)), np.zeros((2, zp), dtype=np.int64), 1,
-              np.zeros((2, zp)), np.zeros((2, zp)), np.zeros((2, L.OUT_SLOT0 + n_out)), Q, K,
-              np.zeros(L.N_CHANNELS), np.zeros((2, 4)), np.zeros((2, 2)), model.fe)
+    K = np.zeros((L.N_DOF, L.N_DOF))
+    _evaluate(model.P, q, theta_in, torque, model.pins, 2.0 * np.pi * np.arange(zp) / zp,
+              model.holes, model.crank_angles, model.mesh_phase, np.zeros((2, zp)),
+              np.zeros((2, zp), dtype=np.int64), np.zeros((2, zp)), np.zeros((2, zp)),
+              np.zeros((2, L.OUT_SLOT0 + n_out)), Q, K, np.zeros(L.N_CHANNELS),
+              np.zeros((2, 4)), np.zeros(L.N_DOF), np.zeros((2, 2)), np.zeros(L.N_DOF), model.fe)
     return Q, K
 
 
@@ -195,15 +198,15 @@ def test_output_pin_stiffness_is_the_derivative_of_the_forces(values):
     reducer = with_values(DRIVE, values)
     path = solve_path(reducer, np.array([-0.3]), np.array([150.0]))
     q = path.q[0]
-    _, K = _forces(reducer, q, -0.3, 150.0, True)
+    _, K = _forces(reducer, q, -0.3, 150.0)
     h = 1e-9
     column = np.zeros(L.N_DOF)
     row = np.zeros(L.N_DOF)
     for i in range(L.N_DOF):
         dq = np.zeros(L.N_DOF)
         dq[i] = h
-        diff = -(_forces(reducer, q + dq, -0.3, 150.0, False)[0]
-                 - _forces(reducer, q - dq, -0.3, 150.0, False)[0]) / (2.0 * h)
+        diff = -(_forces(reducer, q + dq, -0.3, 150.0)[0]
+                 - _forces(reducer, q - dq, -0.3, 150.0)[0]) / (2.0 * h)
         row[i] = diff[L.CARRIER]
         if i == L.CARRIER:
             column = diff

@@ -237,7 +237,9 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
         if check:
             # the stiffest node mode of the two cranks sets the sub-steps of this step and of
             # the steps up to the next check (dynamics._stiff_nodes)
-            stiffest = max(node_omega_dt(P, K_node, 0, dt), node_omega_dt(P, K_node, 1, dt))
+            # (the crank as a non-literal int64: one compiled node_omega_dt, not one per crank)
+            stiffest = node_omega_dt(P, K_node, np.int64(0), dt)
+            stiffest = max(stiffest, node_omega_dt(P, K_node, np.int64(1), dt))
             if stiffest > P[NODE_PEAK]:
                 P[NODE_PEAK] = stiffest
             wanted = substeps_for(stiffest, P[NODE_OMEGA_DT])

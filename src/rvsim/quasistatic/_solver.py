@@ -320,6 +320,23 @@ def add_coupling_stiffness(P, q, arm_elastic, c, d, K):
 
 
 @numba.njit(cache=CACHE)
+def every_force(P, q, v, theta_in, omega, torque, work, Q, K):
+    """The elements' forces (:func:`rvsim.physics._forces.forces_at`) with every pin evaluated:
+    Q (and K unless 0 x 0) at (q, v).  ``work``: the tuple (pins, pin_angle, holes,
+    crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, channel,
+    mesh_state, mesh_hold, fe).  One compiled function for this engine's two callers
+    (:func:`_evaluate`, :func:`friction_forces`), where ``forces_at`` was inlined into each,
+    and the step count given as a non-literal int64, the dynamic engine's type, so that both
+    engines share the pin elements' compiled code instead of one specialisation each for a
+    literal 1 (a cold compile about 20 s of CPU shorter, docs/decisions.md, issue 30)."""
+    (pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic,
+     arm_elastic, channel, mesh_state, mesh_hold, fe) = work
+    return forces_at(P, q, v, theta_in, omega, torque, pins, pin_angle, holes, crank_angles,
+                     mesh_phase, u, next_eval, np.int64(1), pin_force, pin_elastic,
+                     arm_elastic, Q, K, channel, mesh_state, mesh_hold, fe)
+
+
+@numba.njit(cache=CACHE)
 def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh_phase, u,
               next_eval, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state, v,
               mesh_hold, f_ext, fe):
@@ -340,10 +357,10 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
         next_eval[:, :] = 0
         if coupled:
             prepare(P, q, arm_elastic, given, attempt == 0)
-        energy, _, torque_in, worst = forces_at(
-            P, q, v, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
-            u, next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
-            mesh_hold, fe)
+        energy, _, torque_in, worst = every_force(
+            P, q, v, theta_in, 0.0, torque, (pins, pin_angle, holes, crank_angles, mesh_phase,
+                                             u, next_eval, pin_force, pin_elastic, arm_elastic,
+                                             channel, mesh_state, mesh_hold, fe), Q, K)
         if not coupled:
             break
         tight, loose = settled(P, arm_elastic, given, r, Q, f_ext)
@@ -695,10 +712,10 @@ def friction_forces(P_fric, q, v, Q0, theta_in, omega, torque, pins, pin_angle, 
     (q, v) (the elastic mesh torque plus the mesh friction's)."""
     K0 = np.zeros((0, 0))
     next_eval[:, :] = 0
-    _, _, torque_in, _ = forces_at(P_fric, q, v, theta_in, omega, torque, pins, pin_angle,
-                                   holes, crank_angles, mesh_phase, u, next_eval, 1, pin_force,
-                                   pin_elastic, arm_elastic, out, K0, channel, mesh_state,
-                                   mesh_hold, fe)
+    _, _, torque_in, _ = every_force(P_fric, q, v, theta_in, omega, torque,
+                                     (pins, pin_angle, holes, crank_angles, mesh_phase, u,
+                                      next_eval, pin_force, pin_elastic, arm_elastic, channel,
+                                      mesh_state, mesh_hold, fe), out, K0)
     for i in range(N_DOF):
         out[i] -= Q0[i]
     return torque_in
