@@ -151,6 +151,7 @@ def main(argv: list[str]) -> int:
         print(f"  {stamp[key]['cpu_s']} s CPU, {stamp[key]['wall_s']} s wall\n"
               f"{stamp[key]['output']}", file=sys.stderr, flush=True)
         STAMP.write_text(json.dumps(stamp, indent=1) + "\n")   # kept as each run ends
+    text = GUIDE.read_text(encoding="utf-8")      # as it is now: edited while the runs ran
     GUIDE.write_text(rewritten(text, stamp), encoding="utf-8")
     return 0
 
