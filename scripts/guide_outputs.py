@@ -53,7 +53,7 @@ OUTPUTS: dict[str, tuple[str, str]] = {
     "tolerance": ("rvsim tolerance rv40e-tolerances --out tol --samples 1000", "stdout"),
     "allocate": ("rvsim allocate rv40e-tolerances --target ate_p95=0.30,lost_motion_p95=2.3 "
                  "--out alloc --samples 30", "stdout"),
-    "allocate-unreachable": ("rvsim allocate rv40e-tolerances --target lost_motion_p95=2.2 "
+    "allocate-unreachable": ("rvsim allocate rv40e-tolerances --target lost_motion_p95=1.5 "
                              "--out alloc2 --samples 30", "stderr"),
     "efficiency": ("rvsim efficiency --params RV-40E-bearings --speeds 500,2000 "
                    "--torques 82.4,412", "stdout"),
