@@ -47,6 +47,11 @@ SHORT = {"operating.duration": 0.2, "operating.speed_ramp_time": 0.05,
          "operating.load_start": 0.05, "operating.load_ramp_end": 0.1,
          "operating.steady_start": 0.15}
 SHORT_SET = " ".join(f"--set {k}={v}" for k, v in SHORT.items())
+#: tests/_warmup.py's shorter schedule (0.05 s simulated), for single runs that end ok with it
+SHORTEST = {"operating.duration": 0.05, "operating.speed_ramp_time": 0.01,
+            "operating.load_start": 0.01, "operating.load_ramp_end": 0.02,
+            "operating.steady_start": 0.03}
+SHORTEST_SET = " ".join(f"--set {k}={v}" for k, v in SHORTEST.items())
 
 #: lines checked, not run: line -> reason
 CHECKED_ONLY = {
@@ -75,9 +80,8 @@ PENDING_README = {
 #: size reductions, per command (the first word after rvsim, or the script):
 #: (pattern, replacement) applied to the line with re.sub, and the reason
 REDUCED: dict[str, list[tuple[str, str, str]]] = {
-    "simulate": [(r"$", " " + SHORT_SET, "4 s simulated -> 0.2 s (SHORT)")],
-    "tolerance": [(r"--samples \d+|$", " --samples 4", "1000 reducers -> 4"),
-                  (r"--sobol \d+", "--sobol 2", "Sobol base 64 -> 2 (44 reducers)")],
+    "simulate": [(r"$", " " + SHORTEST_SET, "4 s simulated -> 0.05 s (SHORTEST)")],
+    "tolerance": [(r"--samples \d+|$", " --samples 4", "1000 reducers -> 4")],
     "allocate": [(r"--samples \d+|$", " --samples 2", "30 reducers (README: 200) -> 2"),
                  (r"$", " --max-evaluations 12",
                   "60 evaluations -> 12, the least for 10 tolerances (stopped, as the guide's)")],
@@ -120,19 +124,23 @@ SKIPPED = {
 }
 
 #: lines reduced otherwise than their command's rule: line -> (line run, reason)
-LINE_REDUCED: dict[str, tuple[str, str]] = {}
+LINE_REDUCED = {
+    "rvsim simulate --paper-run 3 --scheme implicit-bearings --json":
+        ("rvsim simulate --paper-run 3 --scheme implicit-bearings --json " + SHORT_SET,
+         "4 s simulated -> 0.2 s (SHORT): at 0.05 s this run ends energy_imbalance"),
+}
 
 #: substitutions in the Python blocks: (text, replacement, reason)
 REDUCED_PYTHON = [
-    ('{"H": 0.02, "I": 0.016}', '{"H": 0.02, "I": 0.016, **SHORT}',
-     "4 s simulated -> 0.2 s (SHORT is put in the block's namespace)"),
+    ('{"H": 0.02, "I": 0.016}', '{"H": 0.02, "I": 0.016, **SHORTEST}',
+     "4 s simulated -> 0.05 s (SHORTEST is put in the block's namespace)"),
 ]
 
 #: TOML blocks that are no file of their own: first line -> how they are checked
 TOML_FRAGMENTS = {
     'engine = "quasi-static"': "the two lines that make a study quasi-static: my_qs_study.toml",
 }
-#: files the guide's commands read that no block spells out: name -> (text, reason)
+#: files the guide's commands read that no block spells out (_write_files): name -> what
 MADE_FILES = {
     "my_qs_study.toml": "tolerances.toml (section 6) with the quasi-static fragment (section 7), "
                         "as section 5 says",
@@ -246,6 +254,21 @@ def _no_png(monkeypatch):
 
 
 @pytest.fixture
+def _runs_in_process(monkeypatch):
+    """The runs of studies, tolerance runs and grids evaluated in this process, one after
+    another, by the task a worker would call: forking the workers cost 3 s of CPU here, and
+    the worker pool is tested by tests/integration/test_study_faults.py and
+    test_worker_signals.py."""
+    import rvsim.doe.runner as runner
+
+    def in_process(tasks, workers, on_result, inherited_fds=(), on_idle=None, *, task,
+                   first_alone=False):
+        for key, args in tasks.items():
+            on_result(*task(key, *args))
+    monkeypatch.setattr(runner, "run_workers", in_process)
+
+
+@pytest.fixture
 def _small_built_ins(monkeypatch):
     """The built-in studies at a small size (PATCHED)."""
     from rvsim.doe import study as doe_study
@@ -345,7 +368,7 @@ def test_every_block_is_known():
     unknown = [f"{b.doc}:{b.line}" for b in found if b.kind == "unknown"]
     assert not unknown, f"blocks that are no command, code, TOML or marked output: {unknown}"
     lines = {line for b in found if b.kind == "commands" for line, _ in command_lines(b)}
-    for table in (CHECKED_ONLY, PENDING_README, SKIPPED):
+    for table in (CHECKED_ONLY, PENDING_README, SKIPPED, LINE_REDUCED):
         stale = set(table) - lines
         assert not stale, f"entries whose line is no longer in the guide: {stale}"
     stamp = json.loads(GUIDE.STAMP.read_text())
@@ -364,7 +387,7 @@ def test_every_block_is_known():
         assert command == GUIDE.OUTPUTS[key][0], f"'{key}': the stamp's command is stale"
 
 
-@pytest.mark.usefixtures("_no_png", "_small_built_ins")
+@pytest.mark.usefixtures("_no_png", "_small_built_ins", "_runs_in_process")
 def test_guide_runs(tmp_path, monkeypatch):
     """Every command and code block, in order, at the sizes of REDUCED."""
     found = blocks()
@@ -380,7 +403,7 @@ def test_guide_runs(tmp_path, monkeypatch):
             start, code = _cpu(), block.text
             for text, replacement, _ in REDUCED_PYTHON:
                 code = code.replace(text, replacement)
-            namespace.update(SHORT=SHORT)
+            namespace.update(SHORTEST=SHORTEST)
             with redirect_stdout(io.StringIO()):
                 exec(compile(code, f"{block.doc}:{block.line}", "exec"), namespace)
             pyplot().close("all")
