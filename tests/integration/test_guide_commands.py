@@ -1,20 +1,25 @@
 """Every command and code block of README.md and docs/user_guide.md runs (issue 34 item 4).
 
-The fenced blocks of both files are read and sorted: command blocks (lines starting with
-``rvsim``, ``python``, ``pip`` or the README's test command), Python blocks, TOML blocks (the
-files the commands use) and output blocks (each marked ``<!-- guide-output: KEY -->``, the
-output of a full-size run by scripts/guide_outputs.py, kept in its stamp).  Every command runs
-in order, in-process through the command line's entry :func:`rvsim.cli.main`, in one temporary
-folder whose ``docs`` is the checkout's (the example data where the guide says it lives), at
-the sizes of :data:`REDUCED` (each with its reason); the lines of :data:`CHECKED_ONLY` are
-checked (shell syntax, the extras they install, their rvsim part parsed), not run.  A command
-or block the test does not know, a command that fails or exits with another code than the
-guide gives (a trailing ``# exit code N``; else 0), an output block that is not the stamp's or
-whose small run prints another shape: each fails the test.
+The fenced blocks of both files are read and sorted: command blocks (every line, continuations
+joined, starting with ``rvsim``, ``python``, ``pip`` or the README's test command), Python
+blocks, TOML blocks (the files the commands read: a first line ``# NAME.toml``, or a fragment of
+:data:`TOML_FRAGMENTS`) and output blocks (each marked ``<!-- guide-output: KEY -->``: the
+output of a full-size run by scripts/guide_outputs.py, kept in its stamp
+docs/validation_data/guide_outputs.json).  A block of any other kind fails the test.
 
-Figures are drawn but not rasterised (:func:`_no_png`): rendering PNGs was 60-80 % of a
-report's time, and each report's images are checked by tests/unit/test_plots_show_data.py and
-the browser test.
+Every command runs in order, in-process through the command line's entry :func:`rvsim.cli.main`,
+in one temporary folder whose ``docs`` is the checkout's (the example data where the guide says
+it lives), at the sizes of :data:`REDUCED`, :data:`LINE_REDUCED`, :data:`PATCHED` and
+:data:`REDUCED_PYTHON` (each entry with its reason); the lines of :data:`SKIPPED` are parsed,
+those of :data:`CHECKED_ONLY` checked (shell syntax, the extras they install, their rvsim part
+parsed), those of :data:`PENDING_README` wait for a README edit.  The test fails on a command
+that fails or exits with another code than the guide gives (a trailing ``# exit code N``; else
+0), on an output block that is not the stamp's or whose small run prints another shape, and on
+a list entry whose line is gone.  ``RVSIM_GUIDE_TIMES=1`` prints each command's CPU time.
+
+Figures are built but neither laid out nor rasterised (:func:`_no_png`: 60-80 % of a report's
+time; each report's images are checked by tests/unit/test_plots_show_data.py and the browser
+test), and study runs are evaluated in this process (:func:`_runs_in_process`).
 """
 
 from __future__ import annotations
@@ -177,7 +182,7 @@ class Block:
         if self.lang in ("python", "toml"):
             return self.lang
         if self.lang == "" and self.marker is None and all(
-                COMMAND.match(line) or line.startswith(" ") for line in self.text.splitlines()):
+                COMMAND.match(line) for line in self.text.replace("\\\n", " ").splitlines()):
             return "commands"
         return "output" if self.marker else "unknown"
 
