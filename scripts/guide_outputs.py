@@ -24,6 +24,7 @@ import os
 import re
 import resource
 import shlex
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -107,6 +108,8 @@ def entry(key: str, folder: Path) -> dict:
         if key == "compile":
             env = {"NUMBA_CACHE_DIR": tempfile.mkdtemp(prefix="rvsim-guide-numba-")}
         result = run(command, folder, env)
+        if env:
+            shutil.rmtree(env["NUMBA_CACHE_DIR"], ignore_errors=True)
         text = result["stdout"] if key != "compile" else result["stderr"]
         if key == "compile":
             summary = json.loads(result["stdout"])
@@ -151,6 +154,7 @@ def main(argv: list[str]) -> int:
         print(f"  {stamp[key]['cpu_s']} s CPU, {stamp[key]['wall_s']} s wall\n"
               f"{stamp[key]['output']}", file=sys.stderr, flush=True)
         STAMP.write_text(json.dumps(stamp, indent=1) + "\n")   # kept as each run ends
+    shutil.rmtree(folder, ignore_errors=True)
     text = GUIDE.read_text(encoding="utf-8")      # as it is now: edited while the runs ran
     GUIDE.write_text(rewritten(text, stamp), encoding="utf-8")
     return 0
