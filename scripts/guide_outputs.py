@@ -38,7 +38,7 @@ MARK = re.compile(r"^<!-- guide-output: ([\w-]+) -->\n```\w*\n(.*?)^```", re.S |
 
 #: the Python lines the ``api-ltca`` block shows the console output of (section 16)
 API_LTCA = ('import rvsim\nr = rvsim.BUILT_IN_SETS["RV-40E-bearings"]\n'
-            'loaded = rvsim.ltca(r, torque=412.0, positions=48)\nprint(repr(loaded))')
+            'loaded = rvsim.ltca(r, torque=412.0, positions=81)\nprint(repr(loaded))')
 
 #: KEY -> (the command as the guide shows it, or Python code; the stream the block shows)
 OUTPUTS: dict[str, tuple[str, str]] = {

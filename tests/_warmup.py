@@ -133,6 +133,7 @@ NO_KERNELS = frozenset({
 #: (tests/conftest.py); a file not listed counts 0.05 s a test
 SECONDS: dict[str, float] = {
     "test_study_faults.py": 40, "test_cli_process.py": 39, "test_fe.py": 31,
+    "test_guide_commands.py": 31,
     "test_tolerance_cli.py": 20, "test_report_browser.py": 17, "test_fe_pin.py": 17,
     "test_dynamics.py": 15, "test_environment_faults.py": 14, "test_single_stage.py": 14,
     "test_stiff_nodes.py": 14, "test_fe_modes.py": 12, "test_fe_holes.py": 11,

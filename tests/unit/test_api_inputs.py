@@ -167,7 +167,7 @@ SET = "must be a parameter set (rvsim.parameters.Reducer: rvsim.RV40E"
     ("rvsim.run_study('paper-l36', OUT)", "study",
      "must be a study (rvsim.load_study(path), rvsim.BUILT_IN_STUDIES[name]()) (got str)"),
     ("rvsim.analyse_path('docs/examples/testrig', 'RV-40E')", "reducer", SET),
-    ("rvsim.analyse_path('docs/examples/testrig', RV40E, points=3)", "points",
+    ("rvsim.analyse_path('docs/examples/testrig', RV40E, positions=3)", "positions",
      "must be 64 to 65536 (got 3)"),
     ("rvsim.read_recording('docs/examples/testrig/reversal.csv', 'x')", "column_map",
      "must be a ColumnMap"),

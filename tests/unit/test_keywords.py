@@ -10,6 +10,7 @@ import pytest
 from rvsim._keywords import renamed
 from rvsim.cli import build_parser
 from rvsim.errors import InputFileError
+from rvsim.parameters import RV40E
 
 
 @renamed(points="positions")
@@ -36,7 +37,7 @@ def test_a_renamed_function_keeps_its_signature_and_docstring():
     assert "positions" in analyse_path.__doc__
     with pytest.warns(DeprecationWarning, match="analyse_path\\(\\): the keyword 'points'"):
         with pytest.raises(InputFileError):           # the call goes on with the new name
-            analyse_path("no-such-folder", None, points=256)
+            analyse_path("no-such-folder", RV40E, points=256)
 
 
 @pytest.mark.parametrize("old, new", [

@@ -318,7 +318,7 @@ def analyse_path(path: str | Path, reducer, column_map: ColumnMap | None = None,
     from ..parameters import check_reducer
 
     check_reducer(reducer)
-    A.check_points(points, "points")
+    A.check_points(positions, "positions")
     column_map = column_map or ColumnMap()
     folder = Path(path).is_dir()
     groups: dict = {}
