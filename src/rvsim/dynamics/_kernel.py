@@ -36,7 +36,8 @@ from ..physics._layout import (CARRIER, CH_OMEGA_IN, CH_OMEGA_OUT, CH_PIN_MAX, C
                                LOAD_T0, LOAD_T1, MINV_LL, MINV_LU, MINV_UU, M_DISC, NODE_ALERT,
                                NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_OMEGA_DT, NODE_PEAK,
                                NODE_REFRESH, NODE_SUBSTEPS, N_DOF, OUT_SLOT0, PEN_LIMIT, RAMP_TIME,
-                               STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION, STEADY_START, ZETA)
+                               STEADY_START, ZETA)
+from ..physics._status import STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION
 from ._implicit_bearings import (bearing_forces_risen, factor_effective_mass,
                                  record_bearing_forces, solve_factored)
 from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt, substeps_for

@@ -47,14 +47,10 @@ from ..physics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # n
                                PROFILE_OFFSET, RB1, RB2, RG, ZC, ZP)
 from ..physics._layout import (CRANK_COUNT, DISC_COUNT, FE_CRANK_XX1, FE_HOLE_EX,  # noqa: E402
                                FE_HOLE_EY)
+from ..physics._status import (STATUS_NONFINITE, STATUS_NOT_CONVERGED, STATUS_OK,  # noqa: E402
+                               STATUS_PENETRATION)
 from ..geometry._curve import curvature  # noqa: E402
 
-STATUS_OK = 0
-STATUS_NOT_CONVERGED = 1
-STATUS_NONFINITE = 2
-STATUS_PENETRATION = 3
-STATUS_TEXT = {STATUS_OK: "ok", STATUS_NOT_CONVERGED: "not_converged",
-               STATUS_NONFINITE: "diverged", STATUS_PENETRATION: "runaway_penetration"}
 
 #: smallest Levenberg-Marquardt term [N/m] (contact stiffnesses are 1e7 .. 1e10 N/m)
 MU_MIN = 1.0
