@@ -50,6 +50,7 @@ from ..physics._layout import (CRANK_COUNT, DISC_COUNT, FE_CRANK_XX1, FE_HOLE_EX
 from ..physics._status import (STATUS_NONFINITE, STATUS_NOT_CONVERGED, STATUS_OK,  # noqa: E402
                                STATUS_PENETRATION)
 from ..geometry._curve import curvature  # noqa: E402
+from ..geometry._pose import disc_centre  # noqa: E402
 
 
 #: smallest Levenberg-Marquardt term [N/m] (contact stiffnesses are 1e7 .. 1e10 N/m)
@@ -581,8 +582,7 @@ def kinematic_pose(P, theta_in, holes, q):
         q[b + 4] = beta
     for disc in range(2):
         d = DISC0 + DISC_STRIDE * disc
-        q[d] = P[ECC] * math.cos(beta + disc * math.pi)
-        q[d + 1] = P[ECC] * math.sin(beta + disc * math.pi)
+        q[d], q[d + 1] = disc_centre(P[ECC], beta, disc)
         q[d + 2] = theta_c if disc_angle < 0.0 else disc_angle
     return beta
 
