@@ -184,7 +184,7 @@ def _forces(reducer, q, theta_in, torque, want_stiffness):
               2.0 * np.pi * np.arange(zp) / zp, model.holes, model.crank_angles,
               model.mesh_phase, np.zeros((2, zp)), np.zeros((2, zp), dtype=np.int64), 1,
               np.zeros((2, zp)), np.zeros((2, zp)), np.zeros((2, L.OUT_SLOT0 + n_out)), Q, K,
-              np.zeros(L.N_CHANNELS), np.zeros((2, 4)), np.zeros((2, 2)), model.fe)
+              want_stiffness, np.zeros(L.N_CHANNELS), np.zeros((2, 4)), np.zeros((2, 2)), model.fe)
     return Q, K
 
 

@@ -108,7 +108,7 @@ def _stiffness(K, shift, cm, force, bore, sm):
 
 
 @numba.njit(**REFCOUNT)
-def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
+def plate_supports(P, q, v, Q, K, want, upper, crank_angles, elastic, channel):
     """Both cranks' support bushings on one plate (``upper``: the carrier; else the flange),
     with the plate's table: adds their forces to ``Q`` (and their stiffness to a 17 x 17
     ``K``: then solved together, else one sweep), the resultant force on crank j to its
@@ -126,7 +126,6 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
     slot = SUP_SLOT0 + (1 if upper else 0)
     shift = 2 if upper else 0
     wc = v[CARRIER]
-    want = K.shape[0] > 0
     for j in range(2):
         b = CRANK0 + CRANK_STRIDE * j + shift
         bx, by = bore_centre(P, q, j, crank_angles[j])

@@ -200,13 +200,13 @@ def arm_response(P, q, holes, arm_elastic, c, d):
         Qs[:] = 0.0
         Ks[:, :] = 0.0
         if coupled:
-            arm_pair(P, q, v, Qs, Ks, j, holes, arm_elastic)
+            arm_pair(P, q, v, Qs, Ks, bool(True), j, holes, arm_elastic)
         else:
             for disc in range(n_discs):
                 wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
                 cos_t, sin_t, cos_p, sin_p = arm_trig(P, q, j, disc)
-                arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic,
-                            cos_t, sin_t, cos_p, sin_p)
+                arm_bushing(P, q, v, Qs, Ks, bool(True), j, disc, hole_x, hole_y, wl, wu,
+                            arm_elastic, cos_t, sin_t, cos_p, sin_p)
         half = 0.5 if j == 1 else -0.5
         for disc in range(n_discs):
             dd = DISC0 + DISC_STRIDE * disc
@@ -336,10 +336,12 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
         next_eval[:, :] = 0
         if coupled:
             prepare(P, q, arm_elastic, given, attempt == 0)
+        # bool(): the flag typed boolean, not Literal[bool] (numba compiles every element once
+        # more for a literal argument: +37 s of CPU measured in the cold compile)
         energy, _, torque_in, worst = forces_at(
             P, q, v, theta_in, 0.0, torque, pins, pin_angle, holes, crank_angles, mesh_phase,
-            u, next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, channel, mesh_state,
-            mesh_hold, fe)
+            u, next_eval, 1, pin_force, pin_elastic, arm_elastic, Q, K, bool(True), channel,
+            mesh_state, mesh_hold, fe)
         if not coupled:
             break
         tight, loose = settled(P, arm_elastic, given, r, Q, f_ext)
@@ -692,8 +694,8 @@ def friction_forces(P_fric, q, v, Q0, theta_in, omega, torque, pins, pin_angle, 
     next_eval[:, :] = 0
     _, _, torque_in, _ = forces_at(P_fric, q, v, theta_in, omega, torque, pins, pin_angle,
                                    holes, crank_angles, mesh_phase, u, next_eval, 1, pin_force,
-                                   pin_elastic, arm_elastic, out, K0, channel, mesh_state,
-                                   mesh_hold, fe)
+                                   pin_elastic, arm_elastic, out, K0, bool(False), channel,
+                                   mesh_state, mesh_hold, fe)
     for i in range(N_DOF):
         out[i] -= Q0[i]
     return torque_in
