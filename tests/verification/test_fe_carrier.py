@@ -36,8 +36,8 @@ def _plate(model, q, upper, want=True, elastic=None):
     K = np.zeros((L.N_DOF, L.N_DOF) if want else (0, 0))
     elastic = np.zeros((2, L.OUT_SLOT0 + COLUMNS)) if elastic is None else elastic
     channel = np.zeros(L.N_CHANNELS)
-    energy, _ = plate_supports(model.P, q, np.zeros(L.N_DOF), Q, K, upper, model.crank_angles,
-                               elastic, channel)
+    energy, _ = plate_supports(model.P, q, np.zeros(L.N_DOF), Q, K, want, upper,
+                               model.crank_angles, elastic, channel)
     return Q, K, energy, channel[[L.CH_SUP_FL0 + upper, L.CH_SUP_FL0 + 2 + upper]]
 
 

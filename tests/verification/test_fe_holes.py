@@ -205,13 +205,13 @@ def test_sweep_contraction_and_the_modes_refused():
         Q, K = np.zeros(17), np.zeros((17, 17))
         ne[:, :] = 0
         for d in range(2):
-            Pn.pin_contacts(m.P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne, 1, pf, pe,
+            Pn.pin_contacts(m.P, q, np.zeros(17), Q, K, True, d, m.pins, angle, u, ne, 1, pf, pe,
                             m.fe, np.zeros((2, 0, 0)), arm)
         Fh.begin_arms(m.P, arm)
         for j in range(2):
             for d in range(2):
                 wl, wu, hx, hy = Fr.hole_station(m.P, m.holes, j, d, arm)
-                Cb.arm_bushing(m.P, q, np.zeros(17), Q, K, j, d, hx, hy, wl, wu, arm,
+                Cb.arm_bushing(m.P, q, np.zeros(17), Q, K, True, j, d, hx, hy, wl, wu, arm,
                                *Fr.arm_trig(m.P, q, j, d))
         Fh.end_arms(m.P, arm)
         history.append(arm[:, col].copy())
@@ -247,8 +247,8 @@ def test_no_pin_touching_leaves_the_stretch_of_the_holes_load_alone():
     energies = []
     for d in range(2):
         Q, K = np.zeros(17), np.zeros((0, 0))
-        energy, _, _, _ = Pn.pin_contacts(P, q, np.zeros(17), Q, K, d, m.pins, angle, u, ne,
-                                          1, pf, pe, m.fe, np.zeros((2, 0, 0)), arm)
+        energy, _, _, _ = Pn.pin_contacts(P, q, np.zeros(17), Q, K, False, d, m.pins, angle, u,
+                                          ne, 1, pf, pe, m.fe, np.zeros((2, 0, 0)), arm)
         energies.append(energy)
     assert not pf.any()                                # no pin touches
     assert P[L.FE_HOLE_CSS1] == css
@@ -262,7 +262,7 @@ def test_no_pin_touching_leaves_the_stretch_of_the_holes_load_alone():
         arm[d, L.HOLE_SLOT0 + STRETCH] = 1e-3
     ne[:, :] = 0
     Fo.forces_at(P, q, np.zeros(17), 0.0, 0.0, 0.0, m.pins, angle, m.holes, m.crank_angles,
-                 m.mesh_phase, u, ne, 1, pf, pe, arm, np.zeros(17), np.zeros((0, 0)),
+                 m.mesh_phase, u, ne, 1, pf, pe, arm, np.zeros(17), np.zeros((0, 0)), False,
                  np.zeros(L.N_CHANNELS), np.zeros((2, 2)), np.zeros((2, 2)), m.fe)
     assert not pf.any()
     for d in range(2):

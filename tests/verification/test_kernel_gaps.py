@@ -37,7 +37,7 @@ def _kernel_gaps(model, q, disc, step, u, next_eval):
     elastic = np.zeros((2, n))
     # the engine's own argument types (no arm state: None; nothing carried, as omitted), so
     # the compiled loop loads from numba's cache instead of compiling a signature of its own
-    pin_contacts(P, q, np.zeros(L.N_DOF), np.zeros(L.N_DOF), np.zeros((0, 0)), disc,
+    pin_contacts(P, q, np.zeros(L.N_DOF), np.zeros(L.N_DOF), np.zeros((0, 0)), False, disc,
                  model.pins, pin_angle, u, next_eval, step, forces, elastic, model.fe,
                  np.zeros((2, 0, 0)), None, nothing_carried(n))
     assert np.all(forces[disc] > 0.0)           # every pin was evaluated and in contact
@@ -104,7 +104,7 @@ def _skipped_gaps(disc, step_factor=1.0, steps=3000, dt=2e-5):
     for step in range(steps):
         phi, q[d:d + 3], v[d:d + 3], (dx, dy, dth) = _disc_motion(step * dt, disc)
         skip = step < next_eval[disc]
-        pin_contacts(P, q, v, np.zeros(L.N_DOF), np.zeros((0, 0)), disc, model.pins,
+        pin_contacts(P, q, v, np.zeros(L.N_DOF), np.zeros((0, 0)), False, disc, model.pins,
                      pin_angle, u, next_eval, step, forces, elastic, model.fe,
                      np.zeros((2, 0, 0)), None, carried)
         gaps = pin_gaps(REDUCER, phi, disc=disc, extra_rotation=dth, offset=(dx, dy))

@@ -36,7 +36,8 @@ def _mesh(q, want_stiffness=False):
     Q = np.zeros(L.N_DOF)
     K = np.zeros((L.N_DOF, L.N_DOF) if want_stiffness else (0, 0))
     line = q[L.CARRIER] + _model().crank_angles[0]
-    out = gear_mesh(_model().P, q, np.zeros(L.N_DOF), Q, K, 0, _model().crank_angles[0],
+    out = gear_mesh(_model().P, q, np.zeros(L.N_DOF), Q, K, want_stiffness, 0,
+                    _model().crank_angles[0],
                     _model().mesh_phase[0], 0.0, 0.0, 1.0, 0.0,   # one tooth pair held
                     math.cos(line), math.sin(line))
     return out, Q, K

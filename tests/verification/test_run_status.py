@@ -105,7 +105,7 @@ def _finished(ratio_factor: float, residual: float) -> Result:
     (-6.99 / 121, 0.0, "speed_ratio_off"),
 ])
 def test_finished_run_checks(ratio_factor, residual, status):
-    from rvsim.physics._layout import STATUS_TEXT
+    from rvsim.physics._status import STATUS_TEXT
 
     code, message = _check_finished_run(_finished(ratio_factor, residual))
     assert STATUS_TEXT[code] == status

@@ -36,7 +36,8 @@ from ..physics._layout import (CARRIER, CH_OMEGA_IN, CH_OMEGA_OUT, CH_PIN_MAX, C
                                LOAD_T0, LOAD_T1, MINV_LL, MINV_LU, MINV_UU, M_DISC, NODE_ALERT,
                                NODE_CHECKS, NODE_CHECKS_STEADY, NODE_H, NODE_OMEGA_DT, NODE_PEAK,
                                NODE_REFRESH, NODE_SUBSTEPS, N_DOF, OUT_SLOT0, PEN_LIMIT, RAMP_TIME,
-                               STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION, STEADY_START, ZETA)
+                               STEADY_START, ZETA)
+from ..physics._status import STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION
 from ._implicit_bearings import (bearing_forces_risen, factor_effective_mass,
                                  record_bearing_forces, solve_factored)
 from ._stiff_nodes import ALERT, node_kinetic, node_omega_dt, substeps_for
@@ -82,17 +83,19 @@ def kinetic_energy(P, v):
 
 @numba.njit(cache=CACHE, inline="always")
 def forces(P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, step,
-           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, mesh_hold, fe, modal,
-           pin_slots, pin_work, pin_carried, K_bearings):
+           pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state, K, want, mesh_hold, fe,
+           modal, pin_slots, pin_work, pin_carried, K_bearings, bearings_apart):
     """Generalised forces Q at time t (:func:`forces_at` with the input motion and the load of
-    the run's schedule; ``K_bearings`` as :func:`forces_with` takes it). Returns (potential energy, dissipated power, input torque,
+    the run's schedule; ``want``, ``K_bearings``, ``bearings_apart`` as :func:`forces_with`
+    takes them). Returns (potential energy, dissipated power, input torque,
     load torque, max pin penetration, input angle, input speed)."""
     theta_in, omega_in = input_motion(P, t)
     torque_load = load_torque(P, t)
     energy, power, torque_in, worst = forces_with(
         P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
-        mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, channel,
-        mesh_state, mesh_hold, fe, modal, pin_slots, pin_work, pin_carried, K_bearings)
+        mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, want, channel,
+        mesh_state, mesh_hold, fe, modal, pin_slots, pin_work, pin_carried, K_bearings,
+        bearings_apart)
     return energy, power, torque_in, torque_load, worst, theta_in, omega_in
 
 
@@ -213,8 +216,8 @@ def _advance(P, q, v, first_step, stop_step, n_steps, sample_every, pins, holes,
         pot, diss, t_in, t_load, pen, theta_in, omega_in = forces(
             P, q, v, t, pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, tick,
             pin_force, pin_elastic, arm_elastic, Q, channel, mesh_state,
-            K_node if check else K, mesh_hold, fe, modal, pin_slots, pin_work, pin_carried,
-            K_bear if refactor else K)
+            K_node if check else K, check, mesh_hold, fe, modal, pin_slots, pin_work,
+            pin_carried, K_bear if refactor else K, refactor)
         tick += 1
         if linear_implicit and not refactor and bearing_forces_risen(channel,
                                                                      bearing_reference):

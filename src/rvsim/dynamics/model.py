@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from ..geometry.cycloid import profile_offset
+from ..geometry._pose import bore_centre_py, disc_centre_py
 from ..geometry.deviations import bore_offsets, eccentric_errors, hole_offsets, pin_table
 from ..geometry.involute import gear_geometry
 from ..parameters.fe_sizes import check_element_sizes
@@ -347,19 +348,18 @@ def build_model(r: Reducer, time_step: float, scheme: str = EXPLICIT) -> KernelM
                                                         np.sin(crank_angles)])
     mesh_phase = (r.gears.sun_teeth * crank_angles / (2.0 * math.pi)) % 1.0
     q0 = np.zeros(L.N_DOF)
-    for j in range(2):
+    # the crank starts on its carrier bores' centre (the single-stage drive's one eccentric
+    # shaft on the axis: the second crank's coordinates unused, left at zero)
+    for j in range(1 if r.layout.single_stage else 2):
         b = L.CRANK0 + L.CRANK_STRIDE * j
-        # the crank starts on its carrier bores' centre
-        c_j, s_j = math.cos(crank_angles[j]), math.sin(crank_angles[j])
-        x = holes[j, 0] + bores[j, 0] * c_j - bores[j, 1] * s_j
-        y = holes[j, 1] + bores[j, 0] * s_j + bores[j, 1] * c_j
+        x, y = bore_centre_py(P[L.CENTRE_DIST] + bores[j, 0], bores[j, 1],
+                              math.cos(crank_angles[j]), math.sin(crank_angles[j]))
         q0[b:b + 4] = [x, y, x, y]
     if r.parts.disc_holes:
         holes = np.hstack([holes, hole_offsets(r)])
     for kd in range(2):
         d = L.DISC0 + L.DISC_STRIDE * kd
-        q0[d] = P[L.ECC] * math.cos(kd * math.pi)
-        q0[d + 1] = P[L.ECC] * math.sin(kd * math.pi)
+        q0[d], q0[d + 1] = disc_centre_py(P[L.ECC], 0.0, kd)
     tables = _fe_tables(r, P, holes) if fe_disc else np.zeros((2, 0, 0))
     P, tables = _scaled_stiffness(r, P, tables)
     return KernelModel(P, pins, holes, crank_angles, mesh_phase, q0, masses, tables)

@@ -12,6 +12,8 @@ from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError
 from ..parameters import Reducer, validate
 from ..physics import _layout as L
+from ..physics._status import (STATUS_ENERGY, STATUS_MESSAGE, STATUS_OK, STATUS_SPEED_RATIO,
+                               STATUS_TEXT)
 from ._kernel import COUNT_ROW, integrate, new_state
 from ..physics._pins import nothing_carried
 from ._implicit_bearings import new_work
@@ -179,27 +181,27 @@ def simulate(reducer: Reducer, *, duration: float | None = None,
             if bar is not None:
                 bar.update(min(step, n_steps) * time_step - bar.n)
             check_stop()        # a Ctrl-C or SIGTERM whose exception was swallowed on its way
-            if status != L.STATUS_OK or step > n_steps:
+            if status != STATUS_OK or step > n_steps:
                 break
     finally:
         if bar is not None:
             bar.close()
     wall, _ = clock.split()
-    steps = n_steps if status == L.STATUS_OK else step
+    steps = n_steps if status == STATUS_OK else step
     rows = int(state[-1][COUNT_ROW])          # samples the kernel stored
     result = Result(time=channels[:rows, L.CH_TIME].copy(), channels=channels[:rows],
                     pin_forces=pin_forces[:rows], ratio=reducer.ratio,
                     steady_start=reducer.operating.steady_start,
-                    status=L.STATUS_TEXT[status], steps=int(steps), wall_s=wall,
+                    status=STATUS_TEXT[status], steps=int(steps), wall_s=wall,
                     energy=_energy_balance(energy), reducer_name=reducer.name,
                     guard=_guard_report(model.P), pin_force_peak=float(energy[L.E_PIN_PEAK]))
-    if status != L.STATUS_OK:
+    if status != STATUS_OK:
         message = (f"simulation stopped at t = {steps * time_step:.4f} s: "
-                   f"{result.status.replace('_', ' ')}")
+                   f"{STATUS_MESSAGE[status]}")
     else:
         status, message = _check_finished_run(result)
-        result.status = L.STATUS_TEXT[status]
-    if status != L.STATUS_OK and raise_on_failure:
+        result.status = STATUS_TEXT[status]
+    if status != STATUS_OK and raise_on_failure:
         raise SimulationError(result.status, message)
     return result
 
@@ -237,7 +239,7 @@ def _check_finished_run(result: Result) -> tuple[int, str]:
     if math.isnan(residual) and result.energy["residual"] == 0.0:
         residual = 0.0          # nothing moved and nothing was lost: nothing to balance
     if not abs(residual) <= ENERGY_RESIDUAL_LIMIT:
-        return L.STATUS_ENERGY, (
+        return STATUS_ENERGY, (
             f"energy balance off by {100 * residual:.3g} % of the input work (or, larger, the "
             "kinetic energy) over the steady window (limit "
             f"{100 * ENERGY_RESIDUAL_LIMIT:g} %): the state is not physical "
@@ -245,11 +247,11 @@ def _check_finished_run(result: Result) -> tuple[int, str]:
     ratio = result.metrics["speed_ratio"]
     deviation = ratio / result.ratio - 1.0
     if not abs(deviation) <= SPEED_RATIO_LIMIT:
-        return L.STATUS_SPEED_RATIO, (
+        return STATUS_SPEED_RATIO, (
             f"steady speed ratio {ratio:.4g} is {100 * deviation:+.3g} % off the design "
             f"ratio {result.ratio:.4g} (limit {100 * SPEED_RATIO_LIMIT:g} %): the drive does "
             "not transmit the motion")
-    return L.STATUS_OK, ""
+    return STATUS_OK, ""
 
 
 def _guard_report(P: np.ndarray) -> dict[str, float]:

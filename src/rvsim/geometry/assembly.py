@@ -91,7 +91,9 @@ def _pin_overlaps(reducer: Reducer) -> list[Overlap]:
 
 
 def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
-    from .layout import arm_bushing_play, crank_holes, disc_count, support_bushing_play
+    from ._pose import bore_centre_py, disc_centre_py
+    from .layout import (arm_bushing_play, crank_holes, crank_radius, disc_count,
+                         support_bushing_play)
 
     single = reducer.layout.single_stage
     arm_clearance = arm_bushing_play(reducer)
@@ -103,16 +105,15 @@ def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
     size, turn = eccentric_errors(reducer)            # per-part errors (zero without them)
     holes_off, bores = hole_offsets(reducer), bore_offsets(reducer)
     for crank, hole in enumerate(crank_holes(reducer)):
-        c_j, s_j = (math.cos(crank_angles(reducer)[crank]),
-                    math.sin(crank_angles(reducer)[crank]))
-        axis = hole + np.array([bores[crank, 0] * c_j - bores[crank, 1] * s_j,
-                                bores[crank, 0] * s_j + bores[crank, 1] * c_j])
+        turned = crank_angles(reducer)[crank]
+        # the crank's axis on its carrier bores' centre (the dynamic model's starting pose)
+        axis = np.array(bore_centre_py(crank_radius(reducer) + bores[crank, 0], bores[crank, 1],
+                                       math.cos(turned), math.sin(turned)))
         for disc in range(disc_count(reducer)):
             # eccentric of crank ``crank`` for disc ``disc`` (crank centred in its carrier
             # bores, phase 0) ...
             k = 2 * crank + disc
-            phase = disc * math.pi + turn[k]
-            pin = axis + (eccentric + size[k]) * np.array([math.cos(phase), math.sin(phase)])
+            pin = axis + np.array(disc_centre_py(eccentric + size[k], turn[k], disc))
             # ... and the disc's crank hole, carried by the disc's assembled pose
             x, y, angle = nominal_disc_pose(reducer, 0.0, disc)
             cos_t, sin_t = math.cos(angle), math.sin(angle)

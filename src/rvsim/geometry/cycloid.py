@@ -24,6 +24,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..parameters import Reducer
 from ._curve import curvatures, pin_gaps_at, profile_points
+from ._pose import disc_centre_py
 from .deviations import pin_centres, pin_table   # pin_centres public here too
 
 __all__ = [
@@ -101,9 +102,9 @@ def check_disc(disc) -> int:
 def nominal_disc_pose(reducer: Reducer, crank_angle: float, disc: int = 0):
     """Kinematic pose (x, y, rotation) of disc ``disc`` at eccentric angle ``crank_angle``."""
     disc = check_disc(disc)
-    a = reducer.cycloid.eccentricity - reducer.errors.eccentricity
-    beta = crank_angle + disc * math.pi
-    return a * math.cos(beta), a * math.sin(beta), -crank_angle / reducer.cycloid.disc_teeth
+    x, y = disc_centre_py(reducer.cycloid.eccentricity - reducer.errors.eccentricity,
+                          crank_angle, disc)
+    return x, y, -crank_angle / reducer.cycloid.disc_teeth
 
 
 def _disc_gaps(reducer: Reducer, crank_angle: float, disc: int, extra_rotation: float,

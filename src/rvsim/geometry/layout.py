@@ -14,7 +14,7 @@ import numpy as np
 
 from ..parameters import Reducer
 
-__all__ = ["crank_angles", "crank_holes", "disc_count", "output_pins", "output_hole_clearance",
+__all__ = ["crank_angles", "crank_radius", "crank_holes", "disc_count", "output_pins", "output_hole_clearance",
            "crank_hole_radius", "pillar_angles", "neighbour_distance",
            "roller_pitch_diameter", "arm_bushing_play", "support_bushing_play", "disc_holes"]
 
@@ -24,15 +24,22 @@ def crank_angles(reducer: Reducer) -> np.ndarray:
     return np.array([0.0]) if reducer.layout.single_stage else np.array([0.0, math.pi])
 
 
+def crank_radius(reducer: Reducer) -> float:
+    """Radius of the circle of the cranks' axes: the involute stage's centre distance (RV),
+    0 (single-stage: the eccentric shaft on the housing axis) [m]."""
+    if reducer.layout.single_stage:
+        return 0.0
+    from .involute import gear_geometry
+
+    return gear_geometry(reducer).centre_distance
+
+
 def crank_holes(reducer: Reducer) -> np.ndarray:
     """Centres of the cranks' holes in a disc at the assembled pose, (n_cranks, 2) [m]."""
     if reducer.layout.single_stage:
         return np.zeros((1, 2))
-    from .involute import gear_geometry
-
     angles = crank_angles(reducer)
-    return gear_geometry(reducer).centre_distance * np.column_stack([np.cos(angles),
-                                                                     np.sin(angles)])
+    return crank_radius(reducer) * np.column_stack([np.cos(angles), np.sin(angles)])
 
 
 def disc_count(reducer: Reducer) -> int:

@@ -7,7 +7,8 @@ engine.  A module whose name starts with ``_`` is compiled with numba into the k
 covered by the numba cache guard (``rvsim._cache_guard``) by its name; nothing is compiled at
 import of this package.
 
-* ``_layout`` - slots of the constant vector P, coordinate indices, output channels, status codes.
+* ``_layout`` - slots of the constant vector P, coordinate indices, output channels.
+* ``_status`` - the one table of status codes of both engines (code, status string, message).
 * ``_contact_law`` - Palmgren line contact, its damping, the carried Newton starts.
 * ``_bearings`` - conforming contact (Johnson), bushings in series, rolling-element sets.
 * ``_friction`` - pin, mesh, bearing and lip-seal friction on top of the normal forces.

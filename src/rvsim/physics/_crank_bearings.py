@@ -171,7 +171,7 @@ def apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy
 
 
 @numba.njit(**NO_REFCOUNT)
-def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic, cos_t, sin_t,
+def arm_bushing(P, q, v, Q, K, want, crank, disc, hole_x, hole_y, wl, wu, elastic, cos_t, sin_t,
                 cos_p, sin_p):
     """Crank ``crank``'s eccentric in disc ``disc``'s hole: the paper's bushing (a conforming
     contact, :func:`~rvsim.physics._bearings.conforming_force`) or a needle roller bearing
@@ -198,11 +198,11 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic, cos
         sx, sy, energy, power, fn, ex_el, ey_el, kxx, kxy, kyy = _bushing(
             rx, ry, rvx, rvy, P[ARM_CLEAR], P[ARM_J1], P[ARM_A1], P[ARM_J2],
             P[ARM_A2], P[ARM_CB], P[ZETA], P[M_NODE], elastic, crank, disc,
-            BUSH_SLOT0 + BUSH_COLUMNS * disc, P[ARM_SHIFT], K.shape[0] > 0)
+            BUSH_SLOT0 + BUSH_COLUMNS * disc, P[ARM_SHIFT], want)
         if fn == 0.0 and elastic[crank, disc] == 0.0:
             return 0.0, 0.0, 0.0
     add_hole_load(P, q, elastic, crank, disc, ex_el, ey_el)     # the holes' Q (_fe_holes)
-    if K.shape[0] > 0:
+    if want:
         arm_stiffness(K, b, d, wl, wu, ecc, cos_p, sin_p, hx - q[d], hy - q[d + 1], kxx, kxy,
                       kyy, ex_el, ey_el, cx, cy, w_in)
     apply_arm_force(Q, q, crank, disc, wl, wu, ecc, cos_p, sin_p, hx, hy, sx, sy)
@@ -210,7 +210,7 @@ def arm_bushing(P, q, v, Q, K, crank, disc, hole_x, hole_y, wl, wu, elastic, cos
 
 
 @numba.njit(**REFCOUNT)
-def arm_pair(P, q, v, Q, K, crank, holes, elastic):
+def arm_pair(P, q, v, Q, K, want, crank, holes, elastic):
     """Crank ``crank``'s two eccentrics in their discs' holes with the finite-element crank
     between them (docs/model.md section 17; :mod:`rvsim.physics._fe_crank`): the two arm
     bushings solved together, to convergence with ``K`` wanted (the quasi-static engine), one
@@ -239,7 +239,6 @@ def arm_pair(P, q, v, Q, K, crank, holes, elastic):
         guess[disc, 0] = elastic[crank, FE_CRANK_SLOT0 + 2 * disc]
         guess[disc, 1] = elastic[crank, FE_CRANK_SLOT0 + 2 * disc + 1]
     series = work[:, 15]
-    want = K.shape[0] > 0
     dsdr = mats[:, 4:8]
     energy = pair_forces(arm_law(P), A, r, guess, force, dsdr, series, want)
     power = 0.0
@@ -308,7 +307,7 @@ def arm_pair_stiffness(K, q, crank, geo, dsdr, force, w_in):
 
 
 @numba.njit(**NO_REFCOUNT)
-def support_bushing(P, q, v, Q, K, crank, upper, bx, by, elastic):
+def support_bushing(P, q, v, Q, K, want, crank, upper, bx, by, elastic):
     """Crank ``crank``'s lower or upper support node in its carrier / flange bore: the paper's
     bushing (conforming contact) or a tapered roller bearing (P[SUP_KIND]).
 
@@ -338,10 +337,10 @@ def support_bushing(P, q, v, Q, K, crank, upper, bx, by, elastic):
         sx, sy, energy, power, fn, ex_el, ey_el, kxx, kxy, kyy = _bushing(
             rx, ry, vx, vy, clearance, P[SUP_J1], P[SUP_A1], P[SUP_J2], a2, 0.0, P[ZETA],
             P[M_NODE], elastic, crank, slot, BUSH_SLOT0 + BUSH_COLUMNS * slot,
-            P[SUP_SHIFT_U] if upper else P[SUP_SHIFT_L], K.shape[0] > 0)
+            P[SUP_SHIFT_U] if upper else P[SUP_SHIFT_L], want)
         if fn == 0.0 and elastic[crank, slot] == 0.0:
             return 0.0, 0.0, 0.0
-    if K.shape[0] > 0:
+    if want:
         support_stiffness(K, b, phi, bx, by, kxx, kxy, kyy, ex_el, ey_el, cx, cy, w_in)
     Q[b] -= sx
     Q[b + 1] -= sy
@@ -350,7 +349,8 @@ def support_bushing(P, q, v, Q, K, crank, upper, bx, by, elastic):
 
 
 @numba.njit(**NO_REFCOUNT)
-def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_discs, trig):
+def crank_bearings(P, q, v, Q, K, want, holes, crank_angles, arm_elastic, channel, n_discs,
+                   trig):
     """The cranks' arm bushings (or the FE crank's pairs) and support bushings (or the FE
     plates), with their friction: adds to ``Q`` (and ``K``) and the force channels; returns
     (potential energy, dissipated power).  One call from :func:`forces_at` (a separate
@@ -365,7 +365,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
         pair0 = pair1 = 0.0
         c0 = s0 = c1 = s1 = 0.0
         if coupled:     # both bushings together
-            e, pw, pair0, pair1 = arm_pair(P, q, v, Q, K, j, holes, arm_elastic)
+            e, pw, pair0, pair1 = arm_pair(P, q, v, Q, K, want, j, holes, arm_elastic)
             energy += e
             power += pw
         else:
@@ -379,7 +379,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
                 continue
             wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
             cos_p, sin_p = (c0, s0) if disc == 0 else (c1, s1)
-            force, e, pw = arm_bushing(P, q, v, Q, K, j, disc, hole_x, hole_y, wl, wu,
+            force, e, pw = arm_bushing(P, q, v, Q, K, want, j, disc, hole_x, hole_y, wl, wu,
                                        arm_elastic, trig[4 + 2 * disc], trig[5 + 2 * disc],
                                        cos_p, sin_p)
             channel[CH_ARM_F00 + 2 * j + disc] = force
@@ -390,7 +390,8 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
         # one bore centre for both supports (the closed-form ones: none with the FE plates)
         bx, by = bore_centre_at(P, j, trig[2 * j], trig[2 * j + 1])
         for upper in range(2 if P[FE_PLATE_XX1] == 0.0 else 0):
-            force, e, pw = support_bushing(P, q, v, Q, K, j, upper == 1, bx, by, arm_elastic)
+            force, e, pw = support_bushing(P, q, v, Q, K, want, j, upper == 1, bx, by,
+                                           arm_elastic)
             channel[CH_SUP_FL0 + 2 * j + upper] = force
             energy += e
             power += pw
@@ -399,7 +400,7 @@ def crank_bearings(P, q, v, Q, K, holes, crank_angles, arm_elastic, channel, n_d
     end_arms(P, arm_elastic)
     if P[FE_PLATE_XX1] != 0.0:    # finite-element carrier and flange (physics._fe_carrier)
         for upper in range(2):
-            e, pw = plate_supports(P, q, v, Q, K, upper == 1, crank_angles, arm_elastic,
+            e, pw = plate_supports(P, q, v, Q, K, want, upper == 1, crank_angles, arm_elastic,
                                    channel)
             energy += e
             power += pw
@@ -419,5 +420,7 @@ def bearing_stiffness(P, q, v, Q_scratch, K, holes, crank_angles, arm_elastic, c
     carried solution at the same approach)."""
     for i in range(Q_scratch.shape[0]):
         Q_scratch[i] = 0.0
-    crank_bearings(P, q, v, Q_scratch, K, holes, crank_angles, arm_elastic, channel,
+    # bool(): a flag typed boolean, not Literal[bool] (numba would compile the bearings once
+    # more for a literal argument)
+    crank_bearings(P, q, v, Q_scratch, K, bool(True), holes, crank_angles, arm_elastic, channel,
                    int(P[DISC_COUNT]), angle_trig(q, crank_angles))

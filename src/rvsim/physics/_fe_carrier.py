@@ -38,6 +38,7 @@ from .._cache_guard import invalidate_stale_cache
 
 invalidate_stale_cache(__file__)
 
+from ..geometry._pose import bore_centre as bore_centre_of  # noqa: E402
 from ._contact_law import damped  # noqa: E402
 from ._fe_crank import compliance_torque, pair_forces, rotated_table  # noqa: E402
 from ._layout import (BORE_DR0, BORE_DT0, CARRIER, CENTRE_DIST, CH_SUP_FL0,  # noqa: E402
@@ -62,8 +63,7 @@ def bore_centre(P, q, crank, crank_angle):
 @numba.njit(cache=CACHE, inline="always")
 def bore_centre_at(P, crank, c, s):
     """:func:`bore_centre` from the cosine and sine of q[carrier] + the crank's angle."""
-    radius = P[CENTRE_DIST] + P[BORE_DR0 + crank]
-    return radius * c - P[BORE_DT0 + crank] * s, radius * s + P[BORE_DT0 + crank] * c
+    return bore_centre_of(P[CENTRE_DIST] + P[BORE_DR0 + crank], P[BORE_DT0 + crank], c, s)
 
 
 @numba.njit(**NO_REFCOUNT)
@@ -108,7 +108,7 @@ def _stiffness(K, shift, cm, force, bore, sm):
 
 
 @numba.njit(**REFCOUNT)
-def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
+def plate_supports(P, q, v, Q, K, want, upper, crank_angles, elastic, channel):
     """Both cranks' support bushings on one plate (``upper``: the carrier; else the flange),
     with the plate's table: adds their forces to ``Q`` (and their stiffness to a 17 x 17
     ``K``: then solved together, else one sweep), the resultant force on crank j to its
@@ -126,7 +126,6 @@ def plate_supports(P, q, v, Q, K, upper, crank_angles, elastic, channel):
     slot = SUP_SLOT0 + (1 if upper else 0)
     shift = 2 if upper else 0
     wc = v[CARRIER]
-    want = K.shape[0] > 0
     for j in range(2):
         b = CRANK0 + CRANK_STRIDE * j + shift
         bx, by = bore_centre(P, q, j, crank_angles[j])

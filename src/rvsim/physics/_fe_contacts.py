@@ -361,8 +361,8 @@ def _hole_derivatives(table, work, active, jac, y, na, css, scratch, hole):
 
 
 @numba.njit(**REFCOUNT)
-def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, d, modal,
-                  hole, css):
+def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, K, want, d,
+                  modal, hole, css):
     """Solve the ``count`` touching pins of a disc together and add their forces to ``Q`` (and
     their stiffness to a 17 x 17 ``K``); ``work`` rows hold each pin's (approach, approach
     rate, foot parameter, d(gap)/dx, d(gap)/dy, d(gap)/dtheta, own series compliance) and
@@ -382,7 +382,6 @@ def apply_coupled(table, slots, work, count, c, zeta, mass, forces, elastic, Q, 
     s = sum c_sp F + ``css`` Q is stored and the energy gains Q s - css Q^2 / 2; with ``K``
     wanted, the solve's response to Q is stored too (:func:`_hole_derivatives`)."""
     n = count
-    want = K.shape[0] > 0
     # one block of work space: delta, foot, own compliances, guess, forces, C_ii, k; with K
     # 5 n of scratch, L^-1 G, the interpolated C and the factor L
     space = np.empty(7 * n + (8 * n + 2 * n * n if want else 0))

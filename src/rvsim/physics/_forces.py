@@ -28,17 +28,18 @@ from ._single_stage import input_shaft, output_pin  # noqa: E402
 
 @numba.njit(cache=CACHE, inline="always")
 def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
-              mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
+              mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, want,
               channel, mesh_state, mesh_hold, fe, modal=None, pin_slots=None, pin_work=None,
               pin_carried=None, K_bearings=None):
     """Generalised forces Q at input angle and speed (theta_in, omega_in) under the output load
     ``torque_load``: the one evaluation of the force elements that both engines use.
 
-    Fills the force channels and ``mesh_state`` (stiffness, deflection of each mesh); with a
-    17 x 17 ``K`` (zeroed by the caller) it also accumulates the stiffness matrix -dQ/dq of the
-    elastic forces (a 0 x 0 ``K``: not wanted).  ``mesh_hold[j]`` = (pairs, unused) held for
-    mesh j (zero: from the roll position, see :func:`gear_mesh`); with four columns,
-    ``mesh_state`` also receives the pairs at the roll position and the loaded flank.
+    Fills the force channels and ``mesh_state`` (stiffness, deflection of each mesh); with
+    ``want`` (the stiffness wanted: a flag, not the shape of ``K``) it also accumulates the
+    stiffness matrix -dQ/dq of the elastic forces into ``K`` (17 x 17, zeroed by the caller;
+    else 0 x 0).  ``mesh_hold[j]`` = (pairs, unused) held for mesh j (zero: from the roll
+    position, see :func:`gear_mesh`); with four columns, ``mesh_state`` also receives the
+    pairs at the roll position and the loaded flank.
     With P[FRICTION_ON], the mesh and bearing friction (physics._friction) act after their
     elements with the normal forces those return.  Returns (potential energy, dissipated
     power, input torque, max pin penetration).  ``modal``: the discs' modes (dynamic engine,
@@ -46,7 +47,7 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
     contacts' work arrays (:func:`pin_contacts`; omitted: allocated per call).
     ``pin_carried``: what each pin's evaluation carries to the next (:func:`pin_loop`; omitted:
     nothing).  ``K_bearings``: a 17 x 17 matrix (zeroed by the caller) that takes the crank
-    bearings' stiffness instead of ``K`` (the scheme ``implicit-bearings``,
+    bearings' stiffness, always wanted, instead of ``K`` (the scheme ``implicit-bearings``,
     :mod:`rvsim.dynamics._implicit_bearings`; omitted: they go to ``K``).
     """
     if modal is None:
@@ -65,21 +66,26 @@ def forces_at(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, 
         carried = pin_carried
     if K_bearings is None:
         bearings = np.zeros((0, 0))
+        apart = bool(False)      # typed boolean, not Literal[bool]: one compile of the elements
     else:
         bearings = K_bearings
+        apart = bool(True)
     return forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes,
                        crank_angles, mesh_phase, u, next_eval, step, pin_force, pin_elastic,
-                       arm_elastic, Q, K, channel, mesh_state, mesh_hold, fe, modes, slots, work,
-                       carried, bearings)
+                       arm_elastic, Q, K, want, channel, mesh_state, mesh_hold, fe, modes, slots,
+                       work, carried, bearings, apart)
 
 
 @numba.njit(cache=CACHE, inline="always")
 def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes, crank_angles,
-                mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K,
-                channel, mesh_state, mesh_hold, fe, modes, slots, work, carried, K_bearings):
+                mesh_phase, u, next_eval, step, pin_force, pin_elastic, arm_elastic, Q, K, want,
+                channel, mesh_state, mesh_hold, fe, modes, slots, work, carried, K_bearings,
+                bearings_apart):
     """:func:`forces_at` with every work array given (``modes``, the pin contacts' ``slots``
-    and ``work``; ``K_bearings`` 0 x 0 where the bearings' stiffness goes to ``K``): allocates
-    nothing, so that the step loop compiles without reference counting."""
+    and ``work``; with ``bearings_apart`` the crank bearings' stiffness goes to
+    ``K_bearings``, wanted whatever ``want`` says; else ``K_bearings`` is 0 x 0 and they
+    follow ``want``): allocates nothing, so that the step loop compiles without reference
+    counting."""
     for i in range(N_DOF):
         Q[i] = 0.0
     # one cosine and sine per angle, shared by the elements
@@ -89,11 +95,11 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
     torque_in = 0.0
     single = P[STAGES] == 1.0
     if single:
-        torque_in, energy, power = input_shaft(P, q, v, Q, K, theta_in, omega_in)
+        torque_in, energy, power = input_shaft(P, q, v, Q, K, want, theta_in, omega_in)
     else:
         for j in range(2):
             force, torque, e, pw, stiffness, deflection, natural, rule = gear_mesh(
-                P, q, v, Q, K, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
+                P, q, v, Q, K, want, j, crank_angles[j], mesh_phase[j], theta_in, omega_in,
                 mesh_hold[j, 0], mesh_hold[j, 1], trig[2 * j], trig[2 * j + 1])
             channel[CH_MESH_F0 + j] = force
             mesh_state[j, 0] = stiffness
@@ -116,12 +122,12 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
     ring = single and P[RING_OUTPUT] == 1.0
     for disc in range(n_discs):
         if ring:  # the pins turn with the output: contacts found in the ring's axes
-            e, pw, pen, peak = ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
+            e, pw, pen, peak = ring_pins(P, q, v, Q, K, want, disc, pins, pin_angle, u, next_eval,
                                          step, pin_force, pin_elastic, fe, modes, carried)
         else:   # pin_contacts' parts with the work arrays given (no allocation, no
                 # reference counting in the pin loop; docs/decisions.md); the FE disc's
                 # crank holes as load points where they are on (_fe_holes)
-            e, pw, pen, peak = disc_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval,
+            e, pw, pen, peak = disc_pins(P, q, v, Q, K, want, disc, pins, pin_angle, u, next_eval,
                                          step, pin_force, pin_elastic, fe, modes, slots, work,
                                          carried, trig[4 + 2 * disc], trig[5 + 2 * disc],
                                          arm_elastic, holes_on(P))
@@ -132,14 +138,15 @@ def forces_with(P, q, v, theta_in, omega_in, torque_load, pins, pin_angle, holes
         if peak > pin_peak:
             pin_peak = peak
     channel[CH_PIN_MAX] = pin_peak
-    e, pw = crank_bearings(P, q, v, Q, K_bearings if K_bearings.shape[0] > 0 else K, holes,
-                           crank_angles, arm_elastic, channel, n_discs, trig)
+    e, pw = crank_bearings(P, q, v, Q, K_bearings if bearings_apart else K,
+                           bearings_apart or want, holes, crank_angles, arm_elastic, channel,
+                           n_discs, trig)
     energy += e
     power += pw
     if single:
         for disc in range(n_discs):
             for m in range(int(P[OUT_COUNT])):
-                force, e, pw = output_pin(P, q, v, Q, K, disc, m, arm_elastic)
+                force, e, pw = output_pin(P, q, v, Q, K, want, disc, m, arm_elastic)
                 energy += e
                 power += pw
     if P[FRICTION_ON] == 1.0 and (P[SEAL_IN] > 0.0 or P[SEAL_OUT] > 0.0):

@@ -21,8 +21,8 @@ from ._layout import (BACKLASH, BASE_PITCH, CARRIER, CENTRE_DIST, CONTACT_RATIO,
 
 
 @numba.njit(**NO_REFCOUNT)
-def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, flank, cos_l,
-              sin_l):
+def gear_mesh(P, q, v, Q, K, want, j, crank_angle, phase, theta_in, omega_in, pairs, flank,
+              cos_l, sin_l):
     """Sun-planet mesh j: returns (normal force, input torque, energy, dissipated power,
     stiffness, deflection, number of tooth pairs at the roll position, loaded flank).
 
@@ -41,10 +41,10 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
     takes it from the roll position.  ``flank`` is no longer used (both flanks act; kept so
     that the callers' arrays stay as they are).
 
-    ``K`` (17 x 17, or 0 x 0: not wanted) accumulates the stiffness matrix -dQ/dq of the
-    elastic force (material term k g g^T per flank; the curvature of the line-of-centres angle
-    is left out: docs/model.md, "Quasi-static analysis").  (cos_l, sin_l): of the line of
-    centres' nominal angle q[carrier] + crank_angle (:func:`line_trig`)."""
+    With ``want`` (the stiffness wanted) ``K`` (17 x 17; else 0 x 0) accumulates the stiffness
+    matrix -dQ/dq of the elastic force (material term k g g^T per flank; the curvature of the
+    line-of-centres angle is left out: docs/model.md, "Quasi-static analysis"). (cos_l, sin_l):
+    of the line of centres' nominal angle q[carrier] + crank_angle (:func:`line_trig`)."""
     px, py, pvx, pvy = crank_point(q, v, j, P[W_G_L], P[W_G_U])
     r2 = px * px + py * py
     r = math.sqrt(r2)
@@ -97,7 +97,7 @@ def gear_mesh(P, q, v, Q, K, j, crank_angle, phase, theta_in, omega_in, pairs, f
         gy = sign * (-(rb1 + rb2) * dbeta_y) - P[SIN_AW] * dr_y
         add_crank_force(Q, j, wl, wu, -force * gx, -force * gy)
         Q[b + 4] -= force * sign * rb2
-        if K.shape[0] > 0:
+        if want:
             add_rank_one(K, (b, b + 1, b + 2, b + 3, b + 4),
                          (wl * gx, wl * gy, wu * gx, wu * gy, sign * rb2), stiffness)
     return (total, net * rb1, energy, power, stiffness, math.sqrt(squares), natural,

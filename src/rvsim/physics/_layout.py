@@ -290,14 +290,3 @@ CHANNEL_NAMES = (
 E_INPUT, E_OUTPUT, E_DISSIPATED, E_PARAMETRIC, E_KIN0, E_POT0, E_KIN1, E_POT1 = range(8)
 E_PIN_PEAK = 8     # not energy: the window's largest pin force [N], at every (sub-)step
 N_ENERGY = 9
-
-# ---- status codes: the kernel returns the first three ------------------------------------
-STATUS_OK = 0
-STATUS_NONFINITE = 1
-STATUS_PENETRATION = 2
-# ... and the checks of the finished run (rvsim.dynamics.simulate; docs/model.md section 9)
-STATUS_ENERGY = 3
-STATUS_SPEED_RATIO = 4
-STATUS_TEXT = {STATUS_OK: "ok", STATUS_NONFINITE: "diverged",
-               STATUS_PENETRATION: "runaway_penetration", STATUS_ENERGY: "energy_imbalance",
-               STATUS_SPEED_RATIO: "speed_ratio_off"}

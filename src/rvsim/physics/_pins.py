@@ -37,8 +37,8 @@ CARRY_REFRESH = 64
 
 
 @numba.njit(**REFCOUNT)
-def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
-                 fe, modal, arm_elastic=None, carried=None):
+def pin_contacts(P, q, v, Q, K, want, disc, pins, pin_angle, u, next_eval, clock, forces,
+                 elastic, fe, modal, arm_elastic=None, carried=None):
     """All pin contacts of disc ``disc``: returns (energy, dissipated power, max penetration,
     largest pin force): :func:`disc_pins` (which ``forces_with`` calls itself for the pins in
     the housing) with its work arrays allocated.
@@ -84,14 +84,14 @@ def pin_contacts(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forc
     else:
         arm = arm_elastic
     cos_d, sin_d = disc_trig(q, disc)
-    return disc_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces,
+    return disc_pins(P, q, v, Q, K, want, disc, pins, pin_angle, u, next_eval, clock, forces,
                      elastic, fe, modal, pin_slots, pin_work, carry, cos_d, sin_d, arm,
                      arm_elastic is not None)
 
 
 @numba.njit(cache=CACHE, inline="always")
-def disc_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic, fe,
-              modal, slots, work, carried, cos_d, sin_d, arm_elastic, with_holes):
+def disc_pins(P, q, v, Q, K, want, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
+              fe, modal, slots, work, carried, cos_d, sin_d, arm_elastic, with_holes):
     """The parts of :func:`pin_contacts` in their order, with its work arrays given (inlined
     into :func:`~rvsim.physics._forces.forces_with`, which calls it with no allocation and
     no reference counting in :func:`pin_loop`): the pin loop, then the touching pins of a
@@ -102,7 +102,7 @@ def disc_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces,
     coupled = fe.shape[1] > 0
     if coupled:
         clear_modal_force(modal[disc])
-    energy, power, worst, count, peak = pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u,
+    energy, power, worst, count, peak = pin_loop(P, q, v, Q, K, want, disc, pins, pin_angle, u,
                                                  next_eval, clock, forces, elastic, coupled,
                                                  slots, work, carried, cos_d, sin_d)
     if count > 0:
@@ -112,7 +112,7 @@ def disc_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces,
         else:
             hole = Q[0:0]
             css = 0.0
-        e, pw, peak_fe = coupled_pins(P, q, v, Q, K, disc, fe[disc], modal[disc], slots,
+        e, pw, peak_fe = coupled_pins(P, q, v, Q, K, want, disc, fe[disc], modal[disc], slots,
                                       work, count, forces, elastic, hole, css)
         energy += e
         power += pw
@@ -123,7 +123,7 @@ def disc_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces,
 
 
 @numba.njit(**NO_REFCOUNT)
-def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
+def pin_loop(P, q, v, Q, K, want, disc, pins, pin_angle, u, next_eval, clock, forces, elastic,
              coupled, slots, work, carried, cos_d, sin_d):
     """The pin loop of :func:`pin_contacts` (compiled without reference counting: it
     allocates nothing): the independent contacts' forces added to ``Q``; with ``coupled``, the
@@ -149,7 +149,6 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, 
     energy = 0.0
     power = 0.0
     worst = 0.0
-    want = K.shape[0] > 0
     n = pins.shape[0]
     count = 0
     peak = 0.0
@@ -231,7 +230,7 @@ def pin_loop(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, forces, 
 
 
 @numba.njit(**REFCOUNT)
-def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, elastic,
+def coupled_pins(P, q, v, Q, K, want, disc, table, modal, slots, work, count, forces, elastic,
                  hole, css):
     """The touching pins of disc ``disc`` that :func:`pin_loop` collected, solved together with
     the disc's finite-element ``table`` (:func:`rvsim.physics._fe_contacts.apply_coupled`),
@@ -240,7 +239,7 @@ def coupled_pins(P, q, v, Q, K, disc, table, modal, slots, work, count, forces, 
     d = DISC0 + DISC_STRIDE * disc
     _, cos_t, sin_t, lvx, lvy, w = _disc_frame(P, q, v, disc)
     energy, power, _ = apply_coupled(table, slots, work, count, P[PIN_C], P[ZETA],
-                                     P[M_DISC], forces[disc], elastic[disc], Q, K, d, modal,
+                                     P[M_DISC], forces[disc], elastic[disc], Q, K, want, d, modal,
                                      hole, css)
     if P[MU] > 0.0:
         # friction at the coupled solve's normal forces (the table is normal-normal: the
@@ -279,17 +278,17 @@ def pin_friction(P, fn, px, py, gap, nx, ny, lvx, lvy, w, cos_t, sin_t):
 
 
 @numba.njit(**REFCOUNT)
-def ring_pins(P, q, v, Q, K, disc, pins, pin_angle, u, next_eval, clock, pin_force,
+def ring_pins(P, q, v, Q, K, want, disc, pins, pin_angle, u, next_eval, clock, pin_force,
               pin_elastic, fe, modes, carried):
     """Disc ``disc``'s pin contacts with the pin ring as output (single-stage drive): found
     in the ring's axes (:func:`~rvsim.physics._single_stage.ring_frame`), their forces and
     stiffness added to ``Q`` and ``K``.  Returns (energy, dissipated power, max
     penetration, largest pin force).  (A function of its own: it allocates, the step loop does
     not.)"""
-    qr, vr, Qr, Kr = ring_frame(q, v, K, disc)
-    e, pw, pen, peak = pin_contacts(P, qr, vr, Qr, Kr, disc, pins, pin_angle, u, next_eval,
+    qr, vr, Qr, Kr = ring_frame(q, v, want, disc)
+    e, pw, pen, peak = pin_contacts(P, qr, vr, Qr, Kr, want, disc, pins, pin_angle, u, next_eval,
                                     clock, pin_force, pin_elastic, fe, modes, None, carried)
-    ring_forces(q, qr, Qr, Kr, Q, K, disc)
+    ring_forces(q, qr, Qr, Kr, Q, K, want, disc)
     return e, pw, pen, peak
 
 

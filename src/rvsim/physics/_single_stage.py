@@ -25,17 +25,17 @@ __all__ = ["input_shaft", "output_pin", "output_pin_stiffness", "ring_frame", "r
 
 
 @numba.njit(**NO_REFCOUNT)
-def input_shaft(P, q, v, Q, K, theta_in, omega_in):
+def input_shaft(P, q, v, Q, K, want, theta_in, omega_in):
     """Single-stage drive: the input coupling turns the eccentric shaft (crank 0's rotation)
     through a torsional spring K_INPUT with contact-like damping.  Returns (input torque,
-    energy, dissipated power); ``K`` as in :func:`gear_mesh`."""
+    energy, dissipated power); ``K``, ``want`` as in :func:`gear_mesh`."""
     b = CRANK0 + 4
     k = P[K_INPUT]
     twist = theta_in - q[b]
     rate = omega_in - v[b]
     torque = k * twist + damping(k, P[ZETA], P[J_CRANK]) * rate
     Q[b] += torque
-    if K.shape[0] > 0:
+    if want:
         K[b, b] += k
     return torque, 0.5 * k * twist * twist, (torque - k * twist) * rate
 
@@ -54,7 +54,7 @@ def output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, force, dist, free):
 
 
 @numba.njit(**NO_REFCOUNT)
-def output_pin(P, q, v, Q, K, disc, m, elastic):
+def output_pin(P, q, v, Q, K, want, disc, m, elastic):
     """Single-stage drive: output pin m of the flange (the CARRIER coordinate) in its hole of
     disc ``disc``: a clearance contact that closes when the pin centre is farther than
     P[OUT_CLEAR] = design a + clearance from the hole centre (docs/model.md section 13).
@@ -63,7 +63,7 @@ def output_pin(P, q, v, Q, K, disc, m, elastic):
     and takes no part in the CARRIER coordinate.
 
     ``elastic[disc, OUT_SLOT0 + m]`` carries the elastic force (Newton start; the quasi-static
-    engine reads the pin forces there).  ``K`` as in :func:`arm_bushing`.  Returns (force,
+    engine reads the pin forces there).  ``K``, ``want`` as in :func:`arm_bushing`.  Returns (force,
     energy, dissipated power)."""
     alpha = 2.0 * math.pi * m / P[OUT_COUNT]
     x0, y0 = P[OUT_RADIUS] * math.cos(alpha), P[OUT_RADIUS] * math.sin(alpha)
@@ -86,7 +86,7 @@ def output_pin(P, q, v, Q, K, disc, m, elastic):
             + ny * (wc * px - v[d + 1] - v[d + 2] * lx))
     fn, energy, power, elastic[disc, slot], k = contact(delta, rate, P[OUT_C], P[OUT_CB],
                                                         P[ZETA], P[M_DISC], elastic[disc, slot])
-    if K.shape[0] > 0:
+    if want:
         output_pin_stiffness(K, d, nx, ny, px, py, lx, ly, k, elastic[disc, slot], dist, free)
     # -fn n on the pin (flange), +fn n on the disc at the hole
     Q[CARRIER] += free * fn * (nx * py - ny * px)
@@ -97,10 +97,10 @@ def output_pin(P, q, v, Q, K, disc, m, elastic):
 
 
 @numba.njit(**REFCOUNT)
-def ring_frame(q, v, K, disc):
+def ring_frame(q, v, want, disc):
     """Pin ring as output: copies of ``q`` and ``v`` with disc ``disc``'s pose and velocity
     expressed in the axes of the ring (turned by the CARRIER coordinate theta_r), and zeroed
-    force and stiffness arrays (0 x 0 if ``K`` is), for the kernel's pin contacts, which hold
+    force and stiffness arrays (0 x 0 unless ``want``), for the kernel's pin contacts, which hold
     the pins fixed (docs/model.md section 13):
 
         O' = R(-theta_r) O,  theta' = theta - theta_r,  v' = d/dt of those.
@@ -116,12 +116,12 @@ def ring_frame(q, v, K, disc):
     vr[d] = c * v[d] + s * v[d + 1] + wr * qr[d + 1]
     vr[d + 1] = -s * v[d] + c * v[d + 1] - wr * qr[d]
     vr[d + 2] = v[d + 2] - wr
-    n = N_DOF if K.shape[0] > 0 else 0
+    n = N_DOF if want else 0
     return qr, vr, np.zeros(N_DOF), np.zeros((n, n))
 
 
 @numba.njit(**REFCOUNT)
-def ring_forces(q, qr, Qr, Kr, Q, K, disc):
+def ring_forces(q, qr, Qr, Kr, Q, K, want, disc):
     """Add the pin contacts' forces ``Qr`` and stiffness ``Kr``, found in the ring's axes by
     :func:`ring_frame`, to ``Q`` and ``K`` of the fixed-frame coordinates: Q = J^T Q' and
     K = J^T K' J - sum_k Q'_k d2q'_k/dq2, J = dq'/dq over (x, y, theta, theta_r).  The ring
@@ -134,7 +134,7 @@ def ring_forces(q, qr, Qr, Kr, Q, K, disc):
     Q[d + 1] += s * fx + c * fy
     Q[d + 2] += ft
     Q[CARRIER] += yr * fx - xr * fy - ft
-    if K.shape[0] == 0:
+    if not want:
         return
     # J rows: x' = (c, s, 0, y'), y' = (-s, c, 0, -x'), theta' = (0, 0, 1, -1)
     J = np.zeros((3, 4))

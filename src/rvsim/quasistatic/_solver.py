@@ -48,14 +48,11 @@ from ..physics._layout import (A_GEN, CARRIER, CRANK0, CRANK_STRIDE, DISC0,  # n
                                PROFILE_OFFSET, RB1, RB2, RG, ZC, ZP)
 from ..physics._layout import (CRANK_COUNT, DISC_COUNT, FE_CRANK_XX1, FE_HOLE_EX,  # noqa: E402
                                FE_HOLE_EY)
+from ..physics._status import (STATUS_NONFINITE, STATUS_NOT_CONVERGED, STATUS_OK,  # noqa: E402
+                               STATUS_PENETRATION)
 from ..geometry._curve import curvature  # noqa: E402
+from ..geometry._pose import disc_centre  # noqa: E402
 
-STATUS_OK = 0
-STATUS_NOT_CONVERGED = 1
-STATUS_NONFINITE = 2
-STATUS_PENETRATION = 3
-STATUS_TEXT = {STATUS_OK: "ok", STATUS_NOT_CONVERGED: "not_converged",
-               STATUS_NONFINITE: "diverged", STATUS_PENETRATION: "runaway_penetration"}
 
 #: smallest Levenberg-Marquardt term [N/m] (contact stiffnesses are 1e7 .. 1e10 N/m)
 MU_MIN = 1.0
@@ -204,13 +201,13 @@ def arm_response(P, q, holes, arm_elastic, c, d):
         Qs[:] = 0.0
         Ks[:, :] = 0.0
         if coupled:
-            arm_pair(P, q, v, Qs, Ks, j, holes, arm_elastic)
+            arm_pair(P, q, v, Qs, Ks, bool(True), j, holes, arm_elastic)
         else:
             for disc in range(n_discs):
                 wl, wu, hole_x, hole_y = hole_station(P, holes, j, disc, arm_elastic)
                 cos_t, sin_t, cos_p, sin_p = arm_trig(P, q, j, disc)
-                arm_bushing(P, q, v, Qs, Ks, j, disc, hole_x, hole_y, wl, wu, arm_elastic,
-                            cos_t, sin_t, cos_p, sin_p)
+                arm_bushing(P, q, v, Qs, Ks, bool(True), j, disc, hole_x, hole_y, wl, wu,
+                            arm_elastic, cos_t, sin_t, cos_p, sin_p)
         half = 0.5 if j == 1 else -0.5
         for disc in range(n_discs):
             dd = DISC0 + DISC_STRIDE * disc
@@ -320,9 +317,9 @@ def add_coupling_stiffness(P, q, arm_elastic, c, d, K):
 
 
 @numba.njit(cache=CACHE)
-def every_force(P, q, v, theta_in, omega, torque, work, Q, K):
+def every_force(P, q, v, theta_in, omega, torque, work, Q, K, want):
     """The elements' forces (:func:`rvsim.physics._forces.forces_at`) with every pin evaluated:
-    Q (and K unless 0 x 0) at (q, v).  ``work``: the tuple (pins, pin_angle, holes,
+    Q (and K if ``want``, a boolean) at (q, v).  ``work``: the tuple (pins, pin_angle, holes,
     crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic, arm_elastic, channel,
     mesh_state, mesh_hold, fe).  One compiled function for this engine's two callers
     (:func:`_evaluate`, :func:`friction_forces`), where ``forces_at`` was inlined into each,
@@ -333,7 +330,7 @@ def every_force(P, q, v, theta_in, omega, torque, work, Q, K):
      arm_elastic, channel, mesh_state, mesh_hold, fe) = work
     return forces_at(P, q, v, theta_in, omega, torque, pins, pin_angle, holes, crank_angles,
                      mesh_phase, u, next_eval, np.int64(1), pin_force, pin_elastic,
-                     arm_elastic, Q, K, channel, mesh_state, mesh_hold, fe)
+                     arm_elastic, Q, K, want, channel, mesh_state, mesh_hold, fe)
 
 
 @numba.njit(cache=CACHE)
@@ -360,7 +357,8 @@ def _evaluate(P, q, theta_in, torque, pins, pin_angle, holes, crank_angles, mesh
         energy, _, torque_in, worst = every_force(
             P, q, v, theta_in, 0.0, torque, (pins, pin_angle, holes, crank_angles, mesh_phase,
                                              u, next_eval, pin_force, pin_elastic, arm_elastic,
-                                             channel, mesh_state, mesh_hold, fe), Q, K)
+                                             channel, mesh_state, mesh_hold, fe), Q, K,
+            bool(True))     # bool(): a boolean, not Literal[bool] (one compiled every_force)
         if not coupled:
             break
         tight, loose = settled(P, arm_elastic, given, r, Q, f_ext)
@@ -603,8 +601,7 @@ def kinematic_pose(P, theta_in, holes, q):
         q[b + 4] = beta
     for disc in range(2):
         d = DISC0 + DISC_STRIDE * disc
-        q[d] = P[ECC] * math.cos(beta + disc * math.pi)
-        q[d + 1] = P[ECC] * math.sin(beta + disc * math.pi)
+        q[d], q[d + 1] = disc_centre(P[ECC], beta, disc)
         q[d + 2] = theta_c if disc_angle < 0.0 else disc_angle
     return beta
 
@@ -715,7 +712,7 @@ def friction_forces(P_fric, q, v, Q0, theta_in, omega, torque, pins, pin_angle, 
     _, _, torque_in, _ = every_force(P_fric, q, v, theta_in, omega, torque,
                                      (pins, pin_angle, holes, crank_angles, mesh_phase, u,
                                       next_eval, pin_force, pin_elastic, arm_elastic, channel,
-                                      mesh_state, mesh_hold, fe), out, K0)
+                                      mesh_state, mesh_hold, fe), out, K0, bool(False))
     for i in range(N_DOF):
         out[i] -= Q0[i]
     return torque_in

@@ -27,6 +27,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..parameters import Reducer, check_reducer
+from ..physics._status import STATUS_SINGULAR, STATUS_TEXT
 from ..units import ARCMIN
 
 __all__ = ["compliance_budget", "ComplianceBudget", "DEFAULT_FACTOR", "rigidity_of"]
@@ -149,7 +150,7 @@ def _rigidity(reducer, rated, points, stiffen) -> tuple[float, str]:
     except np.linalg.LinAlgError:
         # the condensed stiffness of a model whose stiffnesses span too many decades (a
         # factor far beyond what a budget needs) cannot be inverted in double precision
-        return math.nan, "singular_stiffness"
+        return math.nan, STATUS_TEXT[STATUS_SINGULAR]
     return rigidity_of(run)
 
 

@@ -18,6 +18,7 @@ from .._display import Headline, draw, figure, number, without_status
 from .._stopping import check_stop
 from ..errors import ParameterError, SimulationError, check_type
 from ..parameters import Reducer, check_reducer, validate
+from ..physics._status import STATUS_NOT_CONVERGED, STATUS_OK, STATUS_SINGULAR, STATUS_TEXT
 from ..units import ARCMIN
 
 __all__ = ["ltca", "LtcaResult", "solve_path", "PathSolution", "TOLERANCE", "MAX_ITERATIONS",
@@ -34,9 +35,6 @@ MAX_ITERATIONS = 200
 #: contact foot points and the tangent predictor at each chunk (same equilibria, to the
 #: tolerance; paths up to this length are solved in one call)
 CHUNK = 4000
-#: status code of a point whose condensed stiffness could not be inverted ("singular_stiffness",
-#: the compliance budget's word); the compiled solver's own codes are 0-3
-STATUS_SINGULAR = 100
 
 
 @dataclasses.dataclass
@@ -51,7 +49,7 @@ class PathSolution:
     torsional_stiffness: np.ndarray  # (n,)
     iterations: np.ndarray         # (n,)
     input_torque: np.ndarray       # (n,)
-    status_codes: np.ndarray       # (n,) 0 ok, -1 not reached
+    status_codes: np.ndarray       # (n,) physics._status codes, -1 not reached
     status: str
     wall_s: float
     force_resolution: float = 0.0  # [N] the residual tolerance: smaller forces are not resolved
@@ -152,7 +150,7 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
         done = _sweep(problem, constants, q0, part, out, part)
         solved += done
         check_stop()        # a Ctrl-C or SIGTERM whose exception was swallowed on its way
-        failed = done < part.stop - part.start or out.status_codes[solved - 1] != S.STATUS_OK
+        failed = done < part.stop - part.start or out.status_codes[solved - 1] != STATUS_OK
         k = solved - 1
         if failed and factors and k not in continued and out.status_codes[k] != STATUS_SINGULAR:
             q, iterations, code = _continued(problem, factors, out.q[k - 1] if k else q0, k)
@@ -169,8 +167,8 @@ def solve_path(reducer: Reducer, input_angle, torque, *, q_start=None, input_spe
         out.iterations[k] += iterations
     out.wall_s, _ = clock.split()
     out.force_resolution = problem.tol
-    worst = int(out.status_codes[solved - 1]) if solved else S.STATUS_NOT_CONVERGED
-    out.status = "singular_stiffness" if worst == STATUS_SINGULAR else S.STATUS_TEXT[worst]
+    worst = int(out.status_codes[solved - 1]) if solved else STATUS_NOT_CONVERGED
+    out.status = STATUS_TEXT[worst]
     return out
 
 
@@ -280,7 +278,7 @@ def _continued(problem: _Problem, factors: dict, q_before: np.ndarray, k: int):
         constants = _constants(problem.model, factors, step / steps, problem.friction)
         _sweep(problem, constants, q, slice(k, k + 1), scratch, slice(0, 1))
         iterations += int(scratch.iterations[0])
-        if scratch.status_codes[0] != 0:
+        if scratch.status_codes[0] != STATUS_OK:
             return None, iterations, int(scratch.status_codes[0])
         q = scratch.q[0].copy()
     return q, iterations, 0
@@ -509,7 +507,7 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
     # friction follows the input turning forwards at the operating speed
     path = solve_path(reducer, input_angle, np.full(positions, torque),
                       input_speed=reducer.operating.input_speed)
-    converged = path.status_codes == 0
+    converged = path.status_codes == STATUS_OK
     ch = path.channels
     result = LtcaResult(
         input_angle=input_angle, output_angle=path.q[:, L.CARRIER].copy(),
