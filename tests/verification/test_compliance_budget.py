@@ -78,8 +78,9 @@ def test_conforming_bushing_gives_s_times_the_force(s):
     # below and beyond the wrap force (the law's linear continuation)
     for force in (1e-3 * wrap, 0.5 * wrap, 4.0 * wrap):
         delta = force * (P[L.ARM_J1] + P[L.ARM_J2])
-        f, _, _ = conforming_force(delta, *P[args], 0.0)
-        fs, _, _ = conforming_force(delta, *Ps[args], 0.0)
+        # the shift given (nan: computed), as the engines call it: their compiled signature
+        f, _, _ = conforming_force(delta, *P[args], 0.0, math.nan)
+        fs, _, _ = conforming_force(delta, *Ps[args], 0.0, math.nan)
         assert fs == pytest.approx(s * f, rel=1e-12)
 
 
