@@ -67,3 +67,12 @@ def once(function):
     wall, cpu = time.perf_counter(), time.process_time()
     value = function()
     return value, time.perf_counter() - wall, time.process_time() - cpu
+
+
+def run_numbers(text: str) -> list[int]:
+    """The paper runs of a list such as "1-3,7,30-36"."""
+    out: list[int] = []
+    for part in text.split(","):
+        first, _, last = part.partition("-")
+        out.extend(range(int(first), int(last or first) + 1))
+    return out

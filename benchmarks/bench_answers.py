@@ -25,17 +25,9 @@ import dataclasses
 import json
 import time
 
-from _timing import one_thread
+from _timing import one_thread, run_numbers
 
 one_thread()
-
-
-def _runs(text: str) -> list[int]:
-    out: list[int] = []
-    for part in text.split(","):
-        first, _, last = part.partition("-")
-        out.extend(range(int(first), int(last or first) + 1))
-    return out
 
 
 def main() -> None:
@@ -63,7 +55,7 @@ def main() -> None:
             masses(r), crank_node_mass=masses(r).crank_node_mass * factor)
     steps = args.time_step or [default_time_step(args.scheme)]
     names = ("te_mean_arcmin", "te_pp_arcmin", "max_pin_force_n")
-    for run in _runs(args.runs):
+    for run in run_numbers(args.runs):
         reducer = with_values(RV40E, paper_run_values(run))
         for step in steps:
             seen: dict[str, list[float]] = {name: [] for name in names}

@@ -24,17 +24,9 @@ import os
 import time
 from concurrent.futures import ProcessPoolExecutor
 
-from _timing import machine, one_thread
+from _timing import machine, one_thread, run_numbers
 
 one_thread()
-
-
-def _runs(text: str) -> list[int]:
-    out: list[int] = []
-    for part in text.split(","):
-        first, _, last = part.partition("-")
-        out.extend(range(int(first), int(last or first) + 1))
-    return out
 
 
 def _measure(run: int, candidates: tuple, duration: float | None) -> tuple[int, dict]:
@@ -110,7 +102,7 @@ def _collect(args) -> tuple[dict, tuple, float, dict]:
     measured = {}
     with ProcessPoolExecutor(max_workers=args.workers) as pool:
         futures = [pool.submit(_measure, run, candidates, args.duration)
-                   for run in _runs(args.runs)]
+                   for run in run_numbers(args.runs)]
         for future in futures:
             run, result = future.result()
             measured[run] = result
