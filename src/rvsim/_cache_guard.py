@@ -41,8 +41,9 @@ _KERNEL = _ROOT / "dynamics" / "_kernel.py"
 #: the packages whose private modules (``_*.py``) are compiled into the kernel
 COMPILED_PACKAGES = ("physics", "dynamics")
 #: every source file compiled into the kernel's cached machine code: the compile options, the
-#: compiled curve and pose functions of geometry and every private module of the compiled packages (the force
-#: elements, the layout; a new element module is covered without being listed)
+#: compiled curve and pose functions of geometry and every private module of the compiled
+#: packages (the force elements, the layout; a new element module is covered without being
+#: listed)
 DEPENDENCIES = (_ROOT / "_jit.py", _ROOT / "geometry" / "_curve.py",
                 _ROOT / "geometry" / "_pose.py") + tuple(
     sorted(p for package in COMPILED_PACKAGES for p in (_ROOT / package).glob("_*.py")

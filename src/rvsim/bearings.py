@@ -28,7 +28,7 @@ from .physics.compliance import effective_modulus, palmgren_coefficient
 from .parameters import Reducer
 
 __all__ = ["arm_play", "support_play", "roller_pitch_diameter", "conforming_constants",
-           "roller_coefficient", "RollerPreload", "roller_preloads", "preload_refusal",
+           "roller_coefficient", "RollerSet", "roller_set", "RollerPreload", "roller_preloads", "preload_refusal",
            "check_preload",
            "MainBearingStiffness", "main_bearing_stiffness", "ball_contact_coefficient",
            "RAD_PER_ARCMIN"]
@@ -87,22 +87,45 @@ class RollerPreload:
     stress: float       # the larger Hertz pressure of its two raceway contacts [Pa]
 
 
-def _roller_sizes(r: Reducer, element: str) -> tuple:
-    """(roller length, cos alpha, law coefficient C, ((E*, curvature sum) of the inner and of
-    the outer raceway contact)) of the needle or the tapered roller set: the constants
-    dynamics.model gives the kernel's roller sets (the inner raceway the eccentric or the
-    journal, the outer one a roller diameter further out)."""
+@dataclasses.dataclass(frozen=True)
+class RollerSet:
+    """The constants of a crank's needle or tapered roller set (SI): one definition for the
+    engines' roller sets (:func:`rvsim.dynamics.model.build_model`) and the preload check."""
+
+    count: int
+    diameter: float        # roller diameter [m]
+    length: float          # roller length [m]
+    inner_radius: float    # the inner raceway: the eccentric's or the journal's radius [m]
+    cos_alpha: float       # cosine of the contact angle (needles: 1)
+    coefficient: float     # the rollers' Palmgren law coefficient C (roller_coefficient)
+    outer_material: object  # the outer raceway's part: the disc (needles), the carrier
+
+
+def roller_set(r: Reducer, element: str) -> RollerSet:
+    """The needle (``"arm_needles"``) or tapered roller (``"support_rollers"``) set of ``r``:
+    the inner raceway the eccentric or the journal, the outer one the disc's hole or the
+    carrier's bore a roller diameter further out."""
     b, k, m = r.bearings, r.crank, r.materials
     if element == "arm_needles":
-        d, length, inner, cos_a = b.needle_diameter, b.needle_length, k.eccentric_radius, 1.0
-        outer_material = m.cycloid_disc
+        count, d, length = b.needle_count, b.needle_diameter, b.needle_length
+        inner, cos_a, outer = k.eccentric_radius, 1.0, m.cycloid_disc
     else:
-        d, length, inner = b.support_roller_diameter, b.support_roller_length, k.journal_radius
-        cos_a, outer_material = math.cos(b.support_contact_angle), m.carrier
-    c = roller_coefficient(length, m.crankshaft, m.bushing, outer_material)
+        count, d, length = b.support_roller_count, b.support_roller_diameter, \
+            b.support_roller_length
+        inner, cos_a, outer = k.journal_radius, math.cos(b.support_contact_angle), m.carrier
+    return RollerSet(count, d, length, inner, cos_a,
+                     roller_coefficient(length, m.crankshaft, m.bushing, outer), outer)
+
+
+def _roller_sizes(r: Reducer, element: str) -> tuple:
+    """(roller length, cos alpha, law coefficient C, ((E*, curvature sum) of the inner and of
+    the outer raceway contact)) of the needle or the tapered roller set (:func:`roller_set`,
+    the engines' constants)."""
+    s, m = roller_set(r, element), r.materials
+    d, inner = s.diameter, s.inner_radius
     contacts = ((effective_modulus(m.bushing, m.crankshaft), 2.0 / d + 1.0 / inner),
-                (effective_modulus(m.bushing, outer_material), 2.0 / d - 1.0 / (inner + d)))
-    return length, cos_a, c, contacts
+                (effective_modulus(m.bushing, s.outer_material), 2.0 / d - 1.0 / (inner + d)))
+    return s.length, s.cos_alpha, s.coefficient, contacts
 
 
 def roller_preloads(r: Reducer) -> list[RollerPreload]:

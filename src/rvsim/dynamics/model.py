@@ -459,8 +459,8 @@ def _fe_crank_constants(r: Reducer) -> np.ndarray:
 def _bearing_constants(r: Reducer, P: np.ndarray) -> None:
     """Constants of the arm and support elements: the paper's bushings (conforming contacts,
     docs/model.md "Bearings") or rolling bearings (per-roller Palmgren contacts)."""
-    from ..bearings import (arm_play, conforming_constants, roller_coefficient,
-                            roller_pitch_diameter, support_play)
+    from ..bearings import (arm_play, conforming_constants, roller_pitch_diameter, roller_set,
+                            support_play)
 
     c, k, cl, m, b = r.cycloid, r.crank, r.clearances, r.materials, r.bearings
     factor = r.contact.bushing_stiffness_factor
@@ -470,11 +470,11 @@ def _bearing_constants(r: Reducer, P: np.ndarray) -> None:
     P[L.SUP_CLEAR_U] = support_play(r, upper=True)
     if b.arm_needles:
         P[L.ARM_KIND] = 1.0
-        P[L.ARM_ROLLERS] = b.needle_count
-        P[L.ARM_C] = roller_coefficient(b.needle_length, m.crankshaft, m.bushing,
-                                        m.cycloid_disc)
-        inner = k.eccentric_radius
-        P[L.ARM_CAGE_IN] = inner / roller_pitch_diameter(inner, b.needle_diameter)
+        needles = roller_set(r, "arm_needles")
+        P[L.ARM_ROLLERS] = needles.count
+        P[L.ARM_C] = needles.coefficient
+        inner = needles.inner_radius
+        P[L.ARM_CAGE_IN] = inner / roller_pitch_diameter(inner, needles.diameter)
     else:
         P[L.ARM_J1], P[L.ARM_A1] = conforming_constants(
             c.disc_width, m.crankshaft, m.bushing, max(cl.crank_arm_bushing, floor), factor)
@@ -486,12 +486,12 @@ def _bearing_constants(r: Reducer, P: np.ndarray) -> None:
                        if r.flexibility.arm_bushing else 0.0)
     if b.support_rollers:
         P[L.SUP_KIND] = 1.0
-        P[L.SUP_ROLLERS] = b.support_roller_count
-        P[L.SUP_C] = roller_coefficient(b.support_roller_length, m.crankshaft, m.bushing,
-                                        m.carrier)
-        inner = k.journal_radius
-        P[L.SUP_CAGE_IN] = inner / roller_pitch_diameter(inner, b.support_roller_diameter)
-        P[L.SUP_COS_ALPHA] = math.cos(b.support_contact_angle)
+        rollers = roller_set(r, "support_rollers")
+        P[L.SUP_ROLLERS] = rollers.count
+        P[L.SUP_C] = rollers.coefficient
+        inner = rollers.inner_radius
+        P[L.SUP_CAGE_IN] = inner / roller_pitch_diameter(inner, rollers.diameter)
+        P[L.SUP_COS_ALPHA] = rollers.cos_alpha
     else:
         width = k.support_bushing_width
         P[L.SUP_J1], P[L.SUP_A1] = conforming_constants(

@@ -124,8 +124,10 @@ def _bushing_overlaps(reducer: Reducer) -> list[Overlap]:
                 # needles between eccentric and hole: they must fit the radial space, which
                 # the bearing's radial internal clearance widens by half of it (its radial
                 # play, as rvsim.bearings.arm_play; a preload, negative needle_clearance, is
-                # intended, not an overlap)
-                excess = reducer.bearings.needle_diameter - reducer.crank.arm_bushing_thickness
+                # intended, not an overlap); needles smaller than the space add no room, as in
+                # arm_play (the engines' gap): the preload judged is the engines' (review)
+                excess = max(reducer.bearings.needle_diameter
+                             - reducer.crank.arm_bushing_thickness, 0.0)
                 needle = reducer.bearings.needle_clearance
                 room = arm_clearance + 0.5 * max(needle, 0.0)
                 result.append(Overlap(f"crank {crank + 1} needle rollers do not fit between "

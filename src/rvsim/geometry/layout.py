@@ -14,7 +14,8 @@ import numpy as np
 
 from ..parameters import Reducer
 
-__all__ = ["crank_angles", "crank_radius", "crank_holes", "disc_count", "output_pins", "output_hole_clearance",
+__all__ = ["crank_angles", "crank_radius", "crank_holes", "disc_count", "output_pins",
+           "output_hole_clearance",
            "crank_hole_radius", "pillar_angles", "neighbour_distance",
            "roller_pitch_diameter", "arm_bushing_play", "support_bushing_play", "disc_holes"]
 

@@ -543,7 +543,8 @@ def _systematic(r, data_rms: float, notes) -> bool:
                  f"({runs} runs of one sign in {r.size} residuals, runs test z = {z:.1f}, "
                  f"p = {p:.1e} < {LACK_OF_FIT_LEVEL:g}; noise changes sign at random; RMS left "
                  f"{rms / data_rms:.1%} of the data's): check the recording's units and "
-                 "columns, or free the parameters the misfit needs")
+                 "columns, free the parameters the misfit needs, or raise --positions (below "
+                 "about 256 the model's own discretisation leaves a systematic residual)")
     return True
 
 
