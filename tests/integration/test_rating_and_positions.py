@@ -175,7 +175,8 @@ def test_python_entry_points_refuse_positions_that_alias_as_the_command_line():
             (lambda: ltca(RV40E, positions=80), "positions", ALIAS_REASON.format(got=80, **rv40e)),
             # per output revolution: 40 over half of one are 80
             (lambda: ltca(RV40E, positions=40, revolutions=0.5), "positions",
-             ALIAS_REASON.format(got=80, **rv40e)),
+             ALIAS_REASON.format(got=80, **rv40e)
+             + " (positions 40 over 0.5 output revolutions)"),
             (lambda: ltca(drive, positions=60), "positions",
              ALIAS_REASON.format(need=61, name="cycloid-drive", got=60, order="30th")),
             (lambda: life(bearings, positions=40), "positions",
