@@ -52,21 +52,23 @@ def minimum_positions(reducer, orders=()) -> int:
     return POSITIONS_PER_ORDER * highest_order(reducer, orders)[0] + 1
 
 
-def check_positions(reducer, positions, field: str, orders=(), *, order_field=None) -> int:
+def check_positions(reducer, positions, field: str, orders=(), *, order_field=None,
+                    given: str = "") -> int:
     """``positions`` (per output revolution) if it resolves the reducer's highest order (and
     ``orders``); else a ParameterError naming ``field`` with the minimum and the reason, or
-    ``order_field`` when no count up to MAX_POSITIONS could resolve ``orders``."""
+    ``order_field`` when no count up to MAX_POSITIONS could resolve ``orders``.  ``given``
+    ends each reason: what the user typed, where ``positions`` was derived from it."""
     if isinstance(positions, bool) or not isinstance(positions, numbers.Real) \
             or not math.isfinite(positions):
-        raise ParameterError(field, f"must be a whole number (got {positions!r})")
+        raise ParameterError(field, f"must be a whole number (got {positions!r}){given}")
     order, what = highest_order(reducer, orders)
     needed = minimum_positions(reducer, orders)
     if needed > MAX_POSITIONS:
         raise ParameterError(order_field or field, f"the {_ordinal(order)} ({what}) order "
                              f"needs at least {needed} positions per output revolution, more "
-                             f"than the {MAX_POSITIONS} the analysis takes")
+                             f"than the {MAX_POSITIONS} the analysis takes{given}")
     if positions < needed:
         raise ParameterError(field, f"must be at least {needed} for {reducer.name} (got "
                              f"{positions}): fewer than {needed} positions alias the "
-                             f"{_ordinal(order)} ({what}) order of the output revolution")
+                             f"{_ordinal(order)} ({what}) order of the output revolution{given}")
     return positions

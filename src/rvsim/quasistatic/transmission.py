@@ -495,15 +495,11 @@ def ltca(reducer: Reducer, *, torque: float | None = None, positions: int = 360,
         # per output revolution (the bench model's sweep: points + 1 over (points + 1) /
         # points revolutions, i.e. points per revolution)
         per_revolution = round(positions / revolutions, 9)
-        try:
-            check_positions(reducer, int(per_revolution) if per_revolution.is_integer()
-                            else per_revolution, "positions")
-        except ParameterError as exc:
-            if revolutions == 1.0:
-                raise
-            # the count checked is per output revolution, which the user did not type
-            raise ParameterError("positions", f"{exc.reason} (positions {positions} over "
-                                 f"{revolutions:g} output revolutions)") from None
+        # the count checked is per output revolution: over a part of one, what was typed
+        given = "" if revolutions == 1.0 else (f" (positions {positions} over "
+                                               f"{revolutions:g} output revolutions)")
+        check_positions(reducer, int(per_revolution) if per_revolution.is_integer()
+                        else per_revolution, "positions", given=given)
     from ..physics import _layout as L
 
     from ..geometry.layout import disc_count
