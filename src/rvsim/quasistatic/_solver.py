@@ -325,7 +325,8 @@ def every_force(P, q, v, theta_in, omega, torque, work, Q, K, want):
     (:func:`_evaluate`, :func:`friction_forces`), where ``forces_at`` was inlined into each,
     and the step count given as a non-literal int64, the dynamic engine's type, so that both
     engines share the pin elements' compiled code instead of one specialisation each for a
-    literal 1 (a cold compile about 20 s of CPU shorter, docs/decisions.md, issue 30)."""
+    literal 1 (with the kernel's non-literal crank: both chains' cold compile 182.7 -> 170.4 s
+    of CPU, docs/decisions.md, issue 30)."""
     (pins, pin_angle, holes, crank_angles, mesh_phase, u, next_eval, pin_force, pin_elastic,
      arm_elastic, channel, mesh_state, mesh_hold, fe) = work
     return forces_at(P, q, v, theta_in, omega, torque, pins, pin_angle, holes, crank_angles,
